@@ -1,0 +1,69 @@
+//! Amontons's law (eq. 1): a constant friction coefficient.
+
+use serde::{Deserialize, Serialize};
+
+use crate::law::{released, ContactLoad, ContactState, FrictionLaw, StepOutcome};
+
+/// Constant friction coefficient, applied as Coulomb friction on a tangential
+/// spring: the contact sticks while `|F| <= mu N` and slides at `|F| = mu N`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Amontons {
+    /// Friction coefficient (dimensionless), >= 0.
+    pub mu: f64,
+}
+
+impl FrictionLaw for Amontons {
+    fn mu_steady(&self, _v: f64) -> f64 {
+        self.mu
+    }
+
+    fn steady_state(&self, v: f64, n: f64) -> ContactState {
+        ContactState {
+            tangential_force_n: self.mu * n.max(0.0) * sign(v),
+            ..ContactState::default()
+        }
+    }
+
+    #[inline]
+    fn step(&self, state: &mut ContactState, load: &ContactLoad, dt: f64) -> StepOutcome {
+        let n = load.normal_load_n;
+        if n <= 0.0 || n.is_nan() {
+            let v = released(state, load);
+            return StepOutcome {
+                slip_rate_m_per_s: v,
+                mu: self.mu * sign(v),
+                iterations: 0,
+            };
+        }
+        let kdt = load.stiffness_n_per_m * dt;
+        // Elastic predictor, plastic corrector: the backward-Euler update of a
+        // Coulomb contact, exact for any dt.
+        let trial = state.tangential_force_n + kdt * load.load_point_velocity_m_per_s;
+        let cap = self.mu * n;
+        let (force, v) = if trial.abs() <= cap {
+            (trial, 0.0)
+        } else {
+            let f = cap.copysign(trial);
+            (f, (trial - f) / kdt)
+        };
+        state.tangential_force_n = force;
+        StepOutcome {
+            slip_rate_m_per_s: v,
+            mu: force / n,
+            iterations: 0,
+        }
+    }
+}
+
+/// `+1`, `-1` or `0` (unlike `f64::signum`, which gives `+1` for `+0`).
+#[inline]
+pub(crate) fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}

@@ -1,0 +1,38 @@
+//! # floe-friction
+//!
+//! Friction laws for sea-ice contacts, after Lishman, Sammonds & Feltham
+//! (2011), *A rate and state friction law for saline ice*, JGR 116, C05011.
+//!
+//! * [`law`]: the [`FrictionLaw`] trait, the per-contact [`ContactState`] and
+//!   the run-time choice of law, [`Law`];
+//! * [`amontons`], [`rate_dependent`], [`rate_state`]: the three laws;
+//!   [`state_evolution`]: slip and aging evolution of the state variable;
+//! * [`params`]: parameter sets and the published presets;
+//! * [`spring_slider`] and [`protocol`]: the paper's apparatus, driven by a
+//!   load-point protocol; [`experiments`]: hold tests and velocity steps;
+//! * [`fit`]: least-squares fitting of law parameters to a measured series.
+//!
+//! The per-contact update ([`FrictionLaw::step`]) is the kernel the DEM
+//! engine calls for every floe contact: it does not allocate and returns
+//! finite numbers for any finite input.
+#![deny(missing_docs)]
+
+pub mod amontons;
+pub mod error;
+pub mod law;
+pub mod params;
+pub mod rate_dependent;
+pub mod rate_state;
+mod root;
+pub mod state_evolution;
+
+pub use amontons::Amontons;
+pub use error::FrictionError;
+pub use law::{ContactLoad, ContactState, FrictionLaw, Law, StepOutcome};
+pub use params::RateStateParams;
+pub use rate_dependent::RateDependent;
+pub use rate_state::{Form, RateState};
+pub use state_evolution::StateLaw;
+pub mod experiments;
+pub mod protocol;
+pub mod spring_slider;

@@ -1,0 +1,121 @@
+//! Rate-dependent friction (eq. 2): `mu = mu0 + C1 ln(V/V*)`, no memory.
+
+use serde::{Deserialize, Serialize};
+
+use crate::amontons::sign;
+use crate::law::{released, ContactLoad, ContactState, FrictionLaw, StepOutcome};
+use crate::root::{solve, Eval};
+
+/// Rate-dependent friction on a tangential spring.
+///
+/// Eq. 2 with `C1 < 0` gives infinite friction at rest and, taken literally on
+/// a spring, an ill-posed slider (velocity weakening with no direct effect:
+/// Rice & Ruina 1983). It is made usable the way Coulomb friction is: below
+/// the floor speed `v_floor` the coefficient is frozen at `mu(v_floor)`, which
+/// acts as static friction (the contact sticks while `|F| < mu(v_floor) N`),
+/// and `mu` is clipped at zero for very fast slip (with the paper's
+/// `C1 = -0.072` that happens above 1.8 m/s). The default floor is `V*` =
+/// 1e-5 m/s, below which the paper notes (section 3, after Kennedy et al.
+/// 2000 and Fortt & Schulson 2009) friction stops decreasing with speed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RateDependent {
+    /// Friction at `V = V*` (dimensionless).
+    pub mu0: f64,
+    /// Rate coefficient `C1` (dimensionless; `A - B` of the rate-and-state law).
+    pub c1: f64,
+    /// Reference slip rate `V*`, m/s.
+    pub v_star_m_per_s: f64,
+    /// Slip rate below which `mu` is held at `mu(v_floor)`, m/s.
+    pub v_floor_m_per_s: f64,
+}
+
+impl RateDependent {
+    /// Eq. 2 with Lishman et al.'s `mu0 = 0.872`, `V* = 1e-5 m/s`, floor at `V*`
+    /// and the given `C1`.
+    pub fn lishman_2011(c1: f64) -> Self {
+        Self {
+            mu0: crate::params::LISHMAN_MU0,
+            c1,
+            v_star_m_per_s: crate::params::LISHMAN_V_STAR_M_PER_S,
+            v_floor_m_per_s: crate::params::LISHMAN_V_STAR_M_PER_S,
+        }
+    }
+
+    /// Friction coefficient at slip rate `|v|` (m/s).
+    pub fn mu_at(&self, v: f64) -> f64 {
+        let s = v.abs().max(self.v_floor_m_per_s);
+        (self.mu0 + self.c1 * (s / self.v_star_m_per_s).ln()).max(0.0)
+    }
+}
+
+impl FrictionLaw for RateDependent {
+    fn mu_steady(&self, v: f64) -> f64 {
+        self.mu_at(v)
+    }
+
+    fn steady_state(&self, v: f64, n: f64) -> ContactState {
+        ContactState {
+            tangential_force_n: self.mu_at(v) * n.max(0.0) * sign(v),
+            theta: 0.0,
+            solver_guess: (v.abs().max(self.v_floor_m_per_s) / self.v_star_m_per_s).ln(),
+        }
+    }
+
+    #[inline]
+    fn step(&self, state: &mut ContactState, load: &ContactLoad, dt: f64) -> StepOutcome {
+        let n = load.normal_load_n;
+        if n <= 0.0 || n.is_nan() {
+            let v = released(state, load);
+            return StepOutcome {
+                slip_rate_m_per_s: v,
+                mu: self.mu_at(v) * sign(v),
+                iterations: 0,
+            };
+        }
+        let kdt = load.stiffness_n_per_m * dt;
+        let trial = state.tangential_force_n + kdt * load.load_point_velocity_m_per_s;
+        let static_cap = self.mu_at(0.0) * n;
+        if trial.abs() <= static_cap {
+            state.tangential_force_n = trial;
+            return StepOutcome {
+                slip_rate_m_per_s: 0.0,
+                mu: trial / n,
+                iterations: 0,
+            };
+        }
+        // Sliding: |F_new| = mu(s) N with s = (|trial| - |F_new|)/(k dt), solved
+        // for z = ln(s/V*). G(-inf) = mu_static N - |trial| < 0, G(+inf) = +inf.
+        let (vs, floor_z) = (
+            self.v_star_m_per_s,
+            (self.v_floor_m_per_s / self.v_star_m_per_s).ln(),
+        );
+        let trial_abs = trial.abs();
+        let root = solve(
+            |z| {
+                let s = vs * z.exp();
+                let mu = self.mu_at(s);
+                let dmu = if z > floor_z && mu > 0.0 {
+                    self.c1
+                } else {
+                    0.0
+                };
+                Eval {
+                    r: mu * n + kdt * s - trial_abs,
+                    dr: dmu * n + kdt * s,
+                    payload: s,
+                }
+            },
+            state.solver_guess,
+            1e-12,
+        );
+        let s = root.payload;
+        state.tangential_force_n = sign(trial) * (trial_abs - kdt * s);
+        state.solver_guess = root.x;
+        StepOutcome {
+            slip_rate_m_per_s: sign(trial) * s,
+            mu: state.tangential_force_n / n,
+            iterations: root.evaluations,
+        }
+    }
+}

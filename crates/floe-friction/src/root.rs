@@ -1,0 +1,159 @@
+//! Safeguarded Newton iteration for the scalar equations of the contact laws.
+//!
+//! Hand-rolled rather than taken from a root-finding crate: the per-contact
+//! update must not allocate, must carry a payload computed alongside the
+//! residual (the new state), and must find its bracket lazily from a warm
+//! start, because in steady sliding the first evaluation already converges.
+//! A generic bracketing solver (e.g. `roots`' Brent) evaluates both ends of a
+//! bracket first, which would triple the cost of the common case (measured
+//! in docs/performance.md).
+
+/// One evaluation of a residual: value, derivative, and what the caller wants
+/// to keep from the evaluation that converges.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Eval<T> {
+    /// Residual value.
+    pub r: f64,
+    /// Derivative of the residual with respect to the unknown.
+    pub dr: f64,
+    /// Anything computed on the way (e.g. the state at the end of the step).
+    pub payload: T,
+}
+
+/// Result of [`solve`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Root<T> {
+    /// The root.
+    pub x: f64,
+    /// The payload of the evaluation at `x`.
+    pub payload: T,
+    /// Residual evaluations used.
+    pub evaluations: u32,
+}
+
+/// Largest step taken before a bracket is known (in the unknown's units; the
+/// laws use logarithmic unknowns, so this is a factor e^8 in slip rate).
+const MAX_FREE_STEP: f64 = 8.0;
+/// Evaluation budget; bisection on a bracket of width 1e3 reaches 1e-12 in
+/// about 50 halvings, so this is never reached for residuals that change sign.
+const MAX_EVALUATIONS: u32 = 400;
+
+/// Finds `x` with `f(x) = 0` for a residual that is negative as `x -> -inf`
+/// and positive as `x -> +inf` (not necessarily monotone in between).
+///
+/// Starts from `x0`; takes Newton steps while they stay inside the bracket
+/// found so far, bisects otherwise, and expands geometrically until a sign
+/// change is found. Converges when the Newton correction is below
+/// `tol * (1 + |x|)`; the returned point is the last one evaluated, so the
+/// payload is consistent with it.
+#[inline]
+pub(crate) fn solve<T: Copy>(mut f: impl FnMut(f64) -> Eval<T>, x0: f64, tol: f64) -> Root<T> {
+    let mut x = x0;
+    let mut lo = f64::NEG_INFINITY; // largest x seen with r < 0
+    let mut hi = f64::INFINITY; // smallest x seen with r > 0
+    let mut expand = MAX_FREE_STEP;
+    let mut evaluations = 0;
+    loop {
+        let e = f(x);
+        evaluations += 1;
+        if e.r == 0.0 || evaluations >= MAX_EVALUATIONS {
+            return Root {
+                x,
+                payload: e.payload,
+                evaluations,
+            };
+        }
+        if e.r < 0.0 {
+            lo = lo.max(x);
+        } else {
+            hi = hi.min(x);
+        }
+        let newton = x - e.r / e.dr;
+        let downhill = e.dr > 0.0 && newton.is_finite();
+        if downhill && (newton - x).abs() <= tol * (1.0 + x.abs()) {
+            return Root {
+                x,
+                payload: e.payload,
+                evaluations,
+            };
+        }
+        let bracketed = lo.is_finite() && hi.is_finite();
+        x = if downhill && newton > lo && newton < hi && (newton - x).abs() <= MAX_FREE_STEP {
+            newton
+        } else if bracketed {
+            0.5 * (lo + hi)
+        } else if e.r < 0.0 {
+            expand *= 2.0;
+            if downhill {
+                newton.min(x + expand)
+            } else {
+                x + expand
+            }
+        } else {
+            expand *= 2.0;
+            if downhill {
+                newton.max(x - expand)
+            } else {
+                x - expand
+            }
+        };
+        if bracketed && (hi - lo) <= tol * (1.0 + lo.abs().max(hi.abs())) {
+            // Bracket collapsed (a root where the residual is not smooth, e.g.
+            // the regularised law at V = 0): evaluate the midpoint and stop.
+            let e = f(x);
+            return Root {
+                x,
+                payload: e.payload,
+                evaluations: evaluations + 1,
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plain(g: impl Fn(f64) -> (f64, f64)) -> impl FnMut(f64) -> Eval<()> {
+        move |x| {
+            let (r, dr) = g(x);
+            Eval { r, dr, payload: () }
+        }
+    }
+
+    #[test]
+    fn finds_root_of_monotone_exponential_far_from_start() {
+        // r = x + e^x - 100: root near 4.5538; start far away on both sides.
+        for x0 in [-500.0, 0.0, 300.0] {
+            let root = solve(plain(|x| (x + x.exp() - 100.0, 1.0 + x.exp())), x0, 1e-13);
+            let x = root.x;
+            assert!((x + x.exp() - 100.0).abs() < 1e-9, "x0 {x0}: x {x}");
+        }
+    }
+
+    #[test]
+    fn converges_on_non_monotone_residual() {
+        // r = x - 3 sin(x) - 0.5 has a local max/min; Newton alone can cycle.
+        let g = |x: f64| (x - 3.0 * x.sin() - 0.5, 1.0 - 3.0 * x.cos());
+        for x0 in [-10.0, -1.0, 0.0, 1.0, 2.0, 10.0] {
+            let root = solve(plain(g), x0, 1e-13);
+            assert!(
+                g(root.x).0.abs() < 1e-10,
+                "x0 {x0}: x {} r {}",
+                root.x,
+                g(root.x).0
+            );
+        }
+    }
+
+    #[test]
+    fn finds_a_sign_change_of_a_discontinuous_residual() {
+        // Step at 0.25: no root, but the bracket must collapse onto the jump.
+        let root = solve(
+            plain(|x| (if x < 0.25 { -1.0 } else { 1.0 }, 0.0)),
+            7.0,
+            1e-12,
+        );
+        assert!((root.x - 0.25).abs() < 1e-10, "x {}", root.x);
+    }
+}

@@ -1,0 +1,176 @@
+//! Evolution of the state variable `theta` over one step at constant slip rate.
+//!
+//! Both evolution laws are linear ODEs in a suitable variable when the slip
+//! rate `V` is held fixed over the step, so they are integrated exactly for
+//! that `V` rather than by an explicit formula that would blow up when
+//! `V dt / L` is large:
+//!
+//! * slip (Ruina) law, eq. 3b: `dtheta/dt = -(|V|/L)(theta - theta_ss)`, so
+//!   `theta_new = theta_ss + (theta - theta_ss) exp(-|V| dt / L)`;
+//! * aging (Dieterich) law in Lishman's log-state,
+//!   `dtheta/dt = (B V*/L) exp(-theta/B) - B |V|/L`: with `phi = exp(theta/B)`,
+//!   `dphi/dt = V*/L - (|V|/L) phi`, so
+//!   `phi_new = phi exp(-x) + (V* dt/L) (1 - exp(-x))/x`, `x = |V| dt / L`,
+//!   evaluated in log space so long holds cannot overflow.
+//!
+//! `theta_ss = -B ln(|V|/V*)` in both. The functions also return the
+//! derivative of `theta_new` with respect to the solver's unknown `w`, given
+//! `g = d ln|V| / dw` (note `dx/dw = x g`).
+
+use serde::{Deserialize, Serialize};
+
+/// Which evolution law drives the state variable.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StateLaw {
+    /// Ruina's slip law, eq. 3b as published: state changes only while slipping.
+    #[default]
+    Slip,
+    /// Dieterich's aging law: the contact heals at rest (log of hold time).
+    Aging,
+}
+
+/// Slip velocity over the step, described for the state update.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SlipMeasure {
+    /// `ln(|V|/V*)`; `-inf` when `V = 0`.
+    pub q: f64,
+    /// `|V| dt / L`, the slip over the step in units of `L`.
+    pub x: f64,
+    /// `d ln|V| / dw`.
+    pub g: f64,
+}
+
+/// `theta` at the end of the step and its derivative with respect to `w`.
+#[inline]
+pub(crate) fn evolve(
+    law: StateLaw,
+    b: f64,
+    theta: f64,
+    slip: SlipMeasure,
+    vstar_dt_over_l: f64,
+) -> (f64, f64) {
+    let SlipMeasure { q, x, g } = slip;
+    match law {
+        StateLaw::Slip => {
+            if x == 0.0 {
+                return (theta, 0.0);
+            }
+            let one_minus_e = -(-x).exp_m1();
+            let e = 1.0 - one_minus_e;
+            let theta_ss = -b * q;
+            let theta_new = theta + (theta_ss - theta) * one_minus_e;
+            let d = -g * (b * one_minus_e + (theta - theta_ss) * e * x);
+            (theta_new, d)
+        }
+        StateLaw::Aging => {
+            if b == 0.0 {
+                return (theta, 0.0);
+            }
+            // ln of the two terms of phi_new, and x h'(x)/h(x) with h = (1-e^-x)/x.
+            let (ln_h, x_dlnh) = if x < 1e-8 {
+                (-0.5 * x, -0.5 * x)
+            } else {
+                let one_minus_e = -(-x).exp_m1();
+                (
+                    (one_minus_e / x).ln(),
+                    (1.0 - one_minus_e) * x / one_minus_e - 1.0,
+                )
+            };
+            let a1 = theta / b - x;
+            let a2 = vstar_dt_over_l.ln() + ln_h;
+            let m = a1.max(a2);
+            let (e1, e2) = ((a1 - m).exp(), (a2 - m).exp());
+            let sum = e1 + e2;
+            let theta_new = b * (m + sum.ln());
+            let d = b * g * (e2 * x_dlnh - e1 * x) / sum;
+            (theta_new, d)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Integrates dtheta/dt with many small RK4 steps at fixed V.
+    fn rk4(law: StateLaw, b: f64, l: f64, vstar: f64, v: f64, theta: f64, dt: f64) -> f64 {
+        let rhs = |th: f64| match law {
+            StateLaw::Slip => -(v / l) * (th + b * (v / vstar).ln()),
+            StateLaw::Aging => (b * vstar / l) * (-th / b).exp() - b * v / l,
+        };
+        let n = 20_000;
+        let h = dt / n as f64;
+        let mut th = theta;
+        for _ in 0..n {
+            let k1 = rhs(th);
+            let k2 = rhs(th + 0.5 * h * k1);
+            let k3 = rhs(th + 0.5 * h * k2);
+            let k4 = rhs(th + h * k3);
+            th += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        }
+        th
+    }
+
+    #[test]
+    fn exact_updates_match_fine_rk4_integration() {
+        let (b, l, vstar) = (0.382, 2e-4, 1e-5);
+        for law in [StateLaw::Slip, StateLaw::Aging] {
+            for &(v, theta, dt) in &[(1e-4_f64, 0.3, 1.0), (1e-3, -0.5, 0.05), (1e-6, 1.0, 10.0)] {
+                let slip = SlipMeasure {
+                    q: (v / vstar).ln(),
+                    x: v * dt / l,
+                    g: 1.0,
+                };
+                let (exact, _) = evolve(law, b, theta, slip, vstar * dt / l);
+                let reference = rk4(law, b, l, vstar, v, theta, dt);
+                assert!(
+                    (exact - reference).abs() < 1e-9,
+                    "{law:?} v {v}: {exact} vs {reference}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn derivative_matches_finite_difference() {
+        let (b, l, vstar, dt, theta) = (0.382, 2e-4, 1e-5, 1e-3, 0.2);
+        for law in [StateLaw::Slip, StateLaw::Aging] {
+            for w in [-20.0, -3.0, 0.5, 2.3, 9.0] {
+                let at = |w: f64| {
+                    let v = vstar * f64::exp(w);
+                    let slip = SlipMeasure {
+                        q: w,
+                        x: v * dt / l,
+                        g: 1.0,
+                    };
+                    evolve(law, b, theta, slip, vstar * dt / l)
+                };
+                let h = 1e-6;
+                let fd = (at(w + h).0 - at(w - h).0) / (2.0 * h);
+                let d = at(w).1;
+                assert!(
+                    (fd - d).abs() <= 1e-6 * (1.0 + d.abs()),
+                    "{law:?} w {w}: {d} vs {fd}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn aging_heals_logarithmically_at_rest_and_slip_law_does_not() {
+        let (b, l, vstar) = (0.382, 2e-4, 1e-5);
+        let at_rest = SlipMeasure {
+            q: f64::NEG_INFINITY,
+            x: 0.0,
+            g: 0.0,
+        };
+        let (slip_theta, _) = evolve(StateLaw::Slip, b, 0.1, at_rest, 1.0);
+        assert_eq!(slip_theta, 0.1);
+        // phi = e^{theta/B} grows by V* t / L: theta -> B ln(e^{theta/B} + V* t/L).
+        let t = 1000.0;
+        let (aged, _) = evolve(StateLaw::Aging, b, 0.1, at_rest, vstar * t / l);
+        let expected = b * ((0.1 / b).exp() + vstar * t / l).ln();
+        assert!((aged - expected).abs() < 1e-12);
+    }
+}
