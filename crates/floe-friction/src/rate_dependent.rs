@@ -85,7 +85,11 @@ impl FrictionLaw for RateDependent {
             };
         }
         // Sliding: |F_new| = mu(s) N with s = (|trial| - |F_new|)/(k dt), solved
-        // for z = ln(s/V*). G(-inf) = mu_static N - |trial| < 0, G(+inf) = +inf.
+        // for z = ln(s/V*). G(-inf) = mu_static N - |trial| < 0 and
+        // G(s_max = |trial|/(k dt)) = mu N >= 0. Velocity weakening can give
+        // several roots; starting from s_max picks the largest, the one on the
+        // branch where dG/ds > 0 (a small extra push gives a little more slip),
+        // so the choice does not depend on history.
         let (vs, floor_z) = (
             self.v_star_m_per_s,
             (self.v_floor_m_per_s / self.v_star_m_per_s).ln(),
@@ -106,8 +110,9 @@ impl FrictionLaw for RateDependent {
                     payload: s,
                 }
             },
-            state.solver_guess,
+            (trial_abs / (kdt * vs)).ln(),
             1e-12,
+            1e-13 * trial_abs,
         );
         let s = root.payload;
         state.tangential_force_n = sign(trial) * (trial_abs - kdt * s);

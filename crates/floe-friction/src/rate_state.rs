@@ -41,8 +41,10 @@ pub enum Form {
     Regularized,
 }
 
-/// Relative Newton tolerance on the solver unknown (a relative error in slip rate).
+/// Relative Newton tolerance on the solver unknown.
 const TOLERANCE: f64 = 1e-12;
+/// Residual tolerance in units of `mu` (relative to the trial friction).
+const RESIDUAL_TOLERANCE: f64 = 1e-13;
 /// Above this `ln|y|`, `asinh(y)` is `ln(2|y|)` to within 1e-22.
 const ASINH_LOG_SWITCH: f64 = 25.0;
 
@@ -228,7 +230,9 @@ impl FrictionLaw for RateState {
             if v != 0.0 {
                 state.solver_guess = self.unknown_for_slip_rate(v);
             }
-            let mu = self.mu_at(v, state.theta);
+            // At rest and unloaded there is no friction to report (the
+            // published form's ln V would give -inf).
+            let mu = if v == 0.0 { 0.0 } else { self.mu_at(v, state.theta) };
             return StepOutcome {
                 slip_rate_m_per_s: v,
                 mu,
@@ -243,6 +247,7 @@ impl FrictionLaw for RateState {
             |w| self.residual(w, theta, trial_mu, kappa, dt),
             state.solver_guess,
             TOLERANCE,
+            RESIDUAL_TOLERANCE * (1.0 + trial_mu.abs()),
         );
         let end = root.payload;
         state.tangential_force_n = trial_force - kdt * end.v;

@@ -43,20 +43,28 @@ const MAX_EVALUATIONS: u32 = 400;
 ///
 /// Starts from `x0`; takes Newton steps while they stay inside the bracket
 /// found so far, bisects otherwise, and expands geometrically until a sign
-/// change is found. Converges when the Newton correction is below
-/// `tol * (1 + |x|)`; the returned point is the last one evaluated, so the
-/// payload is consistent with it.
+/// change is found. Converges when `|f| <= r_tol`, or when the Newton
+/// correction is below `tol * |x|` (relative: near `x = 0` the unknown of the
+/// regularised law is linear in the slip rate, and an absolute tolerance there
+/// would be a large relative error in slip rate). The returned point is the
+/// last one evaluated, so the payload is consistent with it.
 #[inline]
-pub(crate) fn solve<T: Copy>(mut f: impl FnMut(f64) -> Eval<T>, x0: f64, tol: f64) -> Root<T> {
+pub(crate) fn solve<T: Copy>(
+    mut f: impl FnMut(f64) -> Eval<T>,
+    x0: f64,
+    tol: f64,
+    r_tol: f64,
+) -> Root<T> {
     let mut x = x0;
     let mut lo = f64::NEG_INFINITY; // largest x seen with r < 0
     let mut hi = f64::INFINITY; // smallest x seen with r > 0
     let mut expand = MAX_FREE_STEP;
     let mut evaluations = 0;
+    let (mut last_step, mut step_before) = (f64::INFINITY, f64::INFINITY);
     loop {
         let e = f(x);
         evaluations += 1;
-        if e.r == 0.0 || evaluations >= MAX_EVALUATIONS {
+        if e.r.abs() <= r_tol || evaluations >= MAX_EVALUATIONS {
             return Root {
                 x,
                 payload: e.payload,
@@ -70,7 +78,7 @@ pub(crate) fn solve<T: Copy>(mut f: impl FnMut(f64) -> Eval<T>, x0: f64, tol: f6
         }
         let newton = x - e.r / e.dr;
         let downhill = e.dr > 0.0 && newton.is_finite();
-        if downhill && (newton - x).abs() <= tol * (1.0 + x.abs()) {
+        if downhill && (newton - x).abs() <= tol * x.abs() {
             return Root {
                 x,
                 payload: e.payload,
@@ -78,7 +86,12 @@ pub(crate) fn solve<T: Copy>(mut f: impl FnMut(f64) -> Eval<T>, x0: f64, tol: f6
             };
         }
         let bracketed = lo.is_finite() && hi.is_finite();
-        x = if downhill && newton > lo && newton < hi && (newton - x).abs() <= MAX_FREE_STEP {
+        // As in Numerical Recipes' rtsafe: inside a bracket, bisect whenever
+        // Newton does not at least halve the step before last (it crawls by
+        // one unit per step down the exponential branch of a residual).
+        let slow = bracketed && 2.0 * (newton - x).abs() > step_before.abs();
+        let previous_x = x;
+        x = if downhill && newton > lo && newton < hi && (newton - x).abs() <= MAX_FREE_STEP && !slow {
             newton
         } else if bracketed {
             0.5 * (lo + hi)
@@ -97,7 +110,9 @@ pub(crate) fn solve<T: Copy>(mut f: impl FnMut(f64) -> Eval<T>, x0: f64, tol: f6
                 x - expand
             }
         };
-        if bracketed && (hi - lo) <= tol * (1.0 + lo.abs().max(hi.abs())) {
+        step_before = last_step;
+        last_step = x - previous_x;
+        if bracketed && (hi - lo) <= tol * lo.abs().max(hi.abs()) {
             // Bracket collapsed (a root where the residual is not smooth, e.g.
             // the regularised law at V = 0): evaluate the midpoint and stop.
             let e = f(x);
@@ -125,7 +140,7 @@ mod tests {
     fn finds_root_of_monotone_exponential_far_from_start() {
         // r = x + e^x - 100: root near 4.5538; start far away on both sides.
         for x0 in [-500.0, 0.0, 300.0] {
-            let root = solve(plain(|x| (x + x.exp() - 100.0, 1.0 + x.exp())), x0, 1e-13);
+            let root = solve(plain(|x| (x + x.exp() - 100.0, 1.0 + x.exp())), x0, 1e-13, 1e-14);
             let x = root.x;
             assert!((x + x.exp() - 100.0).abs() < 1e-9, "x0 {x0}: x {x}");
         }
@@ -136,7 +151,7 @@ mod tests {
         // r = x - 3 sin(x) - 0.5 has a local max/min; Newton alone can cycle.
         let g = |x: f64| (x - 3.0 * x.sin() - 0.5, 1.0 - 3.0 * x.cos());
         for x0 in [-10.0, -1.0, 0.0, 1.0, 2.0, 10.0] {
-            let root = solve(plain(g), x0, 1e-13);
+            let root = solve(plain(g), x0, 1e-13, 1e-14);
             assert!(
                 g(root.x).0.abs() < 1e-10,
                 "x0 {x0}: x {} r {}",
@@ -153,6 +168,7 @@ mod tests {
             plain(|x| (if x < 0.25 { -1.0 } else { 1.0 }, 0.0)),
             7.0,
             1e-12,
+            0.0,
         );
         assert!((root.x - 0.25).abs() < 1e-10, "x {}", root.x);
     }

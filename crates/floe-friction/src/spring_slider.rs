@@ -131,6 +131,7 @@ impl SpringSlider {
     pub fn run(&mut self, protocol: &Protocol, mut observe: impl FnMut(&Sample)) {
         let dt = self.apparatus.dt_s;
         for seg in protocol.segments() {
+            let start = self.sample.t_s;
             let steps = ((seg.duration_s / dt) - 1e-9).ceil().max(1.0) as u64;
             for i in 0..steps {
                 let t0 = i as f64 * dt;
@@ -139,8 +140,11 @@ impl SpringSlider {
                 } else {
                     t0 + dt
                 };
-                let sample = self.advance(seg.displacement_m(t0, t1), t1 - t0);
-                observe(&sample);
+                self.advance(seg.displacement_m(t0, t1), t1 - t0);
+                // Times from step counts, not running sums, so that segment
+                // ends and output times land on round numbers.
+                self.sample.t_s = start + t1;
+                observe(&self.sample);
             }
         }
     }
@@ -149,16 +153,18 @@ impl SpringSlider {
     /// seconds (plus the first and the last).
     pub fn record(&mut self, protocol: &Protocol, every_s: f64) -> Vec<Sample> {
         let mut out = vec![self.sample];
-        let mut next = self.sample.t_s + every_s;
-        let end = self.sample.t_s + protocol.duration_s();
+        let t0 = self.sample.t_s;
+        let slot = |t: f64| ((t - t0) / every_s + 1e-6).floor();
+        let mut last_slot = 0.0;
         self.run(protocol, |s| {
-            if s.t_s >= next - 1e-12 || s.t_s >= end - 1e-12 {
+            if slot(s.t_s) > last_slot {
+                last_slot = slot(s.t_s);
                 out.push(*s);
-                while next <= s.t_s + 1e-12 {
-                    next += every_s;
-                }
             }
         });
+        if out.last().map(|s| s.t_s) != Some(self.sample.t_s) {
+            out.push(self.sample);
+        }
         out
     }
 }
