@@ -6,15 +6,26 @@ use floe_friction::*;
 use proptest::prelude::*;
 
 fn law_strategy() -> impl Strategy<Value = Law> {
-    let rate_state = (any::<bool>(), any::<bool>(), prop_oneof![Just(2e-4), Just(5e-3), 1e-6..1.0f64]).prop_map(
-        |(published, aging, l)| {
+    let rate_state = (
+        any::<bool>(),
+        any::<bool>(),
+        prop_oneof![Just(2e-4), Just(5e-3), 1e-6..1.0f64],
+    )
+        .prop_map(|(published, aging, l)| {
             Law::RateState(RateState::new(
                 RateStateParams::lishman_2011(l),
-                if published { Form::Published } else { Form::Regularized },
-                if aging { StateLaw::Aging } else { StateLaw::Slip },
+                if published {
+                    Form::Published
+                } else {
+                    Form::Regularized
+                },
+                if aging {
+                    StateLaw::Aging
+                } else {
+                    StateLaw::Slip
+                },
             ))
-        },
-    );
+        });
     prop_oneof![
         6 => rate_state,
         1 => (0.0..1.5f64).prop_map(|mu| Law::Amontons(Amontons { mu })),

@@ -20,7 +20,9 @@ fn mu_ss_formula(p: &RateStateParams, form: Form, v: f64) -> f64 {
     let theta = -p.b * (v / p.v_star_m_per_s).ln();
     match form {
         Form::Published => p.mu0 + theta + p.a * (v / p.v_star_m_per_s).ln(),
-        Form::Regularized => p.a * (v / (2.0 * p.v_star_m_per_s) * ((p.mu0 + theta) / p.a).exp()).asinh(),
+        Form::Regularized => {
+            p.a * (v / (2.0 * p.v_star_m_per_s) * ((p.mu0 + theta) / p.a).exp()).asinh()
+        }
     }
 }
 
@@ -28,7 +30,12 @@ fn mu_ss_formula(p: &RateStateParams, form: Form, v: f64) -> f64 {
 fn steady_state_matches_the_physics_notes_values() {
     // Values of the notes (mu0 + (A - B) ln(V/V*) with Table 2).
     let p = RateStateParams::lishman_2011_lab();
-    for (v, expected) in [(1e-4, 0.706214), (1e-3, 0.540428), (8e-3, 0.390708), (3e-2, 0.295542)] {
+    for (v, expected) in [
+        (1e-4, 0.706214),
+        (1e-3, 0.540428),
+        (8e-3, 0.390708),
+        (3e-2, 0.295542),
+    ] {
         assert!((p.mu_steady_published(v) - expected).abs() < 5e-7, "v {v}");
     }
 }
@@ -41,8 +48,10 @@ fn sliding_relaxes_to_the_analytic_steady_state_for_every_form_and_state_law() {
         for state_law in STATE_LAWS {
             for v in [1e-4, 1e-3, 3e-2] {
                 // Start in steady state at v/3, slide at v for 60 L.
-                let mut slider = SpringSlider::new(rate_state(p, form, state_law), apparatus, v / 3.0);
-                let run = Protocol::new(vec![Segment::constant(v, 60.0 * p.critical_slip_m / v)]).unwrap();
+                let mut slider =
+                    SpringSlider::new(rate_state(p, form, state_law), apparatus, v / 3.0);
+                let run = Protocol::new(vec![Segment::constant(v, 60.0 * p.critical_slip_m / v)])
+                    .unwrap();
                 slider.run(&run, |_| {});
                 let s = slider.sample();
                 let expected = mu_ss_formula(&p, form, v);
@@ -86,13 +95,19 @@ fn rigid_velocity_step_jumps_by_a_ln_ratio_and_decays_over_l() {
     });
     // After the first step, the decay follows the rigid solution as a function
     // of slip (the state update is exact at constant V).
-    assert!(worst < 1e-6, "max deviation from the rigid solution {worst}");
+    assert!(
+        worst < 1e-6,
+        "max deviation from the rigid solution {worst}"
+    );
     // The jump: A ln 10 = 0.7138 within what one step of slip (V2 dt = L/2000) evolves.
     let jump = first.unwrap() - mu_ss1;
     assert!((jump - p.a * 10f64.ln()).abs() < 1e-3, "jump {jump}");
     // New steady state shifted by (A - B) ln 10 = -0.1658.
     let shift = slider.sample().mu - mu_ss1;
-    assert!((shift - (p.a - p.b) * 10f64.ln()).abs() < 1e-6, "shift {shift}");
+    assert!(
+        (shift - (p.a - p.b) * 10f64.ln()).abs() < 1e-6,
+        "shift {shift}"
+    );
     assert!((shift + 0.1658).abs() < 1e-4);
 }
 
@@ -101,10 +116,19 @@ fn velocity_step_experiment_reaches_the_new_steady_state() {
     for form in FORMS {
         let law = rate_state(Preset::Lab.params(), form, StateLaw::Slip);
         let r = velocity_step(law, Preset::Lab.apparatus(1e-3), 1e-4, 1e-3);
-        assert!((r.mu_ss_after - r.mu_ss_after_analytic).abs() < 1e-6, "{form:?} {r:?}");
-        assert!(r.mu_peak > r.mu_ss_before + 0.4, "{form:?}: direct effect visible: {r:?}");
+        assert!(
+            (r.mu_ss_after - r.mu_ss_after_analytic).abs() < 1e-6,
+            "{form:?} {r:?}"
+        );
+        assert!(
+            r.mu_peak > r.mu_ss_before + 0.4,
+            "{form:?}: direct effect visible: {r:?}"
+        );
         let down = velocity_step(law, Preset::Lab.apparatus(1e-3), 1e-3, 1e-4);
-        assert!(down.mu_peak < down.mu_ss_before - 0.4, "{form:?}: dip on a down-step: {down:?}");
+        assert!(
+            down.mu_peak < down.mu_ss_before - 0.4,
+            "{form:?}: dip on a down-step: {down:?}"
+        );
     }
 }
 
@@ -122,7 +146,9 @@ impl SliderOde {
         let p = &self.p;
         match self.form {
             Form::Published => p.v_star_m_per_s * ((mu - p.mu0 - theta) / p.a).exp(),
-            Form::Regularized => 2.0 * p.v_star_m_per_s * (-(p.mu0 + theta) / p.a).exp() * (mu / p.a).sinh(),
+            Form::Regularized => {
+                2.0 * p.v_star_m_per_s * (-(p.mu0 + theta) / p.a).exp() * (mu / p.a).sinh()
+            }
         }
     }
 }
@@ -131,14 +157,21 @@ impl System<f64, Vector2<f64>> for SliderOde {
     fn system(&self, _t: f64, y: &Vector2<f64>, dy: &mut Vector2<f64>) {
         let v = self.slip_rate(y[0], y[1]);
         dy[0] = self.k_over_n * (self.v_lp - v);
-        dy[1] = -(v.abs() / self.p.critical_slip_m) * (y[1] + self.p.b * (v.abs() / self.p.v_star_m_per_s).ln());
+        dy[1] = -(v.abs() / self.p.critical_slip_m)
+            * (y[1] + self.p.b * (v.abs() / self.p.v_star_m_per_s).ln());
     }
 }
 
 /// mu every `every` seconds through a piecewise-constant protocol, by Dop853
 /// restarted at every output time (so outputs and velocity jumps fall on
 /// integration end points, never inside a step).
-fn reference_series(p: RateStateParams, form: Form, segments: &[(f64, f64)], v0: f64, every: f64) -> Vec<f64> {
+fn reference_series(
+    p: RateStateParams,
+    form: Form,
+    segments: &[(f64, f64)],
+    v0: f64,
+    every: f64,
+) -> Vec<f64> {
     let law = RateState::new(p, form, StateLaw::Slip);
     let mut y = Vector2::new(law.mu_steady(v0), p.theta_steady(v0));
     let mut out = vec![y[0]];
@@ -146,7 +179,12 @@ fn reference_series(p: RateStateParams, form: Form, segments: &[(f64, f64)], v0:
     for &(v_lp, duration) in segments {
         let intervals = (duration / every).round() as usize;
         for _ in 0..intervals {
-            let ode = SliderOde { p, form, k_over_n: 20e6 / 2e3, v_lp };
+            let ode = SliderOde {
+                p,
+                form,
+                k_over_n: 20e6 / 2e3,
+                v_lp,
+            };
             let mut solver = Dop853::new(ode, t, t + every, 0.0, y, 1e-13, 1e-15);
             solver.integrate().expect("reference integration");
             y = *solver.y_out().last().unwrap();
@@ -165,22 +203,36 @@ fn fixed_step_update_converges_at_first_order_to_a_tight_stiff_solution() {
     let every = 0.1;
     for form in FORMS {
         let reference = reference_series(p, form, &segments, 1e-4, every);
-        let protocol = Protocol::new(segments.iter().map(|&(v, d)| Segment::constant(v, d)).collect()).unwrap();
+        let protocol = Protocol::new(
+            segments
+                .iter()
+                .map(|&(v, d)| Segment::constant(v, d))
+                .collect(),
+        )
+        .unwrap();
         let dts = [1e-2, 5e-3, 2.5e-3, 1.25e-3, 6.25e-4];
         let errors: Vec<f64> = dts
             .iter()
             .map(|&dt| {
                 let apparatus = Apparatus::new(20e6, 2e3, dt).unwrap();
-                let mut slider = SpringSlider::new(rate_state(p, form, StateLaw::Slip), apparatus, 1e-4);
+                let mut slider =
+                    SpringSlider::new(rate_state(p, form, StateLaw::Slip), apparatus, 1e-4);
                 let series = slider.record(&protocol, every);
                 assert_eq!(series.len(), reference.len(), "{form:?} dt {dt}");
-                series.iter().zip(&reference).map(|(s, r)| (s.mu - r).abs()).fold(0.0, f64::max)
+                series
+                    .iter()
+                    .zip(&reference)
+                    .map(|(s, r)| (s.mu - r).abs())
+                    .fold(0.0, f64::max)
             })
             .collect();
         let orders: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
         eprintln!("{form:?}: max |mu - reference| {errors:?}, observed orders {orders:?}");
         for order in &orders[1..] {
-            assert!((0.85..1.3).contains(order), "{form:?}: order {order} (errors {errors:?})");
+            assert!(
+                (0.85..1.3).contains(order),
+                "{form:?}: order {order} (errors {errors:?})"
+            );
         }
         // At the paper's dt = 1 ms the error is a few 1e-3 at most.
         assert!(errors[3] < 1e-2, "{form:?}: error at 1.25 ms {}", errors[3]);
@@ -201,8 +253,14 @@ fn stick_slip_below_critical_stiffness_and_steady_sliding_above() {
         };
         let (unstable, stable) = (amplitude(0.7), amplitude(1.5));
         eprintln!("{form:?}: amplitude at 0.7 k_c {unstable:.3e}, at 1.5 k_c {stable:.3e}");
-        assert!(unstable > 0.05, "{form:?}: expected stick-slip at 0.7 k_c, amplitude {unstable}");
-        assert!(stable < 1e-6, "{form:?}: expected steady sliding at 1.5 k_c, amplitude {stable}");
+        assert!(
+            unstable > 0.05,
+            "{form:?}: expected stick-slip at 0.7 k_c, amplitude {unstable}"
+        );
+        assert!(
+            stable < 1e-6,
+            "{form:?}: expected steady sliding at 1.5 k_c, amplitude {stable}"
+        );
     }
 }
 
@@ -218,20 +276,43 @@ fn regularized_form_reduces_to_published_where_mu_over_a_is_large() {
         let theta = -0.3;
         let (mp, mr) = (published.mu_at(v, theta), regularized.mu_at(v, theta));
         let bound = p.a * (-2.0 * mp / p.a).exp();
-        assert!((mp - mr).abs() <= bound, "v {v}: {mp} vs {mr}, bound {bound}");
-        assert!((mp - mr).abs() < previous, "difference shrinks as mu/A grows");
+        assert!(
+            (mp - mr).abs() <= bound,
+            "v {v}: {mp} vs {mr}, bound {bound}"
+        );
+        assert!(
+            (mp - mr).abs() < previous,
+            "difference shrinks as mu/A grows"
+        );
         previous = (mp - mr).abs();
     }
     // A rock-like law (A = 0.01, mu/A ~ 60): whole spring-slider runs agree.
-    let rock = RateStateParams { mu0: 0.6, a: 0.01, b: 0.015, v_star_m_per_s: 1e-6, critical_slip_m: 1e-5 };
-    let protocol =
-        Protocol::new(vec![Segment::constant(1e-5, 5.0), Segment::hold(20.0), Segment::constant(1e-4, 2.0)]).unwrap();
+    let rock = RateStateParams {
+        mu0: 0.6,
+        a: 0.01,
+        b: 0.015,
+        v_star_m_per_s: 1e-6,
+        critical_slip_m: 1e-5,
+    };
+    let protocol = Protocol::new(vec![
+        Segment::constant(1e-5, 5.0),
+        Segment::hold(20.0),
+        Segment::constant(1e-4, 2.0),
+    ])
+    .unwrap();
     let apparatus = Apparatus::new(1e8, 1e3, 1e-3).unwrap();
     let run = |form| {
-        SpringSlider::new(rate_state(rock, form, StateLaw::Slip), apparatus, 1e-5).record(&protocol, 0.5)
+        SpringSlider::new(rate_state(rock, form, StateLaw::Slip), apparatus, 1e-5)
+            .record(&protocol, 0.5)
     };
     for (a, b) in run(Form::Published).iter().zip(&run(Form::Regularized)) {
-        assert!((a.mu - b.mu).abs() < 1e-12, "t {}: {} vs {}", a.t_s, a.mu, b.mu);
+        assert!(
+            (a.mu - b.mu).abs() < 1e-12,
+            "t {}: {} vs {}",
+            a.t_s,
+            a.mu,
+            b.mu
+        );
     }
 }
 
@@ -241,20 +322,32 @@ fn hold_tests_show_what_each_form_and_state_law_predicts() {
     let holds = preset.paper_hold_times_s();
     let run = |form, state_law| -> Vec<f64> {
         let law = rate_state(preset.params(), form, state_law);
-        holds.iter().map(|&h| hold_test(law, preset.apparatus(1e-3), preset.speed_m_per_s(), h).delta_mu).collect()
+        holds
+            .iter()
+            .map(|&h| hold_test(law, preset.apparatus(1e-3), preset.speed_m_per_s(), h).delta_mu)
+            .collect()
     };
     let published_slip = run(Form::Published, StateLaw::Slip);
     let regularized_slip = run(Form::Regularized, StateLaw::Slip);
     let aging = run(Form::Published, StateLaw::Aging);
     // Published form: the slider creeps through the hold, so peaks keep growing.
-    assert!(published_slip.windows(2).all(|w| w[1] > w[0] + 0.1), "{published_slip:?}");
+    assert!(
+        published_slip.windows(2).all(|w| w[1] > w[0] + 0.1),
+        "{published_slip:?}"
+    );
     // Regularised slip law heals only while creeping: strengthening saturates.
-    assert!((regularized_slip[3] - regularized_slip[2]).abs() < 1e-3, "{regularized_slip:?}");
+    assert!(
+        (regularized_slip[3] - regularized_slip[2]).abs() < 1e-3,
+        "{regularized_slip:?}"
+    );
     assert!(regularized_slip[1] > regularized_slip[0]);
     // Aging law heals as B ln(t_hold) at long holds.
     let per_decade = aging[3] - aging[2];
     let expected = preset.params().b * 10f64.ln();
-    assert!((per_decade - expected).abs() < 0.03 * expected, "{per_decade} vs {expected}");
+    assert!(
+        (per_decade - expected).abs() < 0.03 * expected,
+        "{per_decade} vs {expected}"
+    );
 }
 
 #[test]
@@ -276,8 +369,12 @@ fn rate_dependent_law_follows_eq_2_on_a_rigid_spring_and_sticks_in_a_hold() {
     let law = Law::RateDependent(RateDependent::lishman_2011(-0.072));
     let apparatus = Apparatus::new(1e14, 2e3, 1e-3).unwrap();
     let mut slider = SpringSlider::new(law, apparatus, 1e-4);
-    let protocol =
-        Protocol::new(vec![Segment::constant(1e-3, 2.0), Segment::hold(5.0), Segment::constant(1e-3, 2.0)]).unwrap();
+    let protocol = Protocol::new(vec![
+        Segment::constant(1e-3, 2.0),
+        Segment::hold(5.0),
+        Segment::constant(1e-3, 2.0),
+    ])
+    .unwrap();
     let series = slider.record(&protocol, 0.01);
     let at = |t: f64| series.iter().find(|s| (s.t_s - t).abs() < 1e-9).unwrap();
     let eq2 = 0.872 - 0.072 * (1e-3f64 / 1e-5).ln();
@@ -300,7 +397,14 @@ fn rate_dependent_law_stick_slips_on_a_soft_spring() {
     let min = late.iter().map(|s| s.mu).fold(f64::INFINITY, f64::min);
     let stuck = late.iter().filter(|s| s.slip_rate_m_per_s == 0.0).count();
     // The spring loads by k V dt / N = 0.01 in mu per step while stuck.
-    assert!(max <= 0.872 + 1e-12 && max > 0.872 - 0.0101, "peaks at static friction: {max}");
+    assert!(
+        max <= 0.872 + 1e-12 && max > 0.872 - 0.0101,
+        "peaks at static friction: {max}"
+    );
     assert!(max - min > 0.1, "stick-slip amplitude {}", max - min);
-    assert!(stuck > late.len() / 10, "sticks part of the time: {stuck} of {}", late.len());
+    assert!(
+        stuck > late.len() / 10,
+        "sticks part of the time: {stuck} of {}",
+        late.len()
+    );
 }

@@ -19,6 +19,7 @@
 
 pub mod amontons;
 pub mod error;
+pub mod fit;
 pub mod law;
 pub mod params;
 pub mod rate_dependent;

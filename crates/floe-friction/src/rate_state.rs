@@ -232,7 +232,11 @@ impl FrictionLaw for RateState {
             }
             // At rest and unloaded there is no friction to report (the
             // published form's ln V would give -inf).
-            let mu = if v == 0.0 { 0.0 } else { self.mu_at(v, state.theta) };
+            let mu = if v == 0.0 {
+                0.0
+            } else {
+                self.mu_at(v, state.theta)
+            };
             return StepOutcome {
                 slip_rate_m_per_s: v,
                 mu,

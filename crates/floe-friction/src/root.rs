@@ -91,7 +91,12 @@ pub(crate) fn solve<T: Copy>(
         // one unit per step down the exponential branch of a residual).
         let slow = bracketed && 2.0 * (newton - x).abs() > step_before.abs();
         let previous_x = x;
-        x = if downhill && newton > lo && newton < hi && (newton - x).abs() <= MAX_FREE_STEP && !slow {
+        x = if downhill
+            && newton > lo
+            && newton < hi
+            && (newton - x).abs() <= MAX_FREE_STEP
+            && !slow
+        {
             newton
         } else if bracketed {
             0.5 * (lo + hi)
@@ -140,7 +145,12 @@ mod tests {
     fn finds_root_of_monotone_exponential_far_from_start() {
         // r = x + e^x - 100: root near 4.5538; start far away on both sides.
         for x0 in [-500.0, 0.0, 300.0] {
-            let root = solve(plain(|x| (x + x.exp() - 100.0, 1.0 + x.exp())), x0, 1e-13, 1e-14);
+            let root = solve(
+                plain(|x| (x + x.exp() - 100.0, 1.0 + x.exp())),
+                x0,
+                1e-13,
+                1e-14,
+            );
             let x = root.x;
             assert!((x + x.exp() - 100.0).abs() < 1e-9, "x0 {x0}: x {x}");
         }

@@ -1,0 +1,240 @@
+//! Command-line grammar (clap) and dispatch.
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use floe_friction::experiments::Preset;
+use floe_friction::{Form, StateLaw};
+
+use crate::error::CliError;
+use crate::slider::{self, ExperimentOptions};
+
+/// floe: sea-ice floes with rate-and-state friction.
+#[derive(Debug, Parser)]
+#[command(name = "floe", version, about, propagate_version = true)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Top-level commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Spring-slider experiments of Lishman, Sammonds & Feltham (2011).
+    #[command(subcommand)]
+    Slider(SliderCommand),
+}
+
+/// `floe slider ...`
+#[derive(Debug, Subcommand)]
+pub enum SliderCommand {
+    /// Slide-hold-slide tests: peak friction on reslide after each hold.
+    #[command(allow_negative_numbers = true)]
+    Hold {
+        /// Shared options.
+        #[command(flatten)]
+        options: ExperimentArgs,
+        /// Hold times in seconds, comma separated.
+        #[arg(long, value_delimiter = ',', default_value = "1,10,100,1000")]
+        hold: Vec<f64>,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// A velocity step from steady sliding.
+    #[command(allow_negative_numbers = true)]
+    Step {
+        /// Shared options.
+        #[command(flatten)]
+        options: ExperimentArgs,
+        /// Load-point speed before the step, m/s.
+        #[arg(long)]
+        from: f64,
+        /// Load-point speed after the step, m/s.
+        #[arg(long)]
+        to: f64,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Run a load-point protocol file; write series.csv, summary.json, friction.png.
+    Run {
+        /// Protocol file (TOML; see docs/friction.md).
+        protocol: PathBuf,
+        /// Output directory.
+        #[arg(long, short)]
+        out: PathBuf,
+        /// Overwrite existing output files.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Fit constant, rate-dependent and rate-and-state models to a measured series.
+    Fit {
+        /// CSV with columns t_s (s from the protocol start) and mu.
+        data: PathBuf,
+        /// The protocol the data were measured under.
+        #[arg(long)]
+        protocol: PathBuf,
+        /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Options of `hold` and `step`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExperimentArgs {
+    /// Apparatus and parameters: lab (20 MN/m, 0.1 mm/s, L 0.2 mm, N 2 kN) or
+    /// tank (2 MN/m, 8 mm/s, L 5 mm, N 10 kN).
+    #[arg(long, value_enum)]
+    pub preset: PresetArg,
+    /// Form of the law: published (eq. 4b, as in the paper) or regularized.
+    #[arg(long, value_enum, default_value_t = FormArg::Published)]
+    pub form: FormArg,
+    /// State evolution: slip (eq. 3b) or aging.
+    #[arg(long, value_enum, default_value_t = StateLawArg::Slip)]
+    pub state_law: StateLawArg,
+    /// Effective normal load in newtons (both faces; default: the preset's).
+    #[arg(long, value_name = "NEWTONS")]
+    pub normal_load: Option<f64>,
+    /// Time step in seconds (default 0.001, as in the paper).
+    #[arg(long, value_name = "SECONDS")]
+    pub dt: Option<f64>,
+}
+
+/// `--preset`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum PresetArg {
+    /// UCL laboratory.
+    Lab,
+    /// HSVA ice tank.
+    Tank,
+}
+
+/// `--form`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum FormArg {
+    /// Eq. 4b.
+    Published,
+    /// Sign-consistent arcsinh form.
+    Regularized,
+}
+
+/// `--state-law`
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum StateLawArg {
+    /// Ruina slip law.
+    Slip,
+    /// Dieterich aging law.
+    Aging,
+}
+
+impl ExperimentArgs {
+    fn options(&self) -> ExperimentOptions {
+        ExperimentOptions {
+            preset: match self.preset {
+                PresetArg::Lab => Preset::Lab,
+                PresetArg::Tank => Preset::Tank,
+            },
+            form: match self.form {
+                FormArg::Published => Form::Published,
+                FormArg::Regularized => Form::Regularized,
+            },
+            state_law: match self.state_law {
+                StateLawArg::Slip => StateLaw::Slip,
+                StateLawArg::Aging => StateLaw::Aging,
+            },
+            normal_load_n: self.normal_load,
+            dt_s: self.dt,
+        }
+    }
+}
+
+fn json<T: serde::Serialize>(value: &T) -> String {
+    serde_json::to_string_pretty(value).expect("plain data serialises")
+}
+
+/// Runs a parsed command; returns what to print on standard output.
+pub fn execute(cli: Cli) -> Result<String, CliError> {
+    match cli.command {
+        Command::Slider(SliderCommand::Hold {
+            options,
+            hold,
+            json: as_json,
+        }) => {
+            let lines = slider::hold(&options.options(), &hold)?;
+            if as_json {
+                return Ok(json(&lines));
+            }
+            let mut out = format!(
+                "{:>10} {:>10} {:>10} {:>10}\n",
+                "hold_s", "mu_ss", "mu_peak", "delta_mu"
+            );
+            for l in lines {
+                out += &format!(
+                    "{:>10} {:>10.6} {:>10.6} {:>10.6}\n",
+                    l.hold_s, l.mu_ss, l.mu_peak, l.delta_mu
+                );
+            }
+            Ok(out.trim_end().to_string())
+        }
+        Command::Slider(SliderCommand::Step {
+            options,
+            from,
+            to,
+            json: as_json,
+        }) => {
+            let r = slider::step(&options.options(), from, to)?;
+            Ok(if as_json {
+                json(&r)
+            } else {
+                format!(
+                    "mu_ss_before {:.6}\nmu_peak      {:.6}\nmu_ss_after  {:.6}",
+                    r.mu_ss_before, r.mu_peak, r.mu_ss_after
+                )
+            })
+        }
+        Command::Slider(SliderCommand::Run {
+            protocol,
+            out,
+            force,
+        }) => {
+            let s = slider::run(&protocol, &out, force)?;
+            Ok(format!(
+                "{} steps, {} s simulated, {} rows: {}/{{{}}}",
+                s.steps,
+                s.duration_s,
+                s.rows,
+                out.display(),
+                slider::RUN_FILES.join(",")
+            ))
+        }
+        Command::Slider(SliderCommand::Fit {
+            data,
+            protocol,
+            json: as_json,
+        }) => {
+            let c = slider::fit(&data, &protocol)?;
+            if as_json {
+                return Ok(json(&c));
+            }
+            let mut out =
+                String::from("model        mse          parameters (value +- standard error)\n");
+            for m in [&c.constant, &c.rate, &c.rate_state] {
+                let params: Vec<String> = m
+                    .parameters
+                    .iter()
+                    .map(|p| {
+                        format!(
+                            "{} = {:.5e} +- {:.1e} {}",
+                            p.name, p.value, p.std_error, p.unit
+                        )
+                    })
+                    .collect();
+                out += &format!("{:<12} {:<12.4e} {}\n", m.model, m.mse, params.join(", "));
+            }
+            Ok(out.trim_end().to_string())
+        }
+    }
+}

@@ -1,0 +1,357 @@
+//! Spring-slider protocol files (TOML): apparatus, friction law, initial
+//! state, output spacing and the load-point segments. Every key is documented
+//! in docs/friction.md ("Protocol files").
+
+use std::path::Path;
+
+use floe_friction::experiments::{Preset, PAPER_DT_S};
+use floe_friction::protocol::{Protocol, Segment};
+use floe_friction::spring_slider::Apparatus;
+use floe_friction::{Amontons, Form, Law, RateDependent, RateState, RateStateParams, StateLaw};
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::error::CliError;
+use crate::input::SourceFile;
+
+type Num = Option<Spanned<f64>>;
+type Word = Option<Spanned<String>>;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    apparatus: Option<RawApparatus>,
+    law: Option<RawLaw>,
+    initial: Option<RawInitial>,
+    output: Option<RawOutput>,
+    segment: Option<Vec<Spanned<RawSegment>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawApparatus {
+    preset: Word,
+    stiffness_n_per_m: Num,
+    normal_load_n: Num,
+    dt_s: Num,
+}
+
+/// The `[law]` table; which keys apply depends on `kind`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLaw {
+    kind: Word,
+    form: Word,
+    state_law: Word,
+    mu: Num,
+    mu0: Num,
+    a: Num,
+    b: Num,
+    c1: Num,
+    v_star_m_per_s: Num,
+    critical_slip_m: Num,
+    v_floor_m_per_s: Num,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawInitial {
+    slip_rate_m_per_s: Num,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawOutput {
+    every_s: Num,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSegment {
+    velocity_m_per_s: Num,
+    ramp_m_per_s: Option<Spanned<Vec<f64>>>,
+    duration_s: Spanned<f64>,
+}
+
+/// Everything a spring-slider run needs, read from a protocol file.
+#[derive(Debug, Clone)]
+pub struct SliderSetup {
+    /// The friction law.
+    pub law: Law,
+    /// Spring, normal load, time step.
+    pub apparatus: Apparatus,
+    /// Load-point history.
+    pub protocol: Protocol,
+    /// Steady sliding rate the slider starts from, m/s.
+    pub initial_slip_rate_m_per_s: f64,
+    /// Spacing of output samples, s.
+    pub every_s: f64,
+    /// The file, verbatim (kept for provenance).
+    pub source: SourceFile,
+}
+
+/// At most this many rows are written by default; longer runs are thinned.
+const DEFAULT_MAX_ROWS: f64 = 100_000.0;
+
+/// Reads and checks a protocol file.
+pub fn load(path: &Path) -> Result<SliderSetup, CliError> {
+    let source = SourceFile::read(path)?;
+    let raw: RawFile = source.parse_toml()?;
+    let f = &source;
+
+    let preset = match raw.apparatus.as_ref().and_then(|a| a.preset.as_ref()) {
+        None => Preset::Lab,
+        Some(p) => parse_preset(f, p)?,
+    };
+    let get =
+        |v: &Num, key: &str, default: f64| v.as_ref().map_or(Ok(default), |v| f.positive(v, key));
+    let apparatus = match &raw.apparatus {
+        None => preset.apparatus(PAPER_DT_S),
+        Some(a) => Apparatus {
+            stiffness_n_per_m: get(
+                &a.stiffness_n_per_m,
+                "apparatus.stiffness_n_per_m",
+                preset.stiffness_n_per_m(),
+            )?,
+            normal_load_n: get(
+                &a.normal_load_n,
+                "apparatus.normal_load_n",
+                preset.normal_load_n(),
+            )?,
+            dt_s: get(&a.dt_s, "apparatus.dt_s", PAPER_DT_S)?,
+        },
+    };
+    let law = build_law(
+        f,
+        raw.law.as_ref().unwrap_or(&RawLaw::default()),
+        preset,
+        Form::Published,
+    )?;
+
+    let Some(raw_segments) = raw.segment.as_ref().filter(|s| !s.is_empty()) else {
+        return Err(
+            f.error_in_file("no load-point history: add at least one [[segment]] with duration_s")
+        );
+    };
+    let mut segments = Vec::with_capacity(raw_segments.len());
+    for (i, s) in raw_segments.iter().enumerate() {
+        let key = |k: &str| format!("segment[{i}].{k}");
+        let seg = s.get_ref();
+        let duration = f.positive(&seg.duration_s, &key("duration_s"))?;
+        segments.push(match (&seg.velocity_m_per_s, &seg.ramp_m_per_s) {
+            (Some(v), None) => Segment::constant(f.finite(v, &key("velocity_m_per_s"))?, duration),
+            (None, Some(r)) => {
+                let [from, to] = r.get_ref()[..] else {
+                    return Err(f.error(
+                        r.span(),
+                        key("ramp_m_per_s"),
+                        "must be [from, to] in m/s",
+                    ));
+                };
+                if !(from.is_finite() && to.is_finite()) {
+                    return Err(f.error(
+                        r.span(),
+                        key("ramp_m_per_s"),
+                        "velocities must be finite",
+                    ));
+                }
+                Segment::ramp(from, to, duration)
+            }
+            _ => return Err(f.error(
+                s.span(),
+                format!("segment[{i}]"),
+                "give exactly one of velocity_m_per_s (0 for a hold) or ramp_m_per_s = [from, to]",
+            )),
+        });
+    }
+    let protocol = Protocol::new(segments)?;
+
+    let initial = match raw
+        .initial
+        .as_ref()
+        .and_then(|i| i.slip_rate_m_per_s.as_ref())
+    {
+        Some(v) => f.finite(v, "initial.slip_rate_m_per_s")?,
+        None => protocol.initial_velocity_m_per_s(),
+    };
+    let default_every = apparatus.dt_s.max(protocol.duration_s() / DEFAULT_MAX_ROWS);
+    let every_s = match raw.output.as_ref().and_then(|o| o.every_s.as_ref()) {
+        Some(v) => f.positive(v, "output.every_s")?,
+        None => default_every,
+    };
+    Ok(SliderSetup {
+        law,
+        apparatus,
+        protocol,
+        initial_slip_rate_m_per_s: initial,
+        every_s,
+        source: source.clone(),
+    })
+}
+
+fn parse_preset(f: &SourceFile, p: &Spanned<String>) -> Result<Preset, CliError> {
+    match p.get_ref().as_str() {
+        "lab" => Ok(Preset::Lab),
+        "tank" => Ok(Preset::Tank),
+        other => Err(f.error(
+            p.span(),
+            "apparatus.preset",
+            format!("unknown preset `{other}`, expected `lab` or `tank`"),
+        )),
+    }
+}
+
+/// Builds a law from a `[law]` table. Unset parameters come from Lishman et
+/// al. (2011) at the preset's scale; keys that do not apply to the chosen kind
+/// are refused rather than ignored.
+pub fn build_law(
+    f: &SourceFile,
+    raw: &RawLaw,
+    preset: Preset,
+    default_form: Form,
+) -> Result<Law, CliError> {
+    let kind = raw
+        .kind
+        .as_ref()
+        .map_or("rate-state", |k| k.get_ref().as_str());
+    let refuse = |keys: &[(&Num, &str)]| -> Result<(), CliError> {
+        for (value, name) in keys {
+            if let Some(v) = value {
+                return Err(f.error(
+                    v.span(),
+                    format!("law.{name}"),
+                    format!("does not apply to law kind `{kind}`"),
+                ));
+            }
+        }
+        Ok(())
+    };
+    let refuse_word = |value: &Word, name: &str| -> Result<(), CliError> {
+        match value {
+            Some(v) => Err(f.error(
+                v.span(),
+                format!("law.{name}"),
+                format!("does not apply to law kind `{kind}`"),
+            )),
+            None => Ok(()),
+        }
+    };
+    let p = preset.params();
+    let or = |v: &Num,
+              name: &str,
+              default: f64,
+              check: fn(&SourceFile, &Spanned<f64>, &str) -> Result<f64, CliError>| {
+        v.as_ref()
+            .map_or(Ok(default), |v| check(f, v, &format!("law.{name}")))
+    };
+    match kind {
+        "amontons" => {
+            refuse(&[
+                (&raw.mu0, "mu0"),
+                (&raw.a, "a"),
+                (&raw.b, "b"),
+                (&raw.c1, "c1"),
+                (&raw.v_star_m_per_s, "v_star_m_per_s"),
+                (&raw.critical_slip_m, "critical_slip_m"),
+                (&raw.v_floor_m_per_s, "v_floor_m_per_s"),
+            ])?;
+            refuse_word(&raw.form, "form")?;
+            refuse_word(&raw.state_law, "state_law")?;
+            let Some(mu) = &raw.mu else {
+                return Err(f.error_in_file("law kind `amontons` needs `mu` in [law]"));
+            };
+            Ok(Law::Amontons(Amontons {
+                mu: f.non_negative(mu, "law.mu")?,
+            }))
+        }
+        "rate" => {
+            refuse(&[
+                (&raw.mu, "mu"),
+                (&raw.a, "a"),
+                (&raw.b, "b"),
+                (&raw.critical_slip_m, "critical_slip_m"),
+            ])?;
+            refuse_word(&raw.form, "form")?;
+            refuse_word(&raw.state_law, "state_law")?;
+            Ok(Law::RateDependent(RateDependent {
+                mu0: or(&raw.mu0, "mu0", p.mu0, SourceFile::finite)?,
+                c1: or(&raw.c1, "c1", p.a - p.b, SourceFile::finite)?,
+                v_star_m_per_s: or(
+                    &raw.v_star_m_per_s,
+                    "v_star_m_per_s",
+                    p.v_star_m_per_s,
+                    SourceFile::positive,
+                )?,
+                v_floor_m_per_s: or(
+                    &raw.v_floor_m_per_s,
+                    "v_floor_m_per_s",
+                    p.v_star_m_per_s,
+                    SourceFile::positive,
+                )?,
+            }))
+        }
+        "rate-state" => {
+            refuse(&[
+                (&raw.mu, "mu"),
+                (&raw.c1, "c1"),
+                (&raw.v_floor_m_per_s, "v_floor_m_per_s"),
+            ])?;
+            let params = RateStateParams {
+                mu0: or(&raw.mu0, "mu0", p.mu0, SourceFile::finite)?,
+                a: or(&raw.a, "a", p.a, SourceFile::positive)?,
+                b: or(&raw.b, "b", p.b, SourceFile::non_negative)?,
+                v_star_m_per_s: or(
+                    &raw.v_star_m_per_s,
+                    "v_star_m_per_s",
+                    p.v_star_m_per_s,
+                    SourceFile::positive,
+                )?,
+                critical_slip_m: or(
+                    &raw.critical_slip_m,
+                    "critical_slip_m",
+                    p.critical_slip_m,
+                    SourceFile::positive,
+                )?,
+            };
+            let form = match &raw.form {
+                None => default_form,
+                Some(w) => match w.get_ref().as_str() {
+                    "published" => Form::Published,
+                    "regularized" | "regularised" => Form::Regularized,
+                    other => {
+                        return Err(f.error(
+                            w.span(),
+                            "law.form",
+                            format!(
+                                "unknown form `{other}`, expected `published` or `regularized`"
+                            ),
+                        ))
+                    }
+                },
+            };
+            let state_law = match &raw.state_law {
+                None => StateLaw::Slip,
+                Some(w) => match w.get_ref().as_str() {
+                    "slip" => StateLaw::Slip,
+                    "aging" | "ageing" => StateLaw::Aging,
+                    other => {
+                        return Err(f.error(
+                            w.span(),
+                            "law.state_law",
+                            format!("unknown state law `{other}`, expected `slip` or `aging`"),
+                        ))
+                    }
+                },
+            };
+            Ok(Law::RateState(RateState::new(params, form, state_law)))
+        }
+        other => {
+            let span = raw.kind.as_ref().map(|k| k.span()).unwrap_or(0..0);
+            Err(f.error(
+                span,
+                "law.kind",
+                format!("unknown law `{other}`, expected `amontons`, `rate` or `rate-state`"),
+            ))
+        }
+    }
+}

@@ -1,0 +1,236 @@
+//! Bad input gets one clear message naming file, line and key, exit code 2,
+//! and never a panic or a backtrace.
+
+use std::path::Path;
+use std::process::Command;
+
+fn floe(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_floe"))
+        .args(args)
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .expect("floe runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+const GOOD: &str = "[apparatus]\npreset = \"lab\"\n\n[law]\nkind = \"rate-state\"\n\n[[segment]]\nvelocity_m_per_s = 1e-4\nduration_s = 2\n";
+
+/// Runs `floe slider run` on a protocol and checks the one-line error.
+fn refused(protocol: &str, expect: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.toml");
+    std::fs::write(&path, protocol).unwrap();
+    let out = dir.path().join("out");
+    let (code, err) = floe(&[
+        "slider",
+        "run",
+        &path.to_string_lossy(),
+        "--out",
+        &out.to_string_lossy(),
+    ]);
+    assert_one_clear_error(code, &err, 2);
+    for e in expect {
+        assert!(err.contains(e), "expected `{e}` in: {err}");
+    }
+    assert!(
+        !out.join("series.csv").exists(),
+        "nothing is written for bad input"
+    );
+}
+
+fn assert_one_clear_error(code: i32, err: &str, expected_code: i32) {
+    assert_eq!(code, expected_code, "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    assert!(err.starts_with("error: "), "{err}");
+    assert!(
+        !err.contains("panicked") && !err.contains("backtrace"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_good_protocol_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("good.toml");
+    std::fs::write(&path, GOOD).unwrap();
+    let (code, err) = floe(&[
+        "slider",
+        "run",
+        &path.to_string_lossy(),
+        "--out",
+        &dir.path().join("o").to_string_lossy(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+}
+
+#[test]
+fn unknown_keys_are_refused_with_their_location() {
+    refused(
+        &GOOD.replace(
+            "kind = \"rate-state\"",
+            "kind = \"rate-state\"\nmu_zero = 0.8",
+        ),
+        &["bad.toml:6:1", "unknown field `mu_zero`"],
+    );
+    refused(
+        &GOOD.replace("duration_s = 2", "duration_s = 2\nspeed = 3"),
+        &["bad.toml:10:1", "unknown field `speed`"],
+    );
+    refused(
+        &format!("{GOOD}\n[extra]\nx = 1\n"),
+        &["unknown field `extra`"],
+    );
+}
+
+#[test]
+fn negative_durations_are_refused() {
+    refused(
+        &GOOD.replace("duration_s = 2", "duration_s = -5"),
+        &["bad.toml:9:14", "`segment[0].duration_s`", "> 0", "-5"],
+    );
+}
+
+#[test]
+fn zero_or_negative_stiffness_and_load_are_refused() {
+    refused(
+        &GOOD.replace("preset = \"lab\"", "stiffness_n_per_m = 0"),
+        &["bad.toml:2:21", "`apparatus.stiffness_n_per_m`"],
+    );
+    refused(
+        &GOOD.replace("preset = \"lab\"", "normal_load_n = -2000"),
+        &["bad.toml:2:17", "`apparatus.normal_load_n`"],
+    );
+}
+
+#[test]
+fn non_finite_numbers_are_refused() {
+    refused(
+        &GOOD.replace("velocity_m_per_s = 1e-4", "velocity_m_per_s = nan"),
+        &["bad.toml:8", "`segment[0].velocity_m_per_s`", "finite"],
+    );
+    refused(
+        &GOOD.replace("kind = \"rate-state\"", "kind = \"rate-state\"\na = inf"),
+        &["bad.toml:6:5", "`law.a`", "finite"],
+    );
+}
+
+#[test]
+fn wrong_types_syntax_and_structure_are_refused() {
+    refused(
+        &GOOD.replace("duration_s = 2", "duration_s = \"two\""),
+        &["bad.toml:9:14", "`duration_s`", "expected f64"],
+    );
+    refused(&GOOD.replace("[law]", "[law"), &["bad.toml:4"]);
+    refused(
+        "[apparatus]\npreset = \"lab\"\n",
+        &["bad.toml:1:1", "[[segment]]"],
+    );
+    refused(
+        &GOOD.replace(
+            "velocity_m_per_s = 1e-4",
+            "velocity_m_per_s = 1e-4\nramp_m_per_s = [1e-4, 1e-3]",
+        ),
+        &["bad.toml:7", "`segment[0]`", "exactly one"],
+    );
+    refused(
+        &GOOD.replace("velocity_m_per_s = 1e-4", "ramp_m_per_s = [1e-4]"),
+        &["bad.toml:8", "[from, to]"],
+    );
+}
+
+#[test]
+fn values_that_do_not_fit_the_law_are_refused() {
+    refused(
+        &GOOD.replace("kind = \"rate-state\"", "kind = \"rate-state\"\nmu = 0.5"),
+        &["bad.toml:6:6", "`law.mu`", "does not apply"],
+    );
+    refused(
+        &GOOD.replace("kind = \"rate-state\"", "kind = \"coulomb\""),
+        &["bad.toml:5:8", "`law.kind`", "amontons"],
+    );
+    refused(
+        &GOOD.replace("preset = \"lab\"", "preset = \"arctic\""),
+        &["bad.toml:2:10", "`apparatus.preset`"],
+    );
+    refused(
+        &GOOD.replace("kind = \"rate-state\"", "kind = \"amontons\""),
+        &["needs `mu`"],
+    );
+    refused(
+        &GOOD.replace(
+            "kind = \"rate-state\"",
+            "kind = \"rate-state\"\nform = \"exact\"",
+        ),
+        &["`law.form`"],
+    );
+}
+
+fn fit_refused(csv: &str, expect: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("data.csv");
+    std::fs::write(&data, csv).unwrap();
+    let protocol = dir.path().join("p.toml");
+    std::fs::write(&protocol, GOOD).unwrap();
+    let (code, err) = floe(&[
+        "slider",
+        "fit",
+        &data.to_string_lossy(),
+        "--protocol",
+        &protocol.to_string_lossy(),
+    ]);
+    assert_one_clear_error(code, &err, 2);
+    for e in expect {
+        assert!(err.contains(e), "expected `{e}` in: {err}");
+    }
+}
+
+#[test]
+fn measured_data_with_missing_columns_or_bad_numbers_is_refused() {
+    fit_refused(
+        "t_s,friction\n0,0.7\n1,0.7\n2,0.7\n",
+        &["data.csv:1:", "`mu`", "missing column", "friction"],
+    );
+    fit_refused("time,mu\n0,0.7\n", &["data.csv:1:", "time column"]);
+    fit_refused(
+        "t_s,mu\n0,0.7\n1,abc\n2,0.7\n",
+        &["data.csv:3:", "`mu`", "`abc`"],
+    );
+    fit_refused("t_s,mu\n0,0.7\n1,NaN\n2,0.7\n", &["data.csv:3:", "finite"]);
+    fit_refused(
+        "t_s,mu\n0,0.7\n1,0.7\n0.5,0.7\n",
+        &["data.csv:4:", "`t_s`", "must increase"],
+    );
+    fit_refused(
+        "t_s,mu\n0,0.7\n1,0.7\n30,0.7\n",
+        &["beyond the end of the protocol"],
+    );
+}
+
+#[test]
+fn bad_flags_and_missing_files_get_one_message() {
+    let (code, err) = floe(&["slider", "hold", "--preset", "lab", "--hold", "0"]);
+    assert_one_clear_error(code, &err, 2);
+    let (code, err) = floe(&[
+        "slider", "step", "--preset", "lab", "--from", "1e-4", "--to", "-1", "--json",
+    ]);
+    assert_one_clear_error(code, &err, 2);
+    let (code, err) = floe(&[
+        "slider",
+        "hold",
+        "--preset",
+        "lab",
+        "--hold",
+        "1",
+        "--normal-load",
+        "0",
+    ]);
+    assert_one_clear_error(code, &err, 2);
+    assert!(err.contains("normal_load"), "{err}");
+    let (code, err) = floe(&["slider", "run", "/nonexistent/p.toml", "--out", "/tmp/x"]);
+    assert_one_clear_error(code, &err, 1);
+    assert!(err.contains("/nonexistent/p.toml"), "{err}");
+    assert!(Path::new("/tmp").exists());
+}
