@@ -7,14 +7,16 @@
 //! exact constant-`V` solution of the evolution law, see
 //! [`crate::state_evolution`]), and the law must hold at the end of the step:
 //! `F_new / N = mu(V, theta_new)`. That is one scalar equation for the slip
-//! rate `V`, solved by safeguarded Newton in a logarithmic unknown `w`
-//! (`V = V* e^w` in the published form, `V = 2 V* sinh w` in the regularised
-//! one), so that slip rates from 1e-300 to 1e3 m/s are equally well resolved.
-//! The residual tends to `-inf`/`+inf` at the ends of the `w` axis, so a root
-//! always exists; it is not always monotone (when `V dt > L` and `B > A`),
-//! which is why the solver brackets. The scheme is first order in `dt`
-//! (backward Euler in the slip) and L-stable: it does not blow up at low normal
-//! load or large `dt`, where an explicit update needs `(k/N) V dt / A < 1`.
+//! rate, solved by safeguarded Newton in `q = ln(|V|/V*)`, so that slip rates
+//! from 1e-300 to 1e3 m/s are equally well resolved. In the regularised form
+//! the sign of `V` is known before solving: friction and slip share their
+//! sign and `F_new = F_trial - k dt V`, so `sign V = sign F_trial` (the force
+//! the spring would carry if the slider stood still). The residual tends to
+//! `-inf`/`+inf` at the ends of the `q` axis, so a root always exists; it is
+//! not always monotone (when `V dt > L` and `B > A`), which is why the solver
+//! brackets. The scheme is first order in `dt` (backward Euler in the slip)
+//! and L-stable: it does not blow up at low normal load or large `dt`, where
+//! an explicit update needs `(k/N) V dt / A < 1`.
 
 use serde::{Deserialize, Serialize};
 
@@ -41,11 +43,11 @@ pub enum Form {
     Regularized,
 }
 
-/// Relative Newton tolerance on the solver unknown.
+/// Relative Newton tolerance on the solver unknown `ln(|V|/V*)`.
 const TOLERANCE: f64 = 1e-12;
 /// Residual tolerance in units of `mu` (relative to the trial friction).
 const RESIDUAL_TOLERANCE: f64 = 1e-13;
-/// Above this `ln|y|`, `asinh(y)` is `ln(2|y|)` to within 1e-22.
+/// Above this `z`, `asinh(e^z)` is `z + ln 2` to within 1e-22.
 const ASINH_LOG_SWITCH: f64 = 25.0;
 
 /// The rate-and-state law: parameters, form and state-evolution law.
@@ -61,11 +63,27 @@ pub struct RateState {
 }
 
 /// What an evaluation of the residual keeps: `theta` at the end of the step
-/// and the slip rate.
+/// and the slip speed `|V|`.
 #[derive(Debug, Clone, Copy)]
 struct EndOfStep {
     theta: f64,
-    v: f64,
+    speed: f64,
+}
+
+/// Quantities fixed over one step, hoisted out of the Newton iteration.
+#[derive(Debug, Clone, Copy)]
+struct StepConstants {
+    /// `dt / L`.
+    dt_over_l: f64,
+    /// `ln(V* dt / L)` (aging law only; NaN otherwise, never read).
+    ln_vstar_dt_over_l: f64,
+    /// Trial friction `F_trial / N`: the published form uses it signed, the
+    /// regularised form its magnitude.
+    trial_mu: f64,
+    /// `k dt / N`, s/m.
+    kappa: f64,
+    /// `theta` at the start of the step.
+    theta: f64,
 }
 
 impl RateState {
@@ -78,91 +96,61 @@ impl RateState {
         }
     }
 
-    /// The solver unknown `w` for slip rate `v` (m/s).
+    /// The solver unknown `ln(|v|/V*)` for slip rate `v` (m/s).
     pub fn unknown_for_slip_rate(&self, v: f64) -> f64 {
-        let vs = self.params.v_star_m_per_s;
-        match self.form {
-            Form::Published => (v.abs() / vs).ln(),
-            Form::Regularized => (0.5 * v / vs).asinh(),
-        }
+        (v.abs() / self.params.v_star_m_per_s).ln()
     }
 
-    /// Instantaneous friction coefficient at slip rate `v` (m/s) and state `theta`
-    /// (eq. 3a, or its regularised form).
+    /// Instantaneous friction coefficient at slip rate `v` (m/s) and state
+    /// `theta` (eq. 3a, or its regularised form). The published form gives
+    /// `-inf` at `v = 0`.
     pub fn mu_at(&self, v: f64, theta: f64) -> f64 {
         let p = &self.params;
+        let q = (v.abs() / p.v_star_m_per_s).ln();
         match self.form {
-            Form::Published => p.mu0 + theta + p.a * (v.abs() / p.v_star_m_per_s).ln(),
+            Form::Published => p.mu0 + theta + p.a * q,
             Form::Regularized => {
                 if v == 0.0 {
                     return 0.0;
                 }
-                let ln_y = (0.5 * v.abs() / p.v_star_m_per_s).ln() + (p.mu0 + theta) / p.a;
-                sign(v) * p.a * asinh_of_exp(ln_y)
+                sign(v) * p.a * asinh_of_exp(q - std::f64::consts::LN_2 + (p.mu0 + theta) / p.a).0
             }
         }
     }
 
-    /// Residual `mu_law(w, theta_new(w)) - F_new(w)/N` and its derivative.
+    /// Residual of the end-of-step condition at `q = ln(|V|/V*)`, and its
+    /// derivative. Published: `mu0 + theta_new + A q - F_trial/N + kappa V`.
+    /// Regularised, in magnitudes (the sign is that of `F_trial`):
+    /// `A asinh(|V|/2V* exp((mu0 + theta_new)/A)) - |F_trial|/N + kappa |V|`.
     #[inline(always)]
-    fn residual(&self, w: f64, theta: f64, trial_mu: f64, kappa: f64, dt: f64) -> Eval<EndOfStep> {
+    fn residual(&self, q: f64, c: &StepConstants) -> Eval<EndOfStep> {
         let p = &self.params;
-        let vs = p.v_star_m_per_s;
-        let dt_over_l = dt / p.critical_slip_m;
-        match self.form {
-            Form::Published => {
-                let v = vs * w.exp();
-                let slip = SlipMeasure {
-                    q: w,
-                    x: v * dt_over_l,
-                    g: 1.0,
-                };
-                let (theta_new, dtheta) = evolve(self.state_law, p.b, theta, slip, vs * dt_over_l);
-                let mu = p.mu0 + theta_new + p.a * w;
-                Eval {
-                    r: mu - trial_mu + kappa * v,
-                    dr: p.a + dtheta + kappa * v,
-                    payload: EndOfStep {
-                        theta: theta_new,
-                        v,
-                    },
-                }
-            }
+        let speed = p.v_star_m_per_s * q.exp();
+        let slip = SlipMeasure {
+            q,
+            x: speed * c.dt_over_l,
+        };
+        let (theta, dtheta) = evolve(self.state_law, p.b, c.theta, slip, c.ln_vstar_dt_over_l);
+        let spring = c.kappa * speed;
+        let (r, dr) = match self.form {
+            Form::Published => (
+                p.mu0 + theta + p.a * q - c.trial_mu + spring,
+                p.a + dtheta + spring,
+            ),
             Form::Regularized => {
-                let sgn = sign(w);
-                let em1 = w.abs().exp_m1();
-                let sinh = 0.5 * em1 * (2.0 + em1) / (1.0 + em1); // |sinh w|, exact near 0
-                let cosh = 1.0 + 0.5 * em1 * em1 / (1.0 + em1);
-                let speed = 2.0 * vs * sinh;
-                let q = (2.0 * sinh).ln();
-                let slip = SlipMeasure {
-                    q,
-                    x: speed * dt_over_l,
-                    g: sgn * cosh / sinh,
-                };
-                let (theta_new, dtheta) = evolve(self.state_law, p.b, theta, slip, vs * dt_over_l);
-                let c = (p.mu0 + theta_new) / p.a;
-                let (mu, dmu) = if q - std::f64::consts::LN_2 + c > ASINH_LOG_SWITCH {
-                    // asinh(y) = ln(2|y|): exactly the published form, without overflow.
-                    (sgn * p.a * (q + c), p.a * slip.g * sgn + sgn * dtheta)
-                } else {
-                    let ec = c.exp();
-                    let y = sgn * sinh * ec;
-                    (
-                        p.a * y.asinh(),
-                        (p.a * cosh * ec + y * dtheta) / (1.0 + y * y).sqrt(),
-                    )
-                };
-                let v = sgn * speed;
-                Eval {
-                    r: mu - trial_mu + kappa * v,
-                    dr: dmu + kappa * 2.0 * vs * cosh,
-                    payload: EndOfStep {
-                        theta: theta_new,
-                        v,
-                    },
-                }
+                let z = q - std::f64::consts::LN_2 + (p.mu0 + theta) / p.a;
+                let (m, dm_dz) = asinh_of_exp(z);
+                // dz/dq = 1 + dtheta/A, so d(A m)/dq = (A + dtheta) dm/dz.
+                (
+                    p.a * m - c.trial_mu.abs() + spring,
+                    (p.a + dtheta) * dm_dz + spring,
+                )
             }
+        };
+        Eval {
+            r,
+            dr,
+            payload: EndOfStep { theta, speed },
         }
     }
 
@@ -174,14 +162,13 @@ impl RateState {
         let slip = SlipMeasure {
             q: (speed / p.v_star_m_per_s).ln(),
             x: speed * dt_over_l,
-            g: 1.0,
         };
         evolve(
             self.state_law,
             p.b,
             theta,
             slip,
-            p.v_star_m_per_s * dt_over_l,
+            (p.v_star_m_per_s * dt_over_l).ln(),
         )
         .0
     }
@@ -202,7 +189,7 @@ impl FrictionLaw for RateState {
             return ContactState {
                 tangential_force_n: 0.0,
                 theta: 0.0,
-                solver_guess: self.unknown_for_slip_rate(self.params.v_star_m_per_s),
+                solver_guess: 0.0,
             };
         }
         let dir = match self.form {
@@ -212,7 +199,7 @@ impl FrictionLaw for RateState {
         ContactState {
             tangential_force_n: dir * self.mu_steady(v) * n.max(0.0),
             theta: self.params.theta_steady(v),
-            solver_guess: self.unknown_for_slip_rate(dir * v.abs()),
+            solver_guess: self.unknown_for_slip_rate(v),
         }
     }
 
@@ -245,32 +232,99 @@ impl FrictionLaw for RateState {
         }
         let kdt = load.stiffness_n_per_m * dt;
         let trial_force = state.tangential_force_n + kdt * v_lp;
-        let (trial_mu, kappa) = (trial_force / n, kdt / n);
-        let theta = state.theta;
+        let direction = match self.form {
+            Form::Published => 1.0,
+            Form::Regularized => sign(trial_force),
+        };
+        if direction == 0.0 {
+            // Regularised form with no force on the spring: no slip this step.
+            state.tangential_force_n = 0.0;
+            state.theta = self.evolve_at(state.theta, 0.0, dt);
+            return StepOutcome {
+                slip_rate_m_per_s: 0.0,
+                mu: 0.0,
+                iterations: 0,
+            };
+        }
+        let inv_n = 1.0 / n;
+        let p = &self.params;
+        let dt_over_l = dt / p.critical_slip_m;
+        let constants = StepConstants {
+            dt_over_l,
+            ln_vstar_dt_over_l: match self.state_law {
+                StateLaw::Aging => (p.v_star_m_per_s * dt_over_l).ln(),
+                StateLaw::Slip => f64::NAN,
+            },
+            trial_mu: trial_force * inv_n,
+            kappa: kdt * inv_n,
+            theta: state.theta,
+        };
         let root = solve(
-            |w| self.residual(w, theta, trial_mu, kappa, dt),
+            |q| self.residual(q, &constants),
             state.solver_guess,
             TOLERANCE,
-            RESIDUAL_TOLERANCE * (1.0 + trial_mu.abs()),
+            RESIDUAL_TOLERANCE * (1.0 + constants.trial_mu.abs()),
         );
         let end = root.payload;
-        state.tangential_force_n = trial_force - kdt * end.v;
+        let v = direction * end.speed;
+        state.tangential_force_n = trial_force - kdt * v;
         state.theta = end.theta;
         state.solver_guess = root.x;
         StepOutcome {
-            slip_rate_m_per_s: end.v,
-            mu: state.tangential_force_n / n,
+            slip_rate_m_per_s: v,
+            mu: state.tangential_force_n * inv_n,
             iterations: root.evaluations,
         }
     }
 }
 
-/// `asinh(exp(z))` without overflow for large `z`.
-#[inline]
-fn asinh_of_exp(z: f64) -> f64 {
+/// `asinh(e^z)` and its derivative `1/sqrt(1 + e^-2z)`, accurate and
+/// overflow-free for any `z`, for one exp, one sqrt and one log
+/// (`f64::asinh` costs four times an exp on this machine: docs/performance.md).
+#[inline(always)]
+fn asinh_of_exp(z: f64) -> (f64, f64) {
     if z > ASINH_LOG_SWITCH {
-        z + std::f64::consts::LN_2
+        // asinh(y) = ln(2y) + 1/(4y^2) + ...; the correction is below 1e-22.
+        (z + std::f64::consts::LN_2, 1.0)
+    } else if z >= 0.0 {
+        // asinh(e^z) = z + ln(1 + sqrt(1 + e^-2z)): both terms positive.
+        let s = (1.0 + (-2.0 * z).exp()).sqrt();
+        (z + (1.0 + s).ln(), 1.0 / s)
     } else {
-        z.exp().asinh()
+        // y = e^z < 1: asinh(y) = ln1p(y + y^2 / (1 + sqrt(1 + y^2))), exact near 0.
+        let y = z.exp();
+        let r = (1.0 + y * y).sqrt();
+        ((y + y * y / (1.0 + r)).ln_1p(), y / r)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn asinh_of_exp_matches_the_library_asinh_and_its_derivative() {
+        for z in [
+            -700.0, -40.0, -20.0, -3.0, -1e-9, 0.0, 1e-9, 0.7, 5.0, 24.9, 25.1, 300.0,
+        ] {
+            let (m, d) = asinh_of_exp(z);
+            let y = f64::exp(z);
+            assert!(m.is_finite() && d.is_finite(), "z {z}");
+            if y > 0.0 && y.is_finite() {
+                // std's asinh underflows to 0 for tiny y; there asinh(y) = y (1 - y^2/6).
+                let exact = if y < 1e-8 { y } else { y.asinh() };
+                // Both are correctly rounded to a few ulp (glibc asinh is not exact either).
+                assert!(
+                    (m - exact).abs() <= 4.0 * f64::EPSILON * exact,
+                    "z {z}: {m} vs {exact}"
+                );
+                let exact_d = y / (1.0 + y * y).sqrt();
+                assert!(
+                    (d - exact_d).abs() <= 1e-15 * exact_d.max(1e-300),
+                    "z {z}: {d} vs {exact_d}"
+                );
+            }
+        }
+        assert_eq!(asinh_of_exp(800.0).0, 800.0 + std::f64::consts::LN_2);
     }
 }

@@ -13,9 +13,9 @@
 //!   `phi_new = phi exp(-x) + (V* dt/L) (1 - exp(-x))/x`, `x = |V| dt / L`,
 //!   evaluated in log space so long holds cannot overflow.
 //!
-//! `theta_ss = -B ln(|V|/V*)` in both. The functions also return the
-//! derivative of `theta_new` with respect to the solver's unknown `w`, given
-//! `g = d ln|V| / dw` (note `dx/dw = x g`).
+//! `theta_ss = -B ln(|V|/V*)` in both. [`evolve`] also returns the
+//! derivative of `theta_new` with respect to the solver's unknown
+//! `q = ln(|V|/V*)` (note `dx/dq = x`).
 
 use serde::{Deserialize, Serialize};
 
@@ -37,20 +37,19 @@ pub(crate) struct SlipMeasure {
     pub q: f64,
     /// `|V| dt / L`, the slip over the step in units of `L`.
     pub x: f64,
-    /// `d ln|V| / dw`.
-    pub g: f64,
 }
 
-/// `theta` at the end of the step and its derivative with respect to `w`.
-#[inline]
+/// `theta` at the end of the step and its derivative with respect to `q`.
+/// `ln_vstar_dt_over_l` is `ln(V* dt / L)` (used by the aging law only).
+#[inline(always)]
 pub(crate) fn evolve(
     law: StateLaw,
     b: f64,
     theta: f64,
     slip: SlipMeasure,
-    vstar_dt_over_l: f64,
+    ln_vstar_dt_over_l: f64,
 ) -> (f64, f64) {
-    let SlipMeasure { q, x, g } = slip;
+    let SlipMeasure { q, x } = slip;
     match law {
         StateLaw::Slip => {
             if x == 0.0 {
@@ -60,7 +59,7 @@ pub(crate) fn evolve(
             let e = 1.0 - one_minus_e;
             let theta_ss = -b * q;
             let theta_new = theta + (theta_ss - theta) * one_minus_e;
-            let d = -g * (b * one_minus_e + (theta - theta_ss) * e * x);
+            let d = -(b * one_minus_e + (theta - theta_ss) * e * x);
             (theta_new, d)
         }
         StateLaw::Aging => {
@@ -78,12 +77,21 @@ pub(crate) fn evolve(
                 )
             };
             let a1 = theta / b - x;
-            let a2 = vstar_dt_over_l.ln() + ln_h;
-            let m = a1.max(a2);
-            let (e1, e2) = ((a1 - m).exp(), (a2 - m).exp());
-            let sum = e1 + e2;
-            let theta_new = b * (m + sum.ln());
-            let d = b * g * (e2 * x_dlnh - e1 * x) / sum;
+            let a2 = ln_vstar_dt_over_l + ln_h;
+            // theta_new = B ln(e^a1 + e^a2), evaluated as max + ln(1 + e^(min - max)).
+            let (m, small) = if a1 >= a2 {
+                (a1, a2 - a1)
+            } else {
+                (a2, a1 - a2)
+            };
+            let e_small = small.exp();
+            let theta_new = b * (m + e_small.ln_1p());
+            let (w1, w2) = if a1 >= a2 {
+                (1.0, e_small)
+            } else {
+                (e_small, 1.0)
+            };
+            let d = b * (w2 * x_dlnh - w1 * x) / (1.0 + e_small);
             (theta_new, d)
         }
     }
@@ -120,9 +128,8 @@ mod tests {
                 let slip = SlipMeasure {
                     q: (v / vstar).ln(),
                     x: v * dt / l,
-                    g: 1.0,
                 };
-                let (exact, _) = evolve(law, b, theta, slip, vstar * dt / l);
+                let (exact, _) = evolve(law, b, theta, slip, (vstar * dt / l).ln());
                 let reference = rk4(law, b, l, vstar, v, theta, dt);
                 assert!(
                     (exact - reference).abs() < 1e-9,
@@ -142,9 +149,8 @@ mod tests {
                     let slip = SlipMeasure {
                         q: w,
                         x: v * dt / l,
-                        g: 1.0,
                     };
-                    evolve(law, b, theta, slip, vstar * dt / l)
+                    evolve(law, b, theta, slip, (vstar * dt / l).ln())
                 };
                 let h = 1e-6;
                 let fd = (at(w + h).0 - at(w - h).0) / (2.0 * h);
@@ -163,13 +169,12 @@ mod tests {
         let at_rest = SlipMeasure {
             q: f64::NEG_INFINITY,
             x: 0.0,
-            g: 0.0,
         };
-        let (slip_theta, _) = evolve(StateLaw::Slip, b, 0.1, at_rest, 1.0);
+        let (slip_theta, _) = evolve(StateLaw::Slip, b, 0.1, at_rest, 0.0);
         assert_eq!(slip_theta, 0.1);
         // phi = e^{theta/B} grows by V* t / L: theta -> B ln(e^{theta/B} + V* t/L).
         let t = 1000.0;
-        let (aged, _) = evolve(StateLaw::Aging, b, 0.1, at_rest, vstar * t / l);
+        let (aged, _) = evolve(StateLaw::Aging, b, 0.1, at_rest, f64::ln(vstar * t / l));
         let expected = b * ((0.1 / b).exp() + vstar * t / l).ln();
         assert!((aged - expected).abs() < 1e-12);
     }
