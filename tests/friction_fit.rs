@@ -7,8 +7,8 @@
 //! analysis, not the physics.
 
 use floe_friction::fit::{
-    compare_models, fit_constant, fit_rate_dependent, fit_rate_state, predict, Experiment, FitData,
-    ModelFit,
+    compare_models, fit_constant, fit_rate_at_load_point, fit_rate_dependent, fit_rate_state,
+    predict, Experiment, FitData, ModelFit,
 };
 use floe_friction::protocol::{Protocol, Segment};
 use floe_friction::spring_slider::Apparatus;
@@ -243,10 +243,9 @@ fn model_comparison_ranks_rate_state_first_on_rate_state_data() {
     assert!((mu - mean).abs() <= 1e-12);
     assert!((c.mse - variance).abs() <= 1e-12 * variance);
 
-    // Guaranteed by construction (see `fit_rate_dependent`): this protocol
-    // starts in steady sliding and never reverses, so at C1 = 0 the rate
-    // model is exactly the constant one, and the fit falls back to that
-    // start if the template's start ends worse.
+    // Guaranteed by construction: the rate model (eq. 2 at the load-point
+    // speed, linear least squares with an intercept) contains the constant
+    // model as C1 = 0.
     assert!(
         r.ssr <= c.ssr * (1.0 + 1e-12),
         "rate SSR {} exceeds constant SSR {}",
@@ -254,7 +253,7 @@ fn model_comparison_ranks_rate_state_first_on_rate_state_data() {
         c.ssr
     );
     // Not guaranteed by construction (the rate model is not a special case
-    // of the rate-and-state one on a spring, nor the reverse), but the data
+    // of the rate-and-state one, nor the reverse), but the data
     // come from a rate-and-state law, whose fit reaches the noise floor; the
     // rate model misses the transients by far more than the noise.
     assert!(rs.converged, "rate-state: {}", rs.termination);
@@ -402,4 +401,34 @@ fn bad_data_are_errors_not_panics() {
     };
     assert!(Experiment::new(protocol.clone(), zero_stiffness, 1e-4).is_err());
     assert!(Experiment::new(protocol, *experiment.apparatus(), f64::NAN).is_err());
+}
+
+#[test]
+fn rate_model_recovers_eq_2_exactly_from_a_curve_of_the_imposed_speed() {
+    // Data made by eq. 2 at the load-point speed of each sample (holds at the
+    // floor speed): the linear fit must return mu0 and C1 to round-off.
+    let experiment = experiment();
+    let template = RateDependent::lishman_2011(-0.072);
+    let (mu0, c1) = (0.91, -0.085);
+    let t = sample_times(&experiment);
+    let mu: Vec<f64> = t
+        .iter()
+        .map(|&t| {
+            let v = experiment
+                .protocol()
+                .velocity_at(t)
+                .abs()
+                .max(template.v_floor_m_per_s);
+            mu0 + c1 * (v / template.v_star_m_per_s).ln()
+        })
+        .collect();
+    let data = FitData::new(t, mu).unwrap();
+    let fit = fit_rate_at_load_point(&data, &experiment, &template).unwrap();
+    let (got_mu0, _) = value(&fit, "mu0");
+    let (got_c1, se) = value(&fit, "c1");
+    assert!(
+        (got_mu0 - mu0).abs() < 1e-12 && (got_c1 - c1).abs() < 1e-12,
+        "{got_mu0} {got_c1}"
+    );
+    assert!(fit.mse < 1e-25 && se < 1e-10, "mse {} se {se}", fit.mse);
 }

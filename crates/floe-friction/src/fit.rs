@@ -261,7 +261,8 @@ impl ModelFit {
 pub struct ModelComparison {
     /// Constant friction coefficient (the mean of the data).
     pub constant: ModelFit,
-    /// Rate-dependent friction, eq. 2.
+    /// Rate-dependent friction, eq. 2, evaluated at the load-point speed (see
+    /// [`fit_rate_at_load_point`]).
     pub rate: ModelFit,
     /// Rate-and-state friction, eqs. 3a/3b.
     pub rate_state: ModelFit,
@@ -357,6 +358,91 @@ pub fn fit_rate_dependent(
     }
 }
 
+/// Eq. 2 as a friction curve of the imposed speed, `mu(t) = mu0 + C1
+/// ln(max(|V_lp(t)|, v_floor) / V*)`, fitted by linear least squares.
+///
+/// This is the paper's rate-dependent model of section 5: a coefficient that
+/// follows the slip rate with no memory and no apparatus. Run through a
+/// spring instead ([`fit_rate_dependent`]) the law stick-slips wherever
+/// `C1 < 0`, because it has no direct effect to stabilise sliding, and the
+/// fit then measures that instability rather than the rate dependence.
+/// `V*` and the floor speed come from `template`.
+pub fn fit_rate_at_load_point(
+    data: &FitData,
+    experiment: &Experiment,
+    template: &RateDependent,
+) -> Result<ModelFit, FrictionError> {
+    positive("v_star_m_per_s", template.v_star_m_per_s)?;
+    positive("v_floor_m_per_s", template.v_floor_m_per_s)?;
+    let n = data.len();
+    if n < 3 {
+        return Err(FrictionError::Fit(
+            "the rate model needs at least 3 points".into(),
+        ));
+    }
+    let x: Vec<f64> = data
+        .t_s
+        .iter()
+        .map(|&t| {
+            let v = experiment
+                .protocol()
+                .velocity_at(t)
+                .abs()
+                .max(template.v_floor_m_per_s);
+            (v / template.v_star_m_per_s).ln()
+        })
+        .collect();
+    let mean_x = x.iter().sum::<f64>() / n as f64;
+    let mean_y = data.mu.iter().sum::<f64>() / n as f64;
+    let sxx: f64 = x.iter().map(|xi| (xi - mean_x).powi(2)).sum();
+    let sxy: f64 = x
+        .iter()
+        .zip(&data.mu)
+        .map(|(xi, yi)| (xi - mean_x) * (yi - mean_y))
+        .sum();
+    // A single imposed speed leaves C1 undetermined: report it as such.
+    let c1 = if sxx > 0.0 { sxy / sxx } else { 0.0 };
+    let mu0 = mean_y - c1 * mean_x;
+    let ssr: f64 = x
+        .iter()
+        .zip(&data.mu)
+        .map(|(xi, yi)| (yi - mu0 - c1 * xi).powi(2))
+        .sum();
+    let s2 = ssr / (n - 2) as f64;
+    let (se_c1, se_mu0) = if sxx > 0.0 {
+        (
+            (s2 / sxx).sqrt(),
+            (s2 * (1.0 / n as f64 + mean_x * mean_x / sxx)).sqrt(),
+        )
+    } else {
+        (f64::INFINITY, f64::INFINITY)
+    };
+    let dimensionless = |name: &str, value, std_error| FittedParameter {
+        name: name.into(),
+        value,
+        std_error,
+        unit: "1".into(),
+    };
+    Ok(ModelFit {
+        model: "rate".into(),
+        parameters: vec![
+            dimensionless("mu0", mu0, se_mu0),
+            dimensionless("c1", c1, se_c1),
+        ],
+        law: Law::RateDependent(RateDependent {
+            mu0,
+            c1,
+            ..*template
+        }),
+        mse: ssr / n as f64,
+        ssr,
+        n,
+        converged: true,
+        termination: "closed form (linear least squares in ln V)".into(),
+        simulations: 0,
+    })
+}
+
 /// Fits the three models of section 5 to one series, starting the rate-and-
 /// state fit from `rate_state` and the rate-dependent fit from `rate`.
 pub fn compare_models(
@@ -367,7 +453,7 @@ pub fn compare_models(
 ) -> Result<ModelComparison, FrictionError> {
     Ok(ModelComparison {
         constant: fit_constant(data),
-        rate: fit_rate_dependent(data, experiment, rate)?,
+        rate: fit_rate_at_load_point(data, experiment, rate)?,
         rate_state: fit_rate_state(data, experiment, rate_state)?,
     })
 }

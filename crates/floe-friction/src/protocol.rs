@@ -96,4 +96,19 @@ impl Protocol {
     pub fn initial_velocity_m_per_s(&self) -> f64 {
         self.segments[0].start_velocity_m_per_s
     }
+
+    /// Load-point velocity at time `t_s` from the start, m/s (at a segment
+    /// boundary, the segment that starts there; past the end, the last value).
+    pub fn velocity_at(&self, t_s: f64) -> f64 {
+        let mut start = 0.0;
+        for s in &self.segments {
+            if t_s < start + s.duration_s {
+                let f = ((t_s - start) / s.duration_s).clamp(0.0, 1.0);
+                return s.start_velocity_m_per_s
+                    + f * (s.end_velocity_m_per_s - s.start_velocity_m_per_s);
+            }
+            start += s.duration_s;
+        }
+        self.segments.last().map_or(0.0, |s| s.end_velocity_m_per_s)
+    }
 }
