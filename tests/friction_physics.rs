@@ -3,9 +3,9 @@
 
 use floe_friction::experiments::{hold_test, late_oscillation_amplitude, velocity_step, Preset};
 use floe_friction::protocol::{Protocol, Segment};
+use floe_friction::reference::friction_series;
 use floe_friction::spring_slider::{Apparatus, SpringSlider};
 use floe_friction::*;
-use ode_solvers::{Dop853, System, Vector2};
 
 const FORMS: [Form; 2] = [Form::Published, Form::Regularized];
 const STATE_LAWS: [StateLaw; 2] = [StateLaw::Slip, StateLaw::Aging];
@@ -132,69 +132,6 @@ fn velocity_step_experiment_reaches_the_new_steady_state() {
     }
 }
 
-/// The spring-slider ODE in (mu, theta), integrated by an adaptive 8th-order
-/// Runge-Kutta: an independent reference for the fixed-step kernel.
-struct SliderOde {
-    p: RateStateParams,
-    form: Form,
-    k_over_n: f64,
-    v_lp: f64,
-}
-
-impl SliderOde {
-    fn slip_rate(&self, mu: f64, theta: f64) -> f64 {
-        let p = &self.p;
-        match self.form {
-            Form::Published => p.v_star_m_per_s * ((mu - p.mu0 - theta) / p.a).exp(),
-            Form::Regularized => {
-                2.0 * p.v_star_m_per_s * (-(p.mu0 + theta) / p.a).exp() * (mu / p.a).sinh()
-            }
-        }
-    }
-}
-
-impl System<f64, Vector2<f64>> for SliderOde {
-    fn system(&self, _t: f64, y: &Vector2<f64>, dy: &mut Vector2<f64>) {
-        let v = self.slip_rate(y[0], y[1]);
-        dy[0] = self.k_over_n * (self.v_lp - v);
-        dy[1] = -(v.abs() / self.p.critical_slip_m)
-            * (y[1] + self.p.b * (v.abs() / self.p.v_star_m_per_s).ln());
-    }
-}
-
-/// mu every `every` seconds through a piecewise-constant protocol, by Dop853
-/// restarted at every output time (so outputs and velocity jumps fall on
-/// integration end points, never inside a step).
-fn reference_series(
-    p: RateStateParams,
-    form: Form,
-    segments: &[(f64, f64)],
-    v0: f64,
-    every: f64,
-) -> Vec<f64> {
-    let law = RateState::new(p, form, StateLaw::Slip);
-    let mut y = Vector2::new(law.mu_steady(v0), p.theta_steady(v0));
-    let mut out = vec![y[0]];
-    let mut t = 0.0;
-    for &(v_lp, duration) in segments {
-        let intervals = (duration / every).round() as usize;
-        for _ in 0..intervals {
-            let ode = SliderOde {
-                p,
-                form,
-                k_over_n: 20e6 / 2e3,
-                v_lp,
-            };
-            let mut solver = Dop853::new(ode, t, t + every, 0.0, y, 1e-13, 1e-15);
-            solver.integrate().expect("reference integration");
-            y = *solver.y_out().last().unwrap();
-            out.push(y[0]);
-            t += every;
-        }
-    }
-    out
-}
-
 #[test]
 fn fixed_step_update_converges_at_first_order_to_a_tight_stiff_solution() {
     let p = RateStateParams::lishman_2011_lab();
@@ -202,7 +139,14 @@ fn fixed_step_update_converges_at_first_order_to_a_tight_stiff_solution() {
     let segments = [(1e-3, 1.0), (1e-4, 2.0), (0.0, 2.0), (1e-4, 3.0)];
     let every = 0.1;
     for form in FORMS {
-        let reference = reference_series(p, form, &segments, 1e-4, every);
+        let reference = friction_series(
+            &RateState::new(p, form, StateLaw::Slip),
+            20e6 / 2e3,
+            &segments,
+            1e-4,
+            every,
+        )
+        .unwrap();
         let protocol = Protocol::new(
             segments
                 .iter()

@@ -214,28 +214,56 @@ pub fn build_law(
         .kind
         .as_ref()
         .map_or("rate-state", |k| k.get_ref().as_str());
-    let refuse = |keys: &[(&Num, &str)]| -> Result<(), CliError> {
-        for (value, name) in keys {
-            if let Some(v) = value {
-                return Err(f.error(
-                    v.span(),
-                    format!("law.{name}"),
-                    format!("does not apply to law kind `{kind}`"),
-                ));
-            }
+    // Keys that do not apply to the chosen law are refused, not ignored.
+    let allowed: &[&str] = match kind {
+        "amontons" => &["mu"],
+        "rate" => &["mu0", "c1", "v_star_m_per_s", "v_floor_m_per_s"],
+        "rate-state" => &[
+            "mu0",
+            "a",
+            "b",
+            "v_star_m_per_s",
+            "critical_slip_m",
+            "form",
+            "state_law",
+        ],
+        other => {
+            let span = raw.kind.as_ref().map(|k| k.span()).unwrap_or(0..0);
+            return Err(f.error(
+                span,
+                "law.kind",
+                format!("unknown law `{other}`, expected `amontons`, `rate` or `rate-state`"),
+            ));
         }
-        Ok(())
     };
-    let refuse_word = |value: &Word, name: &str| -> Result<(), CliError> {
-        match value {
-            Some(v) => Err(f.error(
-                v.span(),
+    let numbers = [
+        (&raw.mu, "mu"),
+        (&raw.mu0, "mu0"),
+        (&raw.a, "a"),
+        (&raw.b, "b"),
+        (&raw.c1, "c1"),
+        (&raw.v_star_m_per_s, "v_star_m_per_s"),
+        (&raw.critical_slip_m, "critical_slip_m"),
+        (&raw.v_floor_m_per_s, "v_floor_m_per_s"),
+    ];
+    let words = [(&raw.form, "form"), (&raw.state_law, "state_law")];
+    let given = numbers
+        .iter()
+        .filter_map(|(v, name)| v.as_ref().map(|v| (v.span(), *name)))
+        .chain(
+            words
+                .iter()
+                .filter_map(|(v, name)| v.as_ref().map(|v| (v.span(), *name))),
+        );
+    for (span, name) in given {
+        if !allowed.contains(&name) {
+            return Err(f.error(
+                span,
                 format!("law.{name}"),
                 format!("does not apply to law kind `{kind}`"),
-            )),
-            None => Ok(()),
+            ));
         }
-    };
+    }
     let p = preset.params();
     let or = |v: &Num,
               name: &str,
@@ -246,17 +274,6 @@ pub fn build_law(
     };
     match kind {
         "amontons" => {
-            refuse(&[
-                (&raw.mu0, "mu0"),
-                (&raw.a, "a"),
-                (&raw.b, "b"),
-                (&raw.c1, "c1"),
-                (&raw.v_star_m_per_s, "v_star_m_per_s"),
-                (&raw.critical_slip_m, "critical_slip_m"),
-                (&raw.v_floor_m_per_s, "v_floor_m_per_s"),
-            ])?;
-            refuse_word(&raw.form, "form")?;
-            refuse_word(&raw.state_law, "state_law")?;
             let Some(mu) = &raw.mu else {
                 return Err(f.error_in_file("law kind `amontons` needs `mu` in [law]"));
             };
@@ -264,38 +281,24 @@ pub fn build_law(
                 mu: f.non_negative(mu, "law.mu")?,
             }))
         }
-        "rate" => {
-            refuse(&[
-                (&raw.mu, "mu"),
-                (&raw.a, "a"),
-                (&raw.b, "b"),
-                (&raw.critical_slip_m, "critical_slip_m"),
-            ])?;
-            refuse_word(&raw.form, "form")?;
-            refuse_word(&raw.state_law, "state_law")?;
-            Ok(Law::RateDependent(RateDependent {
-                mu0: or(&raw.mu0, "mu0", p.mu0, SourceFile::finite)?,
-                c1: or(&raw.c1, "c1", p.a - p.b, SourceFile::finite)?,
-                v_star_m_per_s: or(
-                    &raw.v_star_m_per_s,
-                    "v_star_m_per_s",
-                    p.v_star_m_per_s,
-                    SourceFile::positive,
-                )?,
-                v_floor_m_per_s: or(
-                    &raw.v_floor_m_per_s,
-                    "v_floor_m_per_s",
-                    p.v_star_m_per_s,
-                    SourceFile::positive,
-                )?,
-            }))
-        }
-        "rate-state" => {
-            refuse(&[
-                (&raw.mu, "mu"),
-                (&raw.c1, "c1"),
-                (&raw.v_floor_m_per_s, "v_floor_m_per_s"),
-            ])?;
+        "rate" => Ok(Law::RateDependent(RateDependent {
+            mu0: or(&raw.mu0, "mu0", p.mu0, SourceFile::finite)?,
+            c1: or(&raw.c1, "c1", p.a - p.b, SourceFile::finite)?,
+            v_star_m_per_s: or(
+                &raw.v_star_m_per_s,
+                "v_star_m_per_s",
+                p.v_star_m_per_s,
+                SourceFile::positive,
+            )?,
+            v_floor_m_per_s: or(
+                &raw.v_floor_m_per_s,
+                "v_floor_m_per_s",
+                p.v_star_m_per_s,
+                SourceFile::positive,
+            )?,
+        })),
+        _ => {
+            // "rate-state", the only kind left after the check above.
             let params = RateStateParams {
                 mu0: or(&raw.mu0, "mu0", p.mu0, SourceFile::finite)?,
                 a: or(&raw.a, "a", p.a, SourceFile::positive)?,
@@ -344,14 +347,6 @@ pub fn build_law(
                 },
             };
             Ok(Law::RateState(RateState::new(params, form, state_law)))
-        }
-        other => {
-            let span = raw.kind.as_ref().map(|k| k.span()).unwrap_or(0..0);
-            Err(f.error(
-                span,
-                "law.kind",
-                format!("unknown law `{other}`, expected `amontons`, `rate` or `rate-state`"),
-            ))
         }
     }
 }

@@ -24,6 +24,7 @@ pub mod law;
 pub mod params;
 pub mod rate_dependent;
 pub mod rate_state;
+pub mod reference;
 mod root;
 pub mod state_evolution;
 
