@@ -1,0 +1,36 @@
+//! The one error type of the DEM engine.
+
+use thiserror::Error;
+
+/// Everything that can go wrong in `floe-dem`.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum DemError {
+    /// A parameter is outside its physical range.
+    #[error("{name} = {value} is invalid: {reason}")]
+    InvalidParameter {
+        /// Parameter name, with its unit suffix as in the API.
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+        /// What the value must satisfy.
+        reason: &'static str,
+    },
+    /// A polygon is not a usable floe (fewer than 3 vertices, not convex, zero area).
+    #[error("floe {index}: {reason}")]
+    InvalidFloe {
+        /// Floe index.
+        index: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The time step is above the stability limit of the explicit integrator.
+    #[error("dt = {dt_s} s is above the stable limit {limit_s:.3e} s ({reason})")]
+    UnstableTimeStep {
+        /// Requested step, s.
+        dt_s: f64,
+        /// Largest stable step, s.
+        limit_s: f64,
+        /// Which floe and contact stiffness set the limit.
+        reason: String,
+    },
+}
