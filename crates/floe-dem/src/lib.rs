@@ -13,3 +13,4 @@ pub use error::DemError;
 
 /// The 2-D vector type of the engine (glam's `DVec2`, as used by parry).
 pub use parry2d_f64::math::Vector as Vec2;
+pub mod geometry;

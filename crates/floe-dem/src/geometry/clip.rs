@@ -1,0 +1,237 @@
+//! The overlap of two convex floes: area, centroid, contact normal and
+//! contact length.
+//!
+//! Hand-rolled, not parry's `convex_polygons_intersection_points`, for a
+//! measured reason: parry clips in world coordinates, and at basin scale that
+//! costs precision. For two diamonds pushed 0.1 mm into each other at 1e6 m,
+//! parry 0.31.1 is off by 1.1 % in area, against 1e-6 here
+//! (`tests/dem_clip.rs`). The physics notes also report gross failures on
+//! exactly collinear tessellation edges (the neighbour's whole polygon
+//! returned, overlaps missed). We did not reproduce those with 0.31.1, but
+//! the degenerate cases are tested. Both polygons are placed in a
+//! frame centred on the first floe, so coordinates are of the floe's size
+//! whatever the position in the basin. The clipper also needs the boundary
+//! crossings for the contact normal, and must not allocate. The overlap is found by Sutherland-Hodgman
+//! clipping, with points on a clip line counted inside, so exactly collinear
+//! edges give a degenerate polygon of zero area instead of a spurious contact.
+//!
+//! Normal and length follow Subzero.jl (Manucharyan & Montemuro 2022): the
+//! contact line is the chord between the two points where the floe
+//! boundaries cross; the normal is perpendicular to it, pointing from the
+//! first floe to the second, and the contact length is the chord's length.
+//! Where the boundaries do not cross at two distinct points (one floe inside
+//! the other, or degenerate touching), the normal is the overlap's thinnest
+//! principal direction and the length its extent across that direction.
+
+use crate::geometry::{cross, perp, rotate};
+use crate::Vec2;
+
+/// A convex polygon placed in the world: local counter-clockwise vertices
+/// about the centroid, centroid position and orientation.
+#[derive(Debug, Clone, Copy)]
+pub struct Placed<'a> {
+    /// Vertices relative to the centroid, counter-clockwise, m.
+    pub vertices: &'a [Vec2],
+    /// Centroid position, m.
+    pub position: Vec2,
+    /// Cosine of the orientation angle.
+    pub cos: f64,
+    /// Sine of the orientation angle.
+    pub sin: f64,
+}
+
+/// The overlap of two floes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Overlap {
+    /// Overlap area, m^2.
+    pub area_m2: f64,
+    /// Centroid of the overlap (the contact point), world coordinates, m.
+    pub centroid: Vec2,
+    /// Unit contact normal, from the first floe towards the second.
+    pub normal: Vec2,
+    /// Contact length, m.
+    pub length_m: f64,
+}
+
+/// Reusable buffers, so that the narrow phase does not allocate once warm.
+#[derive(Debug, Default, Clone)]
+pub struct ClipScratch {
+    a: Vec<Vec2>,
+    b: Vec<Vec2>,
+    work: Vec<Vec2>,
+    out: Vec<Vec2>,
+}
+
+/// Overlaps below this fraction of the smaller floe's squared radius are
+/// round-off of touching edges, not contacts.
+const AREA_FLOOR: f64 = 1e-12;
+
+/// The overlap of `a` and `b`, or `None` if they do not overlap.
+pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overlap> {
+    let offset = b.position - a.position;
+    scratch.a.clear();
+    scratch
+        .a
+        .extend(a.vertices.iter().map(|&v| rotate(v, a.cos, a.sin)));
+    scratch.b.clear();
+    scratch
+        .b
+        .extend(b.vertices.iter().map(|&v| offset + rotate(v, b.cos, b.sin)));
+
+    clip_convex(&scratch.a, &scratch.b, &mut scratch.work, &mut scratch.out);
+    let poly = &scratch.out;
+    if poly.len() < 3 {
+        return None;
+    }
+    let (area, centroid) = crate::geometry::shape::area_and_centroid(poly);
+    let ra = a
+        .vertices
+        .iter()
+        .map(|v| v.length_squared())
+        .fold(0.0, f64::max);
+    let rb = b
+        .vertices
+        .iter()
+        .map(|v| v.length_squared())
+        .fold(0.0, f64::max);
+    if area <= AREA_FLOOR * ra.min(rb) {
+        return None;
+    }
+    let (normal, length) = match boundary_chord(&scratch.a, &scratch.b, ra.min(rb).sqrt()) {
+        Some(chord) => (
+            perp(snap_to_overlap_edge(chord, poly)).normalize(),
+            chord.length(),
+        ),
+        None => principal_normal(poly, centroid),
+    };
+    let normal = if normal.dot(offset) < 0.0 {
+        -normal
+    } else {
+        normal
+    };
+    Some(Overlap {
+        area_m2: area,
+        centroid: a.position + centroid,
+        normal,
+        length_m: length,
+    })
+}
+
+/// Sutherland-Hodgman: `subject` clipped by every edge of the convex,
+/// counter-clockwise `clip`. Points on a clip line count as inside.
+fn clip_convex(subject: &[Vec2], clip: &[Vec2], work: &mut Vec<Vec2>, out: &mut Vec<Vec2>) {
+    out.clear();
+    out.extend_from_slice(subject);
+    let n = clip.len();
+    for i in 0..n {
+        if out.is_empty() {
+            return;
+        }
+        let (s, e) = (clip[i], clip[(i + 1) % n]);
+        let dir = e - s;
+        std::mem::swap(out, work);
+        out.clear();
+        let m = work.len();
+        for j in 0..m {
+            let (p, q) = (work[j], work[(j + 1) % m]);
+            let (dp, dq) = (cross(dir, p - s), cross(dir, q - s));
+            if dp >= 0.0 {
+                out.push(p);
+                if dq < 0.0 {
+                    out.push(p + (q - p) * (dp / (dp - dq)));
+                }
+            } else if dq >= 0.0 {
+                out.push(p + (q - p) * (dp / (dp - dq)));
+            }
+        }
+    }
+}
+
+/// The chord between the two points where the boundaries of `a` and `b`
+/// properly cross, if there are exactly two distinct such points.
+fn boundary_chord(a: &[Vec2], b: &[Vec2], size: f64) -> Option<Vec2> {
+    let mut points = [Vec2::ZERO; 2];
+    let mut count = 0;
+    let tol = 1e-9 * size;
+    for i in 0..a.len() {
+        let (p, r) = (a[i], a[(i + 1) % a.len()] - a[i]);
+        for j in 0..b.len() {
+            let (q, s) = (b[j], b[(j + 1) % b.len()] - b[j]);
+            let denom = cross(r, s);
+            if denom.abs() <= 1e-14 * r.length() * s.length() {
+                continue; // parallel or collinear edges do not cross
+            }
+            let t = cross(q - p, s) / denom;
+            let u = cross(q - p, r) / denom;
+            if !((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)) {
+                continue;
+            }
+            let x = p + r * t;
+            if points[..count].iter().any(|&y| (y - x).length() <= tol) {
+                continue; // the same crossing seen from two edges meeting at a vertex
+            }
+            if count == 2 {
+                return None;
+            }
+            points[count] = x;
+            count += 1;
+        }
+    }
+    (count == 2 && (points[1] - points[0]).length() > tol).then(|| points[1] - points[0])
+}
+
+/// Largest angle (sine) between the chord and an overlap edge it snaps to.
+const SNAP_SINE: f64 = 0.17; // about 10 degrees
+
+/// The chord turned onto the longest edge of the overlap polygon that is
+/// within 10 degrees of it. Two floes pressed edge to edge overlap in a thin
+/// parallelogram whose boundary crossings are opposite corners: the chord is
+/// then the diagonal, off the shared edge by about depth/length, and the
+/// pressed edge itself is the right contact line. For a corner pressed into
+/// an edge the chord already is an edge of the overlap and is unchanged.
+fn snap_to_overlap_edge(chord: Vec2, poly: &[Vec2]) -> Vec2 {
+    let dir = chord.normalize();
+    let mut best = chord;
+    let mut best_len = 0.5 * chord.length();
+    for i in 0..poly.len() {
+        let e = poly[(i + 1) % poly.len()] - poly[i];
+        let len = e.length();
+        if len > best_len && cross(dir, e).abs() <= SNAP_SINE * len {
+            best = if e.dot(dir) >= 0.0 { e } else { -e };
+            best_len = len;
+        }
+    }
+    best
+}
+
+/// Normal along the overlap's thinnest principal direction, and the overlap's
+/// extent across it.
+fn principal_normal(poly: &[Vec2], centroid: Vec2) -> (Vec2, f64) {
+    let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
+    let n = poly.len();
+    for i in 0..n {
+        let (u, v) = (poly[i] - centroid, poly[(i + 1) % n] - centroid);
+        let w = cross(u, v);
+        sxx += w * (u.x * u.x + u.x * v.x + v.x * v.x);
+        syy += w * (u.y * u.y + u.y * v.y + v.y * v.y);
+        sxy += w * (2.0 * u.x * u.y + u.x * v.y + v.x * u.y + 2.0 * v.x * v.y);
+    }
+    let (sxx, syy, sxy) = (sxx / 12.0, syy / 12.0, sxy / 24.0);
+    // Eigenvector of the smaller eigenvalue of [[sxx, sxy], [sxy, syy]].
+    let half_diff = 0.5 * (sxx - syy);
+    let radius = (half_diff * half_diff + sxy * sxy).sqrt();
+    let normal = if radius <= 1e-9 * (sxx + syy) {
+        Vec2::new(1.0, 0.0) // isotropic: any direction; the caller orients it
+    } else {
+        let major_angle = 0.5 * sxy.atan2(half_diff);
+        Vec2::new(-major_angle.sin(), major_angle.cos())
+    };
+    let tangent = perp(normal);
+    let (lo, hi) = poly
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+            let s = tangent.dot(p);
+            (lo.min(s), hi.max(s))
+        });
+    (normal, hi - lo)
+}
