@@ -1,0 +1,228 @@
+//! Broad phase: candidate contact pairs from a uniform cell grid, with a
+//! skin so the list is rebuilt only when some floe has moved far enough.
+//!
+//! A cell grid rather than parry's BVH: floes of a tessellation have nearly
+//! equal sizes, for which a grid of cells one floe diameter wide finds all
+//! neighbours in the 3x3 block around a cell, is rebuilt in linear time and
+//! needs no tree balancing (the cost is measured in docs/performance.md).
+//! Pairs are produced sorted by (a, b) with a < b, whatever the thread count.
+
+use rayon::prelude::*;
+
+use crate::Vec2;
+
+/// One periodic axis: positions wrap into `[min_m, min_m + length_m)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Period {
+    /// Lower edge of the period, m.
+    pub min_m: f64,
+    /// Length of the period, m.
+    pub length_m: f64,
+}
+
+impl Period {
+    /// `x` wrapped into the period.
+    #[inline]
+    pub fn wrap(&self, x: f64) -> f64 {
+        self.min_m + (x - self.min_m).rem_euclid(self.length_m)
+    }
+}
+
+/// Periodicity of the domain in x and/or y.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Periodicity {
+    /// Period along x, if periodic in x.
+    pub x: Option<Period>,
+    /// Period along y, if periodic in y.
+    pub y: Option<Period>,
+}
+
+impl Periodicity {
+    /// The image offset of `b` closest to `a` (to add to `b`'s position).
+    #[inline]
+    pub fn nearest_image(&self, a: Vec2, b: Vec2) -> Vec2 {
+        let d = b - a;
+        let shift = |delta: f64, period: Option<Period>| {
+            period.map_or(0.0, |p| -p.length_m * (delta / p.length_m).round())
+        };
+        Vec2::new(shift(d.x, self.x), shift(d.y, self.y))
+    }
+
+    /// `p` wrapped into the periodic axes' ranges.
+    #[inline]
+    pub fn wrap(&self, p: Vec2) -> Vec2 {
+        Vec2::new(
+            self.x.map_or(p.x, |q| q.wrap(p.x)),
+            self.y.map_or(p.y, |q| q.wrap(p.y)),
+        )
+    }
+}
+
+/// A pair of floes close enough to be tested for overlap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CandidatePair {
+    /// First floe (the smaller index).
+    pub a: u32,
+    /// Second floe.
+    pub b: u32,
+}
+
+/// The candidate list and what is needed to decide when to rebuild it.
+#[derive(Debug, Clone, Default)]
+pub struct BroadPhase {
+    /// Extra distance beyond touching bounding circles, m.
+    pub skin_m: f64,
+    /// Candidate pairs, sorted.
+    pub pairs: Vec<CandidatePair>,
+    positions_at_build: Vec<Vec2>,
+    /// Number of rebuilds so far (for diagnostics and tests).
+    pub rebuilds: u64,
+}
+
+impl BroadPhase {
+    /// An empty broad phase with the given skin (m).
+    pub fn new(skin_m: f64) -> Self {
+        Self {
+            skin_m,
+            ..Self::default()
+        }
+    }
+
+    /// Rebuilds the candidate list if any floe moved more than half the skin
+    /// since the last build (then no pair can have come within touching
+    /// distance unnoticed). Returns whether it rebuilt.
+    pub fn update(&mut self, position: &[Vec2], radius: &[f64], periodic: Periodicity) -> bool {
+        let half_skin_sq = (0.5 * self.skin_m).powi(2);
+        let stale = self.positions_at_build.len() != position.len()
+            || position
+                .par_iter()
+                .zip(&self.positions_at_build)
+                .any(|(&p, &q)| {
+                    (p + periodic.nearest_image(q, p) - q).length_squared() > half_skin_sq
+                });
+        if stale {
+            self.rebuild(position, radius, periodic);
+        }
+        stale
+    }
+
+    /// Builds the candidate list from scratch.
+    pub fn rebuild(&mut self, position: &[Vec2], radius: &[f64], periodic: Periodicity) {
+        self.rebuilds += 1;
+        self.positions_at_build.clear();
+        self.positions_at_build.extend_from_slice(position);
+        self.pairs.clear();
+        let n = position.len();
+        if n < 2 {
+            return;
+        }
+        let r_max = radius.iter().copied().fold(0.0, f64::max);
+        let cell = (2.0 * r_max + self.skin_m).max(f64::MIN_POSITIVE);
+        let (mut lo, mut hi) = (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY));
+        for p in position {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        // Along a periodic axis the grid covers exactly one period, so that
+        // cells at its two ends are neighbours; elsewhere it covers the floes.
+        let axis = |lo: f64, hi: f64, period: Option<Period>| match period {
+            Some(p) => (
+                p.min_m,
+                ((p.length_m / cell).floor() as usize).max(1),
+                p.length_m,
+            ),
+            None => {
+                let count = ((hi - lo) / cell).floor() as usize + 1;
+                (lo, count, count as f64 * cell)
+            }
+        };
+        let (x0, nx, wx) = axis(lo.x, hi.x, periodic.x);
+        let (y0, ny, wy) = axis(lo.y, hi.y, periodic.y);
+        let (cell_x, cell_y) = (wx / nx as f64, wy / ny as f64);
+        let cell_of = |p: Vec2| {
+            let cx = (((p.x - x0) / cell_x).max(0.0) as usize).min(nx - 1);
+            let cy = (((p.y - y0) / cell_y).max(0.0) as usize).min(ny - 1);
+            cy * nx + cx
+        };
+        // Counting sort of floes into cells (deterministic order within a cell).
+        let mut start = vec![0u32; nx * ny + 1];
+        let cells: Vec<usize> = position.iter().map(|&p| cell_of(p)).collect();
+        for &c in &cells {
+            start[c + 1] += 1;
+        }
+        for c in 0..nx * ny {
+            start[c + 1] += start[c];
+        }
+        let mut fill = start.clone();
+        let mut members = vec![0u32; n];
+        for (i, &c) in cells.iter().enumerate() {
+            members[fill[c] as usize] = i as u32;
+            fill[c] += 1;
+        }
+        let wrap_x = periodic.x.is_some();
+        let wrap_y = periodic.y.is_some();
+        let neighbours = |c: usize| {
+            let (cx, cy) = ((c % nx) as isize, (c / nx) as isize);
+            let mut out = [usize::MAX; 9];
+            let mut k = 0;
+            for dy in -1..=1isize {
+                for dx in -1..=1isize {
+                    let (mut x, mut y) = (cx + dx, cy + dy);
+                    if wrap_x {
+                        x = x.rem_euclid(nx as isize);
+                    }
+                    if wrap_y {
+                        y = y.rem_euclid(ny as isize);
+                    }
+                    if x < 0 || y < 0 || x >= nx as isize || y >= ny as isize {
+                        continue;
+                    }
+                    let id = y as usize * nx + x as usize;
+                    if !out[..k].contains(&id) {
+                        out[k] = id;
+                        k += 1;
+                    }
+                }
+            }
+            (out, k)
+        };
+        let skin = self.skin_m;
+        // Periodic axes narrower than three cells: test every pair along them.
+        let brute_force = (wrap_x && nx < 3) || (wrap_y && ny < 3);
+        let mut pairs: Vec<CandidatePair> = (0..n)
+            .into_par_iter()
+            .flat_map_iter(|i| {
+                let p = position[i];
+                let reach = |j: usize| {
+                    let q = position[j] + periodic.nearest_image(p, position[j]);
+                    (q - p).length() <= radius[i] + radius[j] + skin
+                };
+                let mut found: Vec<CandidatePair> = Vec::new();
+                if brute_force {
+                    found.extend(((i + 1)..n).filter(|&j| reach(j)).map(|j| CandidatePair {
+                        a: i as u32,
+                        b: j as u32,
+                    }));
+                } else {
+                    let (cells_near, k) = neighbours(cells[i]);
+                    for &c in &cells_near[..k] {
+                        for &j in &members[start[c] as usize..start[c + 1] as usize] {
+                            let j = j as usize;
+                            if j > i && reach(j) {
+                                found.push(CandidatePair {
+                                    a: i as u32,
+                                    b: j as u32,
+                                });
+                            }
+                        }
+                    }
+                }
+                found.sort_unstable_by_key(|p| p.b);
+                found
+            })
+            .collect();
+        // flat_map_iter keeps the order of i, and each i's list is sorted by b.
+        pairs.dedup();
+        self.pairs = pairs;
+    }
+}

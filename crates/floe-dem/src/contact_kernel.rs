@@ -1,0 +1,191 @@
+//! The contact kernel: forces between two overlapping floes.
+//!
+//! * Normal force: elastic, proportional to the overlap area, as in
+//!   Subzero.jl (Manucharyan & Montemuro 2022): `F_el = kappa A_overlap`,
+//!   `kappa = E h_a h_b / (h_a r_b + h_b r_a)` with `r = sqrt(floe area)`
+//!   (two springs `E h / r` in series); against a floe with prescribed
+//!   motion (a wall), `kappa = E h / r` of the free floe. With `A_overlap ~
+//!   l delta` for contact length `l` and penetration `delta`, the normal
+//!   stiffness is `k_n = kappa l`. A linear dashpot `c = 2 zeta sqrt(k_n m*)`
+//!   (reduced mass `m*`, damping ratio from the restitution coefficient)
+//!   acts on the normal approach speed; the total is clipped at zero (no
+//!   adhesion).
+//! * Tangential force: a spring `k_t = k_n / (2 (1 + nu))` (the shear-to-
+//!   Young's modulus ratio, as Subzero.jl's `G = E / (2 (1 + nu))`) whose
+//!   force the friction law limits, advanced by the same
+//!   [`FrictionLaw::step`] as the spring-slider, with the relative
+//!   tangential velocity at the contact point as the load-point velocity
+//!   and the normal force as the normal load.
+
+use floe_friction::{ContactLoad, ContactState, FrictionLaw};
+
+use crate::contacts::{ContactModel, ContactRecord};
+use crate::geometry::{cross, perp, Overlap};
+use crate::Vec2;
+
+/// What the kernel needs of one floe.
+#[derive(Debug, Clone, Copy)]
+pub struct Body {
+    /// Centroid position (image position for `b` across a periodic boundary), m.
+    pub position: Vec2,
+    /// Centroid velocity, m/s.
+    pub velocity: Vec2,
+    /// Angular velocity, rad/s.
+    pub angular_velocity: f64,
+    /// Mass, kg (infinite for prescribed motion).
+    pub mass_kg: f64,
+    /// Thickness, m.
+    pub thickness_m: f64,
+    /// Area, m^2.
+    pub area_m2: f64,
+    /// Whether the floe moves under forces.
+    pub free: bool,
+}
+
+/// Normal force per unit overlap area, `kappa`, Pa, for two floes.
+#[inline]
+pub fn overlap_stiffness(model: &ContactModel, a: &Body, b: &Body) -> f64 {
+    let e = model.youngs_modulus_pa;
+    let (ra, rb) = (a.area_m2.sqrt(), b.area_m2.sqrt());
+    match (a.free, b.free) {
+        (true, true) => {
+            e * a.thickness_m * b.thickness_m / (a.thickness_m * rb + b.thickness_m * ra)
+        }
+        (true, false) => e * a.thickness_m / ra,
+        (false, true) => e * b.thickness_m / rb,
+        (false, false) => 0.0,
+    }
+}
+
+/// What a contact carries from the previous step (nothing for a new one).
+#[derive(Debug, Clone, Copy)]
+pub struct Carried {
+    /// Friction state.
+    pub friction: ContactState,
+    /// Elastic normal force at the end of the previous step, N.
+    pub elastic_force_n: f64,
+    /// Energy stored in the overlap, J.
+    pub normal_energy_j: f64,
+    /// Energy stored in the tangential spring, J.
+    pub tangential_energy_j: f64,
+}
+
+impl Carried {
+    /// A contact that has just formed. Its stored energy is estimated as that
+    /// of a strip overlap, `F_el^2 / (2 kappa l)`: exact for edge-to-edge
+    /// overlaps and negligible for any contact that forms during a run (it
+    /// forms at a tiny overlap); it matters only for floes placed
+    /// overlapping at the start.
+    pub fn new_contact(model: &ContactModel, ov: &Overlap, a: &Body, b: &Body) -> Self {
+        let kappa = overlap_stiffness(model, a, b);
+        let elastic = kappa * ov.area_m2;
+        let k_n = kappa * ov.length_m.max(f64::MIN_POSITIVE);
+        Self {
+            friction: model.new_contact_state(),
+            elastic_force_n: elastic,
+            normal_energy_j: if k_n > 0.0 {
+                0.5 * elastic * elastic / k_n
+            } else {
+                0.0
+            },
+            tangential_energy_j: 0.0,
+        }
+    }
+}
+
+/// Forces of one contact over a step of `dt` (advancing the friction state
+/// unless `dt` is zero), written into a record. The force on `b` is
+/// `normal_force n + tangential_force t` applied at `point`; `a` gets the
+/// opposite.
+#[inline]
+pub fn contact_forces(
+    model: &ContactModel,
+    a: &Body,
+    b: &Body,
+    ov: &Overlap,
+    carried: Carried,
+    dt: f64,
+) -> ContactRecord {
+    let friction = carried.friction;
+    let n = ov.normal;
+    let t = perp(n);
+    let (ra, rb) = (ov.centroid - a.position, ov.centroid - b.position);
+    let va = a.velocity + perp(ra) * a.angular_velocity;
+    let vb = b.velocity + perp(rb) * b.angular_velocity;
+    let v_rel = vb - va;
+    let (v_n, v_t) = (v_rel.dot(n), v_rel.dot(t));
+
+    let kappa = overlap_stiffness(model, a, b);
+    let elastic = kappa * ov.area_m2;
+    let k_n = kappa * ov.length_m.max(f64::MIN_POSITIVE);
+    let reduced_mass = match (a.free, b.free) {
+        (true, true) => a.mass_kg * b.mass_kg / (a.mass_kg + b.mass_kg),
+        (true, false) => a.mass_kg,
+        (false, true) => b.mass_kg,
+        (false, false) => 0.0,
+    };
+    let damping = 2.0 * model.damping_ratio() * (k_n * reduced_mass).sqrt();
+    // v_n > 0 is separation: the dashpot resists it, and the contact never pulls.
+    let normal = (elastic - damping * v_n).max(0.0);
+    let damping_power = (elastic - normal) * v_n; // >= 0 whichever way
+
+    let k_t = k_n / (2.0 * (1.0 + model.poisson_ratio));
+    let mut state = friction;
+    let (tangential, slip, mu) = if dt > 0.0 {
+        let load = ContactLoad {
+            load_point_velocity_m_per_s: v_t,
+            stiffness_n_per_m: k_t,
+            normal_load_n: normal,
+        };
+        let out = model.law.step(&mut state, &load, dt);
+        (state.tangential_force_n, out.slip_rate_m_per_s, out.mu)
+    } else {
+        let f = state.tangential_force_n;
+        (f, 0.0, if normal > 0.0 { f / normal } else { 0.0 })
+    };
+    // The kicks apply the old spring force over the first half step and the
+    // new one over the second: energy accounting uses their mean. Of the
+    // work it does on the relative tangential motion, the part on the slip is
+    // dissipated and the rest is stored in the spring (integrated, not
+    // F^2/2k: k_t follows the contact length, which changes under the force).
+    let mean_tangential = 0.5 * (friction.tangential_force_n + tangential);
+    let friction_power = mean_tangential * slip;
+    let tangential_energy = carried.tangential_energy_j + mean_tangential * (v_t - slip) * dt;
+    ContactRecord {
+        a: 0,
+        b: 0,
+        image_offset: Vec2::ZERO,
+        friction: state,
+        age_steps: 0,
+        overlap_m2: ov.area_m2,
+        point: ov.centroid,
+        normal: n,
+        length_m: ov.length_m,
+        normal_force_n: normal,
+        // The spring resists the slip of b relative to a.
+        tangential_force_n: -tangential,
+        slip_rate_m_per_s: slip,
+        mu,
+        friction_power_w: friction_power,
+        damping_power_w: damping_power.max(0.0),
+        elastic_force_n: elastic,
+        // Work of the elastic force over the step (trapezoid in the force,
+        // penetration rate -v_n): exact storage for any overlap shape.
+        normal_energy_j: carried.normal_energy_j
+            + 0.5 * (carried.elastic_force_n + elastic) * (-v_n) * dt,
+        tangential_energy_j: tangential_energy,
+    }
+}
+
+/// Force on `b` and the torques on `a` and `b` of a contact record.
+#[inline]
+pub fn force_and_torques(
+    c: &ContactRecord,
+    a_position: Vec2,
+    b_position: Vec2,
+) -> (Vec2, f64, f64) {
+    let f = c.normal * c.normal_force_n + perp(c.normal) * c.tangential_force_n;
+    let torque_b = cross(c.point - b_position, f);
+    let torque_a = cross(c.point - a_position, -f);
+    (f, torque_a, torque_b)
+}

@@ -1,0 +1,136 @@
+//! The contact graph: one record per touching pair of floes, carrying the
+//! friction law's state (tangential spring and `theta`) for as long as the
+//! two floes touch.
+//!
+//! Records are kept sorted by the pair's global ids `(id_a, id_b)`,
+//! `id_a < id_b`, so the order (and hence every sum over contacts) does not
+//! depend on thread count, and a subdomain can match its records with a
+//! neighbour's by id.
+//!
+//! A new contact (a pair that did not touch at the end of the previous step)
+//! starts with no tangential force and the state of steady sliding at the
+//! reference slip rate of [`ContactModel::new_contact_slip_rate_m_per_s`]. A
+//! contact that breaks is forgotten: if the pair touches again later, it
+//! starts afresh by the same rule.
+
+use floe_friction::{ContactState, FrictionLaw, Law, RateDependent, RateState, RateStateParams};
+
+use crate::Vec2;
+
+/// Parameters of the floe-floe contact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactModel {
+    /// Young's modulus `E` of the elastic overlap force, Pa. Default 6e6 Pa,
+    /// Subzero.jl's (Manucharyan & Montemuro 2022). This is a contact
+    /// stiffness parameter, orders below the ~6e9 Pa of intact ice, chosen so
+    /// that dt of seconds is stable.
+    pub youngs_modulus_pa: f64,
+    /// Poisson's ratio, setting the tangential stiffness `k_t = k_n / (2 (1 + nu))`. Default 0.3.
+    pub poisson_ratio: f64,
+    /// Coefficient of restitution of the normal dashpot, in (0, 1]. 1: no damping. Default 0.5.
+    pub restitution: f64,
+    /// Friction law of every contact.
+    pub law: Law,
+    /// Slip rate whose steady state a new contact starts in, m/s. Default 1e-3 m/s.
+    pub new_contact_slip_rate_m_per_s: f64,
+    /// A contact slips (for the sliding fraction) when its slip rate exceeds this, m/s. Default 1e-6 m/s.
+    pub sliding_threshold_m_per_s: f64,
+}
+
+impl Default for ContactModel {
+    fn default() -> Self {
+        Self {
+            youngs_modulus_pa: 6e6,
+            poisson_ratio: 0.3,
+            restitution: 0.5,
+            law: Law::RateState(RateState::new(
+                RateStateParams::lishman_2011_tank(),
+                floe_friction::Form::Regularized,
+                floe_friction::StateLaw::Slip,
+            )),
+            new_contact_slip_rate_m_per_s: 1e-3,
+            sliding_threshold_m_per_s: 1e-6,
+        }
+    }
+}
+
+impl ContactModel {
+    /// The friction state of a contact that has just formed.
+    pub fn new_contact_state(&self) -> ContactState {
+        let mut s = self
+            .law
+            .steady_state(self.new_contact_slip_rate_m_per_s, 0.0);
+        s.tangential_force_n = 0.0;
+        s
+    }
+
+    /// Damping ratio of the normal dashpot for the coefficient of restitution
+    /// `e` of a linear spring-dashpot: `zeta = -ln e / sqrt(pi^2 + ln^2 e)`.
+    pub fn damping_ratio(&self) -> f64 {
+        let e = self.restitution.clamp(1e-12, 1.0);
+        let l = e.ln();
+        -l / (std::f64::consts::PI.powi(2) + l * l).sqrt()
+    }
+
+    /// A rate-dependent law with Lishman's parameters, for comparisons.
+    pub fn with_law(self, law: Law) -> Self {
+        Self { law, ..self }
+    }
+
+    /// The rate-dependent counterpart of Lishman's law (eq. 2), for comparisons.
+    pub fn lishman_rate_law() -> Law {
+        Law::RateDependent(RateDependent::lishman_2011(
+            floe_friction::params::LISHMAN_A - floe_friction::params::LISHMAN_B,
+        ))
+    }
+}
+
+/// One touching pair and what the contact did over the last step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRecord {
+    /// First floe (handle into the floe arrays; the smaller global id).
+    pub a: u32,
+    /// Second floe.
+    pub b: u32,
+    /// Offset added to `b`'s position to reach the image that touches `a`
+    /// (non-zero across periodic boundaries), m.
+    pub image_offset: Vec2,
+    /// Friction state: tangential spring force and `theta`.
+    pub friction: ContactState,
+    /// Steps this contact has lasted.
+    pub age_steps: u64,
+    /// Overlap area, m^2.
+    pub overlap_m2: f64,
+    /// Contact point (overlap centroid), m.
+    pub point: Vec2,
+    /// Unit normal from `a` to `b`.
+    pub normal: Vec2,
+    /// Contact length, m.
+    pub length_m: f64,
+    /// Normal force on `b` (>= 0, elastic plus damping), N.
+    pub normal_force_n: f64,
+    /// Tangential force on `b` along `perp(normal)`, N.
+    pub tangential_force_n: f64,
+    /// Slip rate of `b` relative to `a` along `perp(normal)`, m/s.
+    pub slip_rate_m_per_s: f64,
+    /// Friction coefficient `F_t / F_n`.
+    pub mu: f64,
+    /// Power dissipated by friction, W (`F_t` times slip rate).
+    pub friction_power_w: f64,
+    /// Power dissipated by the normal dashpot, W.
+    pub damping_power_w: f64,
+    /// Elastic part of the normal force, N.
+    pub elastic_force_n: f64,
+    /// Work done so far by the elastic normal force (energy stored in the
+    /// overlap), integrated over the contact's life, J.
+    pub normal_energy_j: f64,
+    /// Energy stored in the tangential spring, `F_t^2 / 2 k_t`, J.
+    pub tangential_energy_j: f64,
+}
+
+impl ContactRecord {
+    /// Elastic energy stored in the contact, J.
+    pub fn elastic_energy_j(&self) -> f64 {
+        self.normal_energy_j + self.tangential_energy_j
+    }
+}

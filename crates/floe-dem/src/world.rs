@@ -1,0 +1,405 @@
+//! The simulation: floes, contacts, forcing and the time step.
+//!
+//! # Time integration
+//! Velocity Verlet (kick-drift-kick), second order for position-dependent
+//! forces: `v += a dt/2; x += v dt; forces at the new positions (with the
+//! half-step velocity for drag, damping and friction); v += a dt/2`. The
+//! friction state of every contact advances once per step, inside the force
+//! evaluation.
+//!
+//! # Parallelism and determinism
+//! Work is spread with rayon on the pool the caller installs (`pool.install(|| world.step())`);
+//! the world never creates threads. Every loop either writes one element per
+//! index (floes, candidate pairs) or sums in a fixed order: contact forces
+//! are gathered per floe through a contact list sorted by pair, never
+//! scattered with atomics, and energy sums run sequentially. The result is
+//! bitwise identical for any number of threads.
+
+use rayon::prelude::*;
+
+use crate::broad_phase::{BroadPhase, Periodicity};
+use crate::contact_kernel::{contact_forces, force_and_torques, overlap_stiffness, Body, Carried};
+use crate::contacts::{ContactModel, ContactRecord};
+use crate::error::DemError;
+use crate::floes::{Floes, Motion};
+use crate::geometry::{overlap, ClipScratch, Placed};
+use crate::Vec2;
+
+/// Forces on floes from outside the floe assembly (wind, ocean, Coriolis).
+pub trait ExternalForces: Sync {
+    /// Force (N) and torque (N m) on floe `i` at time `t_s`.
+    fn force_and_torque(&self, t_s: f64, floes: &Floes, i: usize) -> (Vec2, f64);
+}
+
+/// No external forcing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoForcing;
+
+impl ExternalForces for NoForcing {
+    fn force_and_torque(&self, _t: f64, _floes: &Floes, _i: usize) -> (Vec2, f64) {
+        (Vec2::ZERO, 0.0)
+    }
+}
+
+/// Energy bookkeeping since the start of the run, J.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergyLedger {
+    /// Work done on the floes by external forcing.
+    pub forcing_work_j: f64,
+    /// Energy dissipated by contact friction.
+    pub friction_dissipation_j: f64,
+    /// Energy dissipated by the normal dashpots.
+    pub damping_dissipation_j: f64,
+    /// Work done on the floes by floes with prescribed motion (walls).
+    pub boundary_work_j: f64,
+    /// Energy held by contacts at the moment they broke: the elastic work
+    /// the overlap force did over the contact's life, plus the tangential
+    /// spring's energy. An overlap-area force is not the gradient of a
+    /// potential (sliding changes the overlap without normal motion), so this
+    /// is not zero: it is the model's own non-conservation, reported rather
+    /// than hidden. Positive: energy lost from the floes.
+    pub released_at_break_j: f64,
+}
+
+/// Safety factor on the undamped single-contact limit `2 / omega`: a floe in
+/// a packed tessellation has up to about six contacts, and the dashpot and
+/// tangential spring shorten the limit further.
+pub const STABILITY_SAFETY: f64 = 0.3;
+
+/// The simulation state.
+pub struct World<F: ExternalForces> {
+    /// The floes.
+    pub floes: Floes,
+    /// Contacts at the end of the last step, sorted by `(id_a, id_b)`.
+    pub contacts: Vec<ContactRecord>,
+    /// Contact parameters and friction law.
+    pub model: ContactModel,
+    /// External forcing.
+    pub forcing: F,
+    /// Periodic axes of the domain.
+    pub periodicity: Periodicity,
+    /// Time step, s.
+    pub dt_s: f64,
+    /// Simulated time, s.
+    pub time_s: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Energy bookkeeping.
+    pub energy: EnergyLedger,
+    broad_phase: BroadPhase,
+    force: Vec<Vec2>,
+    torque: Vec<f64>,
+    external_force: Vec<Vec2>,
+    external_torque: Vec<f64>,
+    adjacency_start: Vec<u32>,
+    adjacency: Vec<u32>,
+}
+
+impl<F: ExternalForces> World<F> {
+    /// A world; refuses a time step above the stable limit.
+    pub fn new(
+        floes: Floes,
+        model: ContactModel,
+        forcing: F,
+        periodicity: Periodicity,
+        dt_s: f64,
+    ) -> Result<Self, DemError> {
+        if !(dt_s.is_finite() && dt_s > 0.0) {
+            return Err(DemError::InvalidParameter {
+                name: "dt_s",
+                value: dt_s,
+                reason: "must be > 0",
+            });
+        }
+        let (limit, culprit) = stable_time_step(&floes, &model);
+        if dt_s > limit {
+            return Err(DemError::UnstableTimeStep {
+                dt_s,
+                limit_s: limit,
+                reason: format!(
+                    "floe {culprit} against a like neighbour, E = {} Pa",
+                    model.youngs_modulus_pa
+                ),
+            });
+        }
+        let mean_radius = floes.radius_m.iter().sum::<f64>() / floes.len().max(1) as f64;
+        let n = floes.len();
+        let mut world = Self {
+            floes,
+            contacts: Vec::new(),
+            model,
+            forcing,
+            periodicity,
+            dt_s,
+            time_s: 0.0,
+            steps: 0,
+            energy: EnergyLedger::default(),
+            broad_phase: BroadPhase::new(0.2 * mean_radius),
+            force: vec![Vec2::ZERO; n],
+            torque: vec![0.0; n],
+            external_force: vec![Vec2::ZERO; n],
+            external_torque: vec![0.0; n],
+            adjacency_start: Vec::new(),
+            adjacency: Vec::new(),
+        };
+        world.update_contacts(0.0);
+        world.gather_forces();
+        Ok(world)
+    }
+
+    /// The broad phase (for diagnostics: rebuild count, skin).
+    pub fn broad_phase(&self) -> &BroadPhase {
+        &self.broad_phase
+    }
+
+    /// Advances one time step.
+    pub fn step(&mut self) {
+        let dt = self.dt_s;
+        let periodicity = self.periodicity;
+        let f = &mut self.floes;
+        let owned = f.owned;
+        let (force, torque) = (&self.force, &self.torque);
+        // Kick and drift.
+        let old_external: (Vec<Vec2>, Vec<f64>) =
+            (self.external_force.clone(), self.external_torque.clone());
+        (
+            &mut f.position[..owned],
+            &mut f.velocity[..owned],
+            (&mut f.angle[..owned], &mut f.angular_velocity[..owned]),
+        )
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(i, (x, v, (theta, omega)))| {
+                if let Motion::Free = f.motion[i] {
+                    *v += force[i] / f.mass_kg[i] * (0.5 * dt);
+                    *omega += torque[i] / f.inertia_kg_m2[i] * (0.5 * dt);
+                }
+                *x = periodicity.wrap(*x + *v * dt);
+                *theta += *omega * dt;
+            });
+        self.time_s += dt;
+        self.steps += 1;
+        self.update_contacts(dt);
+        self.gather_forces();
+        // Kick.
+        let f = &mut self.floes;
+        let (force, torque) = (&self.force, &self.torque);
+        (&mut f.velocity[..owned], &mut f.angular_velocity[..owned])
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(i, (v, omega))| {
+                if let Motion::Free = f.motion[i] {
+                    *v += force[i] / f.mass_kg[i] * (0.5 * dt);
+                    *omega += torque[i] / f.inertia_kg_m2[i] * (0.5 * dt);
+                }
+            });
+        self.account_energy(dt, &old_external);
+    }
+
+    /// Broad phase, narrow phase and contact kernel: the new contact list.
+    fn update_contacts(&mut self, dt: f64) {
+        let f = &self.floes;
+        self.broad_phase
+            .update(&f.position, &f.radius_m, self.periodicity);
+        let previous = &self.contacts;
+        let model = &self.model;
+        let periodicity = self.periodicity;
+        let body = |i: usize, offset: Vec2| Body {
+            position: f.position[i] + offset,
+            velocity: f.velocity[i],
+            angular_velocity: f.angular_velocity[i],
+            mass_kg: f.mass_kg[i],
+            thickness_m: f.thickness_m[i],
+            area_m2: f.area_m2[i],
+            free: f.is_free(i),
+        };
+        let placed = |i: usize, offset: Vec2| {
+            let (s, c) = f.angle[i].sin_cos();
+            Placed {
+                vertices: f.local_vertices(i),
+                position: f.position[i] + offset,
+                cos: c,
+                sin: s,
+            }
+        };
+        let contacts: Vec<ContactRecord> = self
+            .broad_phase
+            .pairs
+            .par_iter()
+            .map_init(ClipScratch::default, |scratch, pair| {
+                let (a, b) = (pair.a as usize, pair.b as usize);
+                if !f.is_free(a) && !f.is_free(b) {
+                    return None;
+                }
+                let offset = periodicity.nearest_image(f.position[a], f.position[b]);
+                let ov = overlap(placed(a, Vec2::ZERO), placed(b, offset), scratch)?;
+                let key = (f.id[a], f.id[b]);
+                let old = previous
+                    .binary_search_by(|c| (f.id[c.a as usize], f.id[c.b as usize]).cmp(&key))
+                    .ok()
+                    .map(|k| &previous[k]);
+                let carried = old.map_or_else(
+                    || Carried::new_contact(model, &ov, &body(a, Vec2::ZERO), &body(b, offset)),
+                    |c| Carried {
+                        friction: c.friction,
+                        elastic_force_n: c.elastic_force_n,
+                        normal_energy_j: c.normal_energy_j,
+                        tangential_energy_j: c.tangential_energy_j,
+                    },
+                );
+                let mut record = contact_forces(
+                    model,
+                    &body(a, Vec2::ZERO),
+                    &body(b, offset),
+                    &ov,
+                    carried,
+                    dt,
+                );
+                record.a = pair.a;
+                record.b = pair.b;
+                record.image_offset = offset;
+                record.age_steps = old.map_or(0, |c| c.age_steps + 1);
+                Some(record)
+            })
+            .flatten()
+            .collect();
+        // Contacts that did not survive the step release what they held.
+        let (mut k, mut released) = (0, 0.0);
+        for old in previous {
+            let key = (f.id[old.a as usize], f.id[old.b as usize]);
+            while k < contacts.len()
+                && (f.id[contacts[k].a as usize], f.id[contacts[k].b as usize]) < key
+            {
+                k += 1;
+            }
+            let survived = k < contacts.len()
+                && (f.id[contacts[k].a as usize], f.id[contacts[k].b as usize]) == key;
+            if !survived {
+                released += old.elastic_energy_j();
+            }
+        }
+        self.energy.released_at_break_j += released;
+        self.contacts = contacts;
+    }
+
+    /// External forces and the contact forces, gathered per floe in contact order.
+    fn gather_forces(&mut self) {
+        let n = self.floes.len();
+        // Contacts of each floe, in contact order (a CSR list).
+        self.adjacency_start.clear();
+        self.adjacency_start.resize(n + 1, 0);
+        for c in &self.contacts {
+            self.adjacency_start[c.a as usize + 1] += 1;
+            self.adjacency_start[c.b as usize + 1] += 1;
+        }
+        for i in 0..n {
+            self.adjacency_start[i + 1] += self.adjacency_start[i];
+        }
+        self.adjacency.resize(self.adjacency_start[n] as usize, 0);
+        let mut fill: Vec<u32> = self.adjacency_start[..n].to_vec();
+        for (k, c) in self.contacts.iter().enumerate() {
+            for i in [c.a as usize, c.b as usize] {
+                self.adjacency[fill[i] as usize] = k as u32;
+                fill[i] += 1;
+            }
+        }
+        let (f, contacts, forcing, t) = (&self.floes, &self.contacts, &self.forcing, self.time_s);
+        let (start, adjacency) = (&self.adjacency_start, &self.adjacency);
+        (
+            &mut self.force,
+            &mut self.torque,
+            (&mut self.external_force, &mut self.external_torque),
+        )
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(i, (force, torque, (ext_f, ext_t)))| {
+                let (ef, et) = if f.is_free(i) {
+                    forcing.force_and_torque(t, f, i)
+                } else {
+                    (Vec2::ZERO, 0.0)
+                };
+                *ext_f = ef;
+                *ext_t = et;
+                let (mut fsum, mut tsum) = (ef, et);
+                for &k in &adjacency[start[i] as usize..start[i + 1] as usize] {
+                    let c = &contacts[k as usize];
+                    let (pa, pb) = (
+                        f.position[c.a as usize],
+                        f.position[c.b as usize] + c.image_offset,
+                    );
+                    let (fb, ta, tb) = force_and_torques(c, pa, pb);
+                    if c.b as usize == i {
+                        fsum += fb;
+                        tsum += tb;
+                    } else {
+                        fsum -= fb;
+                        tsum += ta;
+                    }
+                }
+                *force = fsum;
+                *torque = tsum;
+            });
+    }
+
+    /// Work of forcing and walls, and dissipation, over the step just taken.
+    fn account_energy(&mut self, dt: f64, old_external: &(Vec<Vec2>, Vec<f64>)) {
+        let f = &self.floes;
+        // Trapezoidal in the force, with the velocity at the end of the step
+        // and at the half step averaged through the kicks.
+        for i in 0..f.owned {
+            if f.is_free(i) {
+                let mean_f = 0.5 * (old_external.0[i] + self.external_force[i]);
+                let mean_t = 0.5 * (old_external.1[i] + self.external_torque[i]);
+                self.energy.forcing_work_j +=
+                    dt * (mean_f.dot(f.velocity[i]) + mean_t * f.angular_velocity[i]);
+            }
+        }
+        for c in &self.contacts {
+            self.energy.friction_dissipation_j += dt * c.friction_power_w;
+            self.energy.damping_dissipation_j += dt * c.damping_power_w;
+            // Work done by a wall on the floe it touches: the force the wall
+            // exerts (the opposite of the force on it) times its velocity.
+            let (pa, pb) = (
+                f.position[c.a as usize],
+                f.position[c.b as usize] + c.image_offset,
+            );
+            let (fb, _, _) = force_and_torques(c, pa, pb);
+            if !f.is_free(c.a as usize) {
+                self.energy.boundary_work_j += dt * fb.dot(f.velocity[c.a as usize]);
+            }
+            if !f.is_free(c.b as usize) {
+                self.energy.boundary_work_j += dt * (-fb).dot(f.velocity[c.b as usize]);
+            }
+        }
+    }
+}
+
+/// The largest stable time step and the floe that sets it: `0.3 x 2/omega`
+/// with `omega^2 = k / m_eff` for the stiffest contact the floe can have
+/// with a like neighbour: contact length a diameter, `k = kappa 2 r`,
+/// `m_eff = min(m/2, I / r^2)` (translation or rotation at the rim).
+pub fn stable_time_step(floes: &Floes, model: &ContactModel) -> (f64, usize) {
+    let mut best = (f64::INFINITY, 0);
+    for i in 0..floes.len() {
+        if !floes.is_free(i) {
+            continue;
+        }
+        let body = Body {
+            position: Vec2::ZERO,
+            velocity: Vec2::ZERO,
+            angular_velocity: 0.0,
+            mass_kg: floes.mass_kg[i],
+            thickness_m: floes.thickness_m[i],
+            area_m2: floes.area_m2[i],
+            free: true,
+        };
+        let k = overlap_stiffness(model, &body, &body) * 2.0 * floes.radius_m[i];
+        let r = floes.radius_m[i];
+        let m_eff = (0.5 * floes.mass_kg[i]).min(floes.inertia_kg_m2[i] / (r * r));
+        let limit = STABILITY_SAFETY * 2.0 * (m_eff / k).sqrt();
+        if limit < best.0 {
+            best = (limit, i);
+        }
+    }
+    best
+}

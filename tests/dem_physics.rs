@@ -1,0 +1,413 @@
+//! Physics of the DEM engine: conservation in collisions, determinism,
+//! energy budget, and the double-shear experiment against the spring-slider.
+
+use floe_dem::broad_phase::Periodicity;
+use floe_dem::contacts::ContactModel;
+use floe_dem::floes::{Floes, Motion};
+use floe_dem::geometry::FloeShape;
+use floe_dem::world::{ExternalForces, NoForcing, World};
+use floe_dem::Vec2;
+use floe_friction::experiments::Preset;
+use floe_friction::protocol::{Protocol, Segment};
+use floe_friction::spring_slider::{Apparatus, SpringSlider};
+use floe_friction::{Amontons, Form, Law, RateState, StateLaw};
+
+const RHO_ICE: f64 = 917.0;
+
+fn rect(center: Vec2, w: f64, h: f64) -> Vec<Vec2> {
+    let (a, b) = (0.5 * w, 0.5 * h);
+    vec![
+        center + Vec2::new(-a, -b),
+        center + Vec2::new(a, -b),
+        center + Vec2::new(a, b),
+        center + Vec2::new(-a, b),
+    ]
+}
+
+fn frictionless_elastic() -> ContactModel {
+    ContactModel {
+        restitution: 1.0,
+        law: Law::Amontons(Amontons { mu: 0.0 }),
+        ..ContactModel::default()
+    }
+}
+
+fn momentum(w: &World<impl ExternalForces>) -> (Vec2, f64, f64) {
+    let f = &w.floes;
+    let (mut p, mut l, mut ke) = (Vec2::ZERO, 0.0, 0.0);
+    for i in 0..f.len() {
+        p += f.velocity[i] * f.mass_kg[i];
+        l += f.mass_kg[i] * (f.position[i].x * f.velocity[i].y - f.position[i].y * f.velocity[i].x)
+            + f.inertia_kg_m2[i] * f.angular_velocity[i];
+        ke += 0.5 * f.mass_kg[i] * f.velocity[i].length_squared()
+            + 0.5 * f.inertia_kg_m2[i] * f.angular_velocity[i].powi(2);
+    }
+    (p, l, ke)
+}
+
+#[test]
+fn a_glancing_collision_conserves_momentum_and_without_damping_or_friction_kinetic_energy() {
+    // A square and a rotated pentagon-ish floe (a rectangle turned 30 deg), off-centre impact.
+    let polys = vec![
+        rect(Vec2::new(0.0, 0.0), 100.0, 100.0),
+        rect(Vec2::new(160.0, 40.0), 120.0, 60.0),
+    ];
+    let mut floes = Floes::from_polygons(&polys, &[1.0, 1.5], RHO_ICE).unwrap();
+    floes.angle[1] = 0.5;
+    floes.velocity[0] = Vec2::new(1.0, 0.0);
+    floes.angular_velocity[0] = 0.002;
+    let model = frictionless_elastic();
+    let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
+    let mut w = World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap();
+    let (p0, l0, ke0) = momentum(&w);
+    let mut touched = false;
+    for _ in 0..200_000 {
+        w.step();
+        touched |= !w.contacts.is_empty();
+        let (p, l, _) = momentum(&w);
+        assert!(
+            (p - p0).length() <= 1e-12 * p0.length(),
+            "linear momentum drift {}",
+            (p - p0).length()
+        );
+        assert!(
+            (l - l0).abs() <= 1e-10 * l0.abs().max(1.0) * 1e3,
+            "angular momentum {l} vs {l0}"
+        );
+        if touched && w.contacts.is_empty() {
+            break;
+        }
+    }
+    assert!(
+        touched && w.contacts.is_empty(),
+        "the floes collided and separated"
+    );
+    let (_, _, ke) = momentum(&w);
+    assert!(
+        (ke - ke0).abs() < 1e-3 * ke0,
+        "kinetic energy after {ke} vs before {ke0}"
+    );
+    assert!(
+        w.floes.velocity[1].length() > 0.1,
+        "momentum was transferred"
+    );
+}
+
+/// A jammed box of squares with random velocities, driven by a moving wall.
+fn sheared_box(law: Law, seed: u64) -> World<NoForcing> {
+    sheared_box_dt(law, seed, 0.5)
+}
+
+fn sheared_box_dt(law: Law, seed: u64, dt_fraction: f64) -> World<NoForcing> {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let (nx, ny, s) = (8, 6, 100.0);
+    let mut polys = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let c = Vec2::new((i as f64 + 0.5) * s, (j as f64 + 0.5) * s);
+            polys.push(rect(
+                c + Vec2::new(rng.gen_range(-0.4..0.4), rng.gen_range(-0.4..0.4)),
+                s * 0.99,
+                s * 0.99,
+            ));
+        }
+    }
+    let n = polys.len();
+    let mut floes = Floes::from_polygons(&polys, &vec![1.0; n], RHO_ICE).unwrap();
+    for i in 0..n {
+        floes.velocity[i] = Vec2::new(rng.gen_range(-0.05..0.05), rng.gen_range(-0.05..0.05));
+        floes.angular_velocity[i] = rng.gen_range(-1e-3..1e-3);
+    }
+    // Walls: a fixed floor and a lid moving in x and closing, 1 m clear of
+    // the floes at the start (no initial overlap anywhere).
+    let wall = |y: f64| {
+        FloeShape::from_world(
+            0,
+            &rect(
+                Vec2::new(0.5 * nx as f64 * s, y),
+                nx as f64 * s * 3.0,
+                200.0,
+            ),
+        )
+        .unwrap()
+    };
+    let (floor, c0) = wall(-101.0);
+    let (lid, c1) = wall(ny as f64 * s + 101.0);
+    floes.push(
+        1000,
+        &floor,
+        c0,
+        1.0,
+        RHO_ICE,
+        Motion::Prescribed {
+            velocity: Vec2::ZERO,
+        },
+    );
+    floes.push(
+        1001,
+        &lid,
+        c1,
+        1.0,
+        RHO_ICE,
+        Motion::Prescribed {
+            velocity: Vec2::new(0.2, -0.02),
+        },
+    );
+    let model = ContactModel {
+        law,
+        ..ContactModel::default()
+    };
+    let dt = dt_fraction * floe_dem::world::stable_time_step(&floes, &model).0;
+    World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap()
+}
+
+fn rate_state() -> Law {
+    Law::RateState(RateState::new(
+        Preset::Tank.params(),
+        Form::Regularized,
+        StateLaw::Slip,
+    ))
+}
+
+#[test]
+fn results_are_bitwise_identical_for_one_and_two_threads() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut w = sheared_box(rate_state(), 7);
+            for _ in 0..3000 {
+                w.step();
+            }
+            (
+                w.floes.position.clone(),
+                w.floes.velocity.clone(),
+                w.floes.angular_velocity.clone(),
+                w.contacts.iter().map(|c| c.friction).collect::<Vec<_>>(),
+                w.energy,
+            )
+        })
+    };
+    let (one, two) = (run(1), run(2));
+    assert!(!one.3.is_empty(), "the run has contacts");
+    assert!(one
+        .0
+        .iter()
+        .zip(&two.0)
+        .all(|(a, b)| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()));
+    assert!(one
+        .1
+        .iter()
+        .zip(&two.1)
+        .all(|(a, b)| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()));
+    assert!(one
+        .2
+        .iter()
+        .zip(&two.2)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_eq!(one.3, two.3);
+    assert_eq!(one.4, two.4);
+}
+
+#[test]
+fn energy_budget_closes_over_a_wall_driven_shear_run() {
+    // Kinetic + stored elastic energy change = work of the walls - friction
+    // and damping dissipation - energy held by contacts when they broke (the
+    // overlap-area force is not conservative; that term measures it). The
+    // identity holds up to the integrator's error, which must shrink with dt.
+    for (law, tolerance) in [
+        (Law::Amontons(Amontons { mu: 0.0 }), 5e-3),
+        (Law::Amontons(Amontons { mu: 0.4 }), 1e-2),
+        (rate_state(), 2e-2),
+    ] {
+        let mut errors = Vec::new();
+        for fraction in [0.5, 0.125] {
+            let mut w = sheared_box_dt(law, 3, fraction);
+            let stored = |w: &World<NoForcing>| {
+                momentum(w).2 + w.contacts.iter().map(|c| c.elastic_energy_j()).sum::<f64>()
+            };
+            let e0 = stored(&w);
+            for _ in 0..(10_000.0 / fraction) as usize {
+                w.step();
+            }
+            let e = &w.energy;
+            let change = stored(&w) - e0;
+            let supplied = e.boundary_work_j + e.forcing_work_j
+                - e.friction_dissipation_j
+                - e.damping_dissipation_j
+                - e.released_at_break_j;
+            eprintln!(
+                "{} dt x{fraction}: change {change:.4e} J, supplied {supplied:.4e} J (walls {:.4e}, friction {:.4e}, damping {:.4e}, released at break {:.4e})",
+                law.name(), e.boundary_work_j, e.friction_dissipation_j, e.damping_dissipation_j, e.released_at_break_j
+            );
+            assert!(e.boundary_work_j > 0.0 && e.damping_dissipation_j > 0.0);
+            if !matches!(law, Law::Amontons(Amontons { mu }) if mu == 0.0) {
+                assert!(e.friction_dissipation_j > 0.0);
+            }
+            errors.push((change - supplied).abs() / e.boundary_work_j);
+        }
+        eprintln!("{}: relative errors {errors:?}", law.name());
+        assert!(
+            errors[0] < tolerance,
+            "{}: budget off by {:.3e} of the wall work",
+            law.name(),
+            errors[0]
+        );
+        assert!(
+            errors[1] < 0.6 * errors[0],
+            "{}: error does not shrink with dt: {errors:?}",
+            law.name()
+        );
+    }
+}
+
+/// The pusher of the double-shear test: a spring of stiffness `k` from a
+/// load point moving at `v(t)` to the middle floe.
+struct Pusher {
+    floe: usize,
+    k: f64,
+    x0: f64,
+    segments: Vec<(f64, f64)>,
+}
+
+impl Pusher {
+    fn load_point(&self, t: f64) -> f64 {
+        let (mut x, mut t0) = (0.0, 0.0);
+        for &(v, d) in &self.segments {
+            let span = (t - t0).clamp(0.0, d);
+            x += v * span;
+            t0 += d;
+        }
+        x
+    }
+    fn force(&self, t: f64, floes: &Floes) -> f64 {
+        self.k * (self.load_point(t) - (floes.position[self.floe].x - self.x0))
+    }
+}
+
+impl ExternalForces for Pusher {
+    fn force_and_torque(&self, t: f64, floes: &Floes, i: usize) -> (Vec2, f64) {
+        if i == self.floe {
+            (Vec2::new(self.force(t, floes), 0.0), 0.0)
+        } else {
+            (Vec2::ZERO, 0.0)
+        }
+    }
+}
+
+#[test]
+fn double_shear_in_the_dem_reproduces_the_spring_slider() {
+    // The tank experiment as floes: a 2 m x 2 m x 0.25 m block pressed between
+    // two fixed sheets with 5 kN on each face, pushed through a 2 MN/m spring.
+    let (side_load, k_pusher, h) = (5e3, 2e6, 0.25);
+    // The spring-slider is massless; the block is not, and overshoots after
+    // the step by about (v2 - v1) sqrt(k m) / N. Run with the ice density and
+    // with a block 10x lighter: the difference must shrink like sqrt(m).
+    let errors: Vec<f64> = [931.0, 93.1]
+        .iter()
+        .map(|&rho| double_shear_peak_error(rho, side_load, k_pusher, h))
+        .collect();
+    eprintln!(
+        "peak error: ice density {:.3e}, 10x lighter {:.3e}",
+        errors[0], errors[1]
+    );
+    assert!(
+        errors[1] < 0.01,
+        "light block within 1 % of the slider's peak"
+    );
+    let ratio = errors[0] / errors[1];
+    assert!(
+        (2.0..4.5).contains(&ratio),
+        "error ratio {ratio} vs sqrt(10) = 3.16"
+    );
+}
+
+fn double_shear_peak_error(density: f64, side_load: f64, k_pusher: f64, h: f64) -> f64 {
+    let model = ContactModel {
+        law: rate_state(),
+        new_contact_slip_rate_m_per_s: 1e-3,
+        ..ContactModel::default()
+    };
+    let kappa = model.youngs_modulus_pa * h / 2.0; // E h / sqrt(A) against a fixed floe
+    let depth = side_load / (kappa * 2.0); // overlap area / contact length
+    let mut floes = Floes::from_polygons(&[rect(Vec2::ZERO, 2.0, 2.0)], &[h], density).unwrap();
+    for (id, y) in [(1u64, 1.0 + 5.0 - depth), (2, -1.0 - 5.0 + depth)] {
+        let (shape, c) = FloeShape::from_world(0, &rect(Vec2::new(0.0, y), 40.0, 10.0)).unwrap();
+        floes.push(
+            id,
+            &shape,
+            c,
+            h,
+            931.0,
+            Motion::Prescribed {
+                velocity: Vec2::ZERO,
+            },
+        );
+    }
+    let (v1, v2) = (1e-3, 1e-2);
+    floes.velocity[0] = Vec2::new(v1, 0.0);
+    let segments = vec![(v1, 200.0), (v2, 5.0)];
+    let pusher = Pusher {
+        floe: 0,
+        k: k_pusher,
+        x0: 0.0,
+        segments: segments.clone(),
+    };
+    let dt = 1e-3;
+    let mut w = World::new(floes, model, pusher, Periodicity::default(), dt).unwrap();
+    // Series stiffness: the pusher, then the two contact springs in parallel.
+    let k_t = kappa * 2.0 / (2.0 * (1.0 + model.poisson_ratio));
+    let k_series = 1.0 / (1.0 / k_pusher + 1.0 / (2.0 * k_t));
+    let n_eff = 2.0 * side_load;
+    let mut dem = Vec::new();
+    let steps = (205.0 / dt) as usize;
+    for _ in 0..steps {
+        w.step();
+        if w.time_s >= 199.0 {
+            dem.push((w.time_s, w.forcing.force(w.time_s, &w.floes) / n_eff));
+        }
+    }
+    assert_eq!(w.contacts.len(), 2);
+    let normal: f64 = w.contacts.iter().map(|c| c.normal_force_n).sum();
+    assert!(
+        (normal - n_eff).abs() < 1e-3 * n_eff,
+        "normal load {normal}"
+    );
+    // The spring-slider with the same law, series stiffness and load.
+    let mut slider = SpringSlider::new(
+        rate_state(),
+        Apparatus::new(k_series, n_eff, dt).unwrap(),
+        v1,
+    );
+    let mut reference = Vec::new();
+    let protocol = Protocol::new(
+        segments
+            .iter()
+            .map(|&(v, d)| Segment::constant(v, d))
+            .collect(),
+    )
+    .unwrap();
+    slider.run(&protocol, |s| {
+        if s.t_s >= 199.0 {
+            reference.push((s.t_s, s.mu));
+        }
+    });
+    let at = |series: &[(f64, f64)], t: f64| {
+        series
+            .iter()
+            .min_by(|a, b| (a.0 - t).abs().total_cmp(&(b.0 - t).abs()))
+            .unwrap()
+            .1
+    };
+    let peak = |series: &[(f64, f64)]| series.iter().map(|s| s.1).fold(f64::NEG_INFINITY, f64::max);
+    let (ss1, ss1_ref) = (at(&dem, 199.5), at(&reference, 199.5));
+    let (p, p_ref) = (peak(&dem), peak(&reference));
+    let (ss2, ss2_ref) = (at(&dem, 204.9), at(&reference, 204.9));
+    eprintln!("density {density}: DEM steady {ss1:.5} peak {p:.5} after {ss2:.5}; slider {ss1_ref:.5} {p_ref:.5} {ss2_ref:.5}");
+    assert!((ss1 - ss1_ref).abs() < 2e-3, "steady state before the step");
+    assert!((ss2 - ss2_ref).abs() < 5e-3, "friction after the step");
+    (p - p_ref).abs() / p_ref
+}
