@@ -33,4 +33,12 @@ pub enum DemError {
         /// Which floe and contact stiffness set the limit.
         reason: String,
     },
+    /// An iterative solver did not reach its tolerance.
+    #[error("{what} did not converge in {iterations} iterations")]
+    NoConvergence {
+        /// Which solve.
+        what: &'static str,
+        /// Iterations spent.
+        iterations: usize,
+    },
 }

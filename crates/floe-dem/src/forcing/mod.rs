@@ -1,0 +1,191 @@
+//! Wind and ocean forcing of a floe: quadratic drag with turning angles,
+//! Coriolis, sea-surface tilt and rotational drag.
+//!
+//! For a floe of area `A` (m²), mass `m` (kg), centroid velocity `u` (m/s)
+//! and angular velocity `ω` (rad/s, counterclockwise), with the wind `U_a` and
+//! current `U_w` sampled at its centroid at time `t`:
+//!
+//! ```text
+//! F = A τ_a + A τ_w − m f k × u + [tilt] m f k × U_w                  (N)
+//! τ_a = ρ_a C_a |U_a| R(φ_a) U_a          (or U_a − u if air.relative_to_ice)
+//! τ_w = ρ_w C_w |U_w − u| R(θ_w) (U_w − u)
+//! T = −ρ_w C_w cos θ_w |ω − ζ_w/2| (ω − ζ_w/2) ∫ r³ dA                  (N m)
+//! ```
+//!
+//! `R(φ)` rotates counterclockwise; `k × (x, y) = (−y, x)`; `f = 2 Ω sin(lat)`;
+//! `ζ_w` is the current's vorticity at the centroid. Details, sign conventions
+//! and approximations: [`drag`] (stress, turning angle, torque, `∫ r³ dA`),
+//! [`coriolis`] (Coriolis, tilt), [`fields`] (velocity fields),
+//! [`free_drift`] (steady drift without time stepping).
+//!
+//! # Defaults ([`Forcing::default`])
+//!
+//! | quantity | default | sources |
+//! |---|---|---|
+//! | wind, current | 0 m/s everywhere | — |
+//! | air density `ρ_a` | 1.2 kg/m³ | Subzero.jl `ρa = 1.2`; 1.3 is common in CICE-family codes |
+//! | air drag `C_a` | 1.2e-3 | DEMSI 0.0012 (project notes), Hibler (1979); Subzero.jl 1e-3 |
+//! | ocean density `ρ_w` | 1027 kg/m³ | Subzero.jl `ρo = 1027` |
+//! | ocean drag `C_w` | 5.5e-3 | DEMSI 0.0045–0.0055 (project notes), Hibler (1979); Subzero.jl 3e-3 |
+//! | turning angles | 0° (air and ocean) | typical ocean 20–25° NH (Hibler 1979 25°; Subzero.jl 15°), counterclockwise positive |
+//! | air drag relative to ice | no (ice speed ≪ wind) | usual practice |
+//! | ocean drag relative to ice | yes | — |
+//! | Coriolis | off | Subzero.jl default `f = 1.4e-4 /s` (≈ 74° N) |
+//! | sea-surface tilt | on (acts only with Coriolis and a current) | Subzero.jl always applies it |
+//! | rotational drag | on | — |
+//!
+//! With these defaults the free-drift wind factor (no current, no Coriolis)
+//! is `sqrt(ρ_a C_a / (ρ_w C_w)) = 1.597 %`.
+//!
+//! The DEMSI values are those listed in the project notes
+//! (`shared/notes/physics.md`), not re-checked against the DEMSI source;
+//! Hibler (1979), *A dynamic thermodynamic sea ice model*, JPO 9, is cited
+//! from memory.
+//!
+//! # Cost
+//!
+//! [`Forcing::force_and_torque`] runs for every floe every step. It does not
+//! allocate: fields are evaluated in place (a time series by binary search).
+
+pub mod coriolis;
+pub mod drag;
+pub mod fields;
+pub mod free_drift;
+mod serde_vec2;
+
+pub use coriolis::{coriolis_force, sea_surface_tilt_force, Coriolis, EARTH_ROTATION_RATE_RAD_S};
+pub use drag::{
+    polygon_r3_moment, rotate, DragParameters, AIR_DENSITY_KG_M3, AIR_DRAG_COEFFICIENT,
+    OCEAN_DRAG_COEFFICIENT, SEAWATER_DENSITY_KG_M3,
+};
+pub use fields::{Envelope, VelocityField};
+pub use free_drift::free_drift_velocity;
+
+use serde::{Deserialize, Serialize};
+
+use crate::{DemError, Vec2};
+
+/// Wind and ocean forcing of every floe. Read from a scenario file: every
+/// key may be omitted and then takes its [`Default`] value; unknown keys are
+/// rejected. Call [`Forcing::validate`] after reading.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Forcing {
+    /// Wind velocity (10 m), m/s.
+    pub wind: VelocityField,
+    /// Ocean surface current, m/s.
+    pub current: VelocityField,
+    /// Air drag parameters.
+    pub air: DragParameters,
+    /// Ocean drag parameters.
+    pub ocean: DragParameters,
+    /// Coriolis parameter.
+    pub coriolis: Coriolis,
+    /// Add the sea-surface tilt force `m f k × U_w` in geostrophic balance
+    /// with the current (no effect without Coriolis or current).
+    pub sea_surface_tilt: bool,
+    /// Add the drag torque on floe rotation (media with drag relative to the ice).
+    pub rotational_drag: bool,
+}
+
+impl Default for Forcing {
+    /// The defaults in the module table: no wind or current, air
+    /// [`DragParameters::air`], ocean [`DragParameters::ocean`], Coriolis off,
+    /// tilt and rotational drag on.
+    fn default() -> Self {
+        Forcing {
+            wind: VelocityField::default(),
+            current: VelocityField::default(),
+            air: DragParameters::air(),
+            ocean: DragParameters::ocean(),
+            coriolis: Coriolis::Off,
+            sea_surface_tilt: true,
+            rotational_drag: true,
+        }
+    }
+}
+
+/// What the forcing needs to know about one floe, SI units.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FloeDynamics {
+    /// Centroid position, m.
+    pub position: Vec2,
+    /// Centroid velocity, m/s.
+    pub velocity: Vec2,
+    /// Angular velocity about the centroid, rad/s, counterclockwise positive.
+    pub angular_velocity: f64,
+    /// Plan-view area, m².
+    pub area_m2: f64,
+    /// Mass, kg (`ρ_ice h A`).
+    pub mass_kg: f64,
+    /// `∫ r³ dA` about the centroid, m⁵ ([`polygon_r3_moment`]).
+    pub r3_moment_m5: f64,
+}
+
+impl Forcing {
+    /// Net forcing on one floe at time `t_s` (s): the force on its centroid
+    /// (N) and the torque about it (N m, counterclockwise positive). Formulas
+    /// in the module docs. Does not allocate.
+    #[inline]
+    pub fn force_and_torque(&self, t_s: f64, floe: &FloeDynamics) -> (Vec2, f64) {
+        let wind = self.wind.velocity(floe.position, t_s);
+        let current = self.current.velocity(floe.position, t_s);
+        let stress =
+            self.air.stress(wind, floe.velocity) + self.ocean.stress(current, floe.velocity);
+        let mut force = floe.area_m2 * stress;
+        let f = self.coriolis.parameter_per_s();
+        if f != 0.0 {
+            force += coriolis_force(floe.mass_kg, f, floe.velocity);
+            if self.sea_surface_tilt {
+                force += sea_surface_tilt_force(floe.mass_kg, f, current);
+            }
+        }
+        let mut torque = 0.0;
+        if self.rotational_drag {
+            for (drag, field) in [(&self.ocean, &self.current), (&self.air, &self.wind)] {
+                if drag.relative_to_ice {
+                    let w_rel = floe.angular_velocity - 0.5 * field.vorticity(floe.position, t_s);
+                    torque += drag.rotational_torque(w_rel, floe.r3_moment_m5);
+                }
+            }
+        }
+        (force, torque)
+    }
+
+    /// The steady free-drift velocity (m/s) of ice of mass per area
+    /// `mass_per_area_kg_m2` (`ρ_ice h`, kg/m²) under the wind and current
+    /// found at `position_m` (m) and `t_s` (s), taken as uniform and steady.
+    /// See [`free_drift_velocity`].
+    ///
+    /// # Errors
+    /// As [`free_drift_velocity`].
+    pub fn free_drift_velocity_at(
+        &self,
+        t_s: f64,
+        position_m: Vec2,
+        mass_per_area_kg_m2: f64,
+    ) -> Result<Vec2, DemError> {
+        free_drift_velocity(
+            self.wind.velocity(position_m, t_s),
+            self.current.velocity(position_m, t_s),
+            &self.air,
+            &self.ocean,
+            self.coriolis.parameter_per_s(),
+            mass_per_area_kg_m2,
+            self.sea_surface_tilt,
+        )
+    }
+
+    /// Checks every part: fields, drag parameters, Coriolis.
+    ///
+    /// # Errors
+    /// [`DemError::InvalidParameter`] for the first invalid value found (wind,
+    /// current, air, ocean, Coriolis, in that order).
+    pub fn validate(&self) -> Result<(), DemError> {
+        self.wind.validate()?;
+        self.current.validate()?;
+        self.air.validate()?;
+        self.ocean.validate()?;
+        self.coriolis.validate()
+    }
+}
