@@ -411,3 +411,46 @@ fn double_shear_peak_error(density: f64, side_load: f64, k_pusher: f64, h: f64) 
     assert!((ss2 - ss2_ref).abs() < 5e-3, "friction after the step");
     (p - p_ref).abs() / p_ref
 }
+
+#[test]
+fn one_floe_drifts_freely_to_the_analytic_steady_velocity() {
+    use floe_dem::forcing::{Coriolis, Forcing, VelocityField};
+    for coriolis in [Coriolis::Off, Coriolis::LatitudeDeg(75.0)] {
+        let forcing = Forcing {
+            wind: VelocityField::Uniform(Vec2::new(10.0, 0.0)),
+            current: VelocityField::Uniform(Vec2::new(0.0, 0.05)),
+            coriolis,
+            rotational_drag: true,
+            ..Forcing::default()
+        };
+        let h = 1.5;
+        let floes =
+            Floes::from_polygons(&[rect(Vec2::new(1e6, -2e5), 1000.0, 800.0)], &[h], RHO_ICE)
+                .unwrap();
+        let expected = forcing
+            .free_drift_velocity_at(0.0, Vec2::ZERO, RHO_ICE * h)
+            .unwrap();
+        let mut w = World::new(
+            floes,
+            ContactModel::default(),
+            forcing,
+            Periodicity::default(),
+            4.0,
+        )
+        .unwrap();
+        // Spin-up time ~ m / (rho_w C_w |du| A) ~ an hour; run five days.
+        for _ in 0..(5.0 * 86400.0 / 4.0) as usize {
+            w.step();
+        }
+        let v = w.floes.velocity[0];
+        eprintln!("{coriolis:?}: drift {v} vs analytic {expected}");
+        assert!(
+            (v - expected).length() < 1e-6 * expected.length(),
+            "{coriolis:?}: {v} vs {expected}"
+        );
+        assert!(
+            w.floes.angular_velocity[0].abs() < 1e-12,
+            "no spin without vorticity"
+        );
+    }
+}

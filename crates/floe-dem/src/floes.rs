@@ -131,7 +131,8 @@ impl Floes {
         self.inertia_kg_m2.push(rho_h * shape.polar_moment_m4);
         self.area_m2.push(shape.area_m2);
         self.radius_m.push(shape.radius_m);
-        self.r3_moment_m5.push(r3_moment(&shape.vertices));
+        self.r3_moment_m5
+            .push(crate::forcing::polygon_r3_moment(&shape.vertices));
         self.motion.push(motion);
         self.vertices.extend_from_slice(&shape.vertices);
         self.vertex_start.push(self.vertices.len() as u32);
@@ -189,98 +190,5 @@ impl Floes {
             + self.motion.capacity() * size_of::<Motion>()
             + self.vertex_start.capacity() * 4
             + self.vertices.capacity() * v2
-    }
-}
-
-/// `int r^3 dA` over a convex polygon about the origin: each fan triangle
-/// (origin, u, v) integrated in polar coordinates with 16-point
-/// Gauss-Legendre quadrature in the angle (exact in r, smooth in angle).
-pub fn r3_moment(vertices: &[Vec2]) -> f64 {
-    const N: [f64; 8] = [
-        0.0950125098376374,
-        0.2816035507792589,
-        0.4580167776572274,
-        0.6178762444026438,
-        0.7554044083550030,
-        0.8656312023878318,
-        0.9445750230732326,
-        0.9894009349916499,
-    ];
-    const W: [f64; 8] = [
-        0.1894506104550685,
-        0.1826034150449236,
-        0.1691565193950025,
-        0.1495959888165767,
-        0.1246289712555339,
-        0.0951585116824928,
-        0.0622535239386479,
-        0.0271524594117541,
-    ];
-    let n = vertices.len();
-    let mut total = 0.0;
-    for i in 0..n {
-        let (u, v) = (vertices[i], vertices[(i + 1) % n]);
-        // The edge u->v at distance d from the origin: r(phi) = d / cos(phi - phi0).
-        let e = v - u;
-        let d = crate::geometry::cross(u, e) / e.length();
-        if d.abs() < 1e-300 {
-            continue;
-        }
-        let normal = crate::geometry::perp(e).normalize() * -d.signum();
-        let phi0 = normal.y.atan2(normal.x);
-        let wrap = |a: f64| {
-            (a - phi0 + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
-                - std::f64::consts::PI
-        };
-        let (a, b) = (wrap(u.y.atan2(u.x)), wrap(v.y.atan2(v.x)));
-        // int_a^b int_0^{r(phi)} r^4 dr dphi = int_a^b (d/cos)^5 / 5 dphi.
-        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-        let f = |phi: f64| (d.abs() / phi.cos()).powi(5) / 5.0;
-        let sum: f64 = N
-            .iter()
-            .zip(W)
-            .map(|(&x, w)| w * (f(mid + half * x) + f(mid - half * x)))
-            .sum();
-        total += half * sum * d.signum();
-    }
-    total.abs()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn r3_moment_of_a_fine_polygon_approaches_the_disc() {
-        // Disc: int r^3 dA = 2 pi R^5 / 5; a regular 4096-gon inscribed in R.
-        let r = 10.0;
-        let poly: Vec<Vec2> = (0..4096)
-            .map(|k| Vec2::from_angle(k as f64 * std::f64::consts::TAU / 4096.0) * r)
-            .collect();
-        let disc = 2.0 * std::f64::consts::PI * r.powi(5) / 5.0;
-        assert!((r3_moment(&poly) - disc).abs() < 1e-5 * disc);
-    }
-
-    #[test]
-    fn r3_moment_of_a_square_matches_a_fine_grid() {
-        let a = 3.0;
-        let sq = [
-            Vec2::new(-a, -a),
-            Vec2::new(a, -a),
-            Vec2::new(a, a),
-            Vec2::new(-a, a),
-        ];
-        // Midpoint rule on a 2000 x 2000 grid as an independent reference.
-        let m = 2000;
-        let h = 2.0 * a / m as f64;
-        let mut grid = 0.0;
-        for i in 0..m {
-            for j in 0..m {
-                let (x, y) = (-a + (i as f64 + 0.5) * h, -a + (j as f64 + 0.5) * h);
-                grid += (x * x + y * y).powf(1.5) * h * h;
-            }
-        }
-        let q = r3_moment(&sq);
-        assert!((q - grid).abs() < 1e-5 * grid, "{q} vs {grid}");
     }
 }

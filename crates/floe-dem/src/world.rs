@@ -41,6 +41,20 @@ impl ExternalForces for NoForcing {
     }
 }
 
+impl ExternalForces for crate::forcing::Forcing {
+    fn force_and_torque(&self, t_s: f64, floes: &Floes, i: usize) -> (Vec2, f64) {
+        let dynamics = crate::forcing::FloeDynamics {
+            position: floes.position[i],
+            velocity: floes.velocity[i],
+            angular_velocity: floes.angular_velocity[i],
+            area_m2: floes.area_m2[i],
+            mass_kg: floes.mass_kg[i],
+            r3_moment_m5: floes.r3_moment_m5[i],
+        };
+        crate::forcing::Forcing::force_and_torque(self, t_s, &dynamics)
+    }
+}
+
 /// Energy bookkeeping since the start of the run, J.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct EnergyLedger {
