@@ -454,3 +454,83 @@ fn one_floe_drifts_freely_to_the_analytic_steady_velocity() {
         );
     }
 }
+
+#[test]
+fn mean_stress_of_a_pressed_pair_is_force_times_branch_over_area() {
+    // Two squares pressed together along x by a known overlap: sigma_xx =
+    // -F d / A (compressive, negative), all other components zero.
+    let polys = vec![
+        rect(Vec2::new(0.0, 0.0), 100.0, 100.0),
+        rect(Vec2::new(99.0, 0.0), 100.0, 100.0),
+    ];
+    let floes = Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap();
+    let model = ContactModel {
+        law: Law::Amontons(Amontons { mu: 0.3 }),
+        ..ContactModel::default()
+    };
+    let w = World::new(floes, model, NoForcing, Periodicity::default(), 0.1).unwrap();
+    let o = w.observables(1e4);
+    let kappa = model.youngs_modulus_pa * 1.0 * 1.0 / (1.0 * 100.0 + 1.0 * 100.0);
+    let force = kappa * 100.0; // overlap 1 m x 100 m
+    assert_eq!(o.contacts, 1);
+    assert!(
+        (o.mean_stress_n_per_m[0] + force * 99.0 / 1e4).abs() < 1e-9 * force,
+        "{:?}",
+        o.mean_stress_n_per_m
+    );
+    for k in 1..4 {
+        assert!(
+            o.mean_stress_n_per_m[k].abs() < 1e-9 * force,
+            "{:?}",
+            o.mean_stress_n_per_m
+        );
+    }
+}
+
+#[test]
+fn floes_touch_across_a_periodic_boundary() {
+    use floe_dem::broad_phase::Period;
+    // Two squares at opposite ends of a periodic channel, moving towards each
+    // other through the boundary: they must collide (and bounce) there.
+    let period = Period {
+        min_m: 0.0,
+        length_m: 1000.0,
+    };
+    let polys = vec![
+        rect(Vec2::new(60.0, 0.0), 100.0, 100.0),
+        rect(Vec2::new(945.0, 0.0), 100.0, 100.0),
+    ];
+    let mut floes = Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap();
+    floes.velocity[0] = Vec2::new(-0.5, 0.0);
+    floes.velocity[1] = Vec2::new(0.5, 0.0);
+    let model = frictionless_elastic();
+    let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
+    let mut w = World::new(
+        floes,
+        model,
+        NoForcing,
+        Periodicity {
+            x: Some(period),
+            y: None,
+        },
+        dt,
+    )
+    .unwrap();
+    let mut touched = false;
+    for _ in 0..100_000 {
+        w.step();
+        touched |= !w.contacts.is_empty();
+        for p in &w.floes.position {
+            assert!((0.0..1000.0).contains(&p.x), "positions stay wrapped: {p}");
+        }
+        if touched && w.contacts.is_empty() {
+            break;
+        }
+    }
+    assert!(touched, "the floes met across the boundary");
+    assert!(
+        w.floes.velocity[0].x > 0.4 && w.floes.velocity[1].x < -0.4,
+        "they bounced: {:?}",
+        w.floes.velocity
+    );
+}

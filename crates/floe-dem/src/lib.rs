@@ -19,4 +19,5 @@ pub mod contact_kernel;
 pub mod contacts;
 pub mod floes;
 pub mod geometry;
+pub mod observables;
 pub mod world;
