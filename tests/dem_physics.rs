@@ -534,3 +534,53 @@ fn floes_touch_across_a_periodic_boundary() {
         w.floes.velocity
     );
 }
+
+#[test]
+fn a_diamond_tessellation_starts_without_overlap_and_stays_at_rest() {
+    use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
+    // Rotated, jittered lattices at basin coordinates: edge-to-edge floes
+    // must produce no contact force, so nothing moves.
+    for (origin, orientation, jitter) in [
+        (Vec2::ZERO, 0.0, 0.0),
+        (Vec2::new(1e6, -5e5), 17.0, 0.05),
+        (Vec2::new(-3e5, 2e6), 45.0, 0.1),
+    ] {
+        let lattice = DiamondLattice {
+            domain: Rect {
+                min: origin,
+                max: origin + Vec2::new(20_000.0, 12_000.0),
+            },
+            side_m: 1000.0,
+            acute_angle_deg: 60.0,
+            orientation_deg: orientation,
+            thickness: ThicknessDistribution::UniformRange {
+                min_m: 0.5,
+                max_m: 2.0,
+            },
+            jitter_fraction: jitter,
+            seed: 11,
+        };
+        let t = lattice.build().unwrap();
+        let floes = Floes::from_polygons(&t.polygons, &t.thickness_m, RHO_ICE).unwrap();
+        let n = floes.len();
+        let model = ContactModel::default();
+        let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
+        let mut w = World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap();
+        assert!(
+            w.contacts.is_empty(),
+            "{} contacts in a fresh tessellation at {origin}",
+            w.contacts.len()
+        );
+        let start = w.floes.position.clone();
+        for _ in 0..200 {
+            w.step();
+        }
+        assert!(w.contacts.is_empty());
+        assert!(
+            w.floes.velocity.iter().all(|v| *v == Vec2::ZERO)
+                && w.floes.angular_velocity.iter().all(|&o| o == 0.0)
+        );
+        assert_eq!(w.floes.position, start);
+        assert!(n > 200, "{n} floes");
+    }
+}
