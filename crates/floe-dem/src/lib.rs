@@ -8,6 +8,7 @@
 #![deny(missing_docs)]
 
 pub mod error;
+pub mod tessellation;
 
 pub use error::DemError;
 
