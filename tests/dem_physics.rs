@@ -566,6 +566,18 @@ fn a_diamond_tessellation_starts_without_overlap_and_stays_at_rest() {
         let model = ContactModel::default();
         let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
         let mut w = World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap();
+        for c in &w.contacts {
+            eprintln!(
+                "contact {} {}: area {:e} m2, length {:e} m, floe areas {:e} {:e}, force {:e} N",
+                c.a,
+                c.b,
+                c.overlap_m2,
+                c.length_m,
+                w.floes.area_m2[c.a as usize],
+                w.floes.area_m2[c.b as usize],
+                c.normal_force_n
+            );
+        }
         assert!(
             w.contacts.is_empty(),
             "{} contacts in a fresh tessellation at {origin}",

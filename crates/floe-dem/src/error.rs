@@ -41,4 +41,19 @@ pub enum DemError {
         /// Iterations spent.
         iterations: usize,
     },
+    /// A tessellation could not be built or is not a valid set of floes.
+    #[error("invalid tessellation: {reason}")]
+    InvalidTessellation {
+        /// What is wrong.
+        reason: String,
+    },
+    /// A generator would create more floes than the engine's cap
+    /// ([`crate::tessellation::MAX_FLOES`]); refused before allocating.
+    #[error("tessellation would create about {requested} floes, above the cap of {limit}")]
+    TooManyFloes {
+        /// Number of floes (or candidate cells) the request implies.
+        requested: u64,
+        /// The cap.
+        limit: u64,
+    },
 }

@@ -9,6 +9,7 @@
 
 pub mod error;
 pub mod forcing;
+pub mod tessellation;
 
 pub use error::DemError;
 
