@@ -17,6 +17,11 @@ use floe_dem::Vec2;
 /// shear velocity profile (0.1 m/s across the channel) and 20 warm-up steps
 /// so that contacts have formed and slide.
 pub fn sheared_channel(n: usize) -> World<NoForcing> {
+    sheared_channel_with(n, ContactModel::default())
+}
+
+/// [`sheared_channel`] with a given contact model.
+pub fn sheared_channel_with(n: usize, model: ContactModel) -> World<NoForcing> {
     let side = 1000.0;
     let cell_area = side * side * 60f64.to_radians().sin();
     let width = (n as f64 * cell_area / 4.0).sqrt();
@@ -39,7 +44,6 @@ pub fn sheared_channel(n: usize) -> World<NoForcing> {
         let y = floes.position[i].y / width - 0.5;
         floes.velocity[i] = Vec2::new(0.1 * y, -0.001 * y);
     }
-    let model = ContactModel::default();
     let dt = 0.5 * stable_time_step(&floes, &model).0;
     let periodic = Periodicity {
         x: Some(Period {

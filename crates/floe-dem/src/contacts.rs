@@ -2,10 +2,10 @@
 //! friction law's state (tangential spring and `theta`) for as long as the
 //! two floes touch.
 //!
-//! Records are kept sorted by the pair's global ids `(id_a, id_b)`,
-//! `id_a < id_b`, so the order (and hence every sum over contacts) does not
-//! depend on thread count, and a subdomain can match its records with a
-//! neighbour's by id.
+//! Records are kept sorted by the pair's floe handles `(a, b)`, `a < b`, so
+//! the order (and hence every sum over contacts) does not depend on thread
+//! count. Each record names its floes' global ids through the floe arrays,
+//! which is what a subdomain would match a neighbour's records by.
 //!
 //! A new contact (a pair that did not touch at the end of the previous step)
 //! starts with no tangential force and the state of steady sliding at the

@@ -84,7 +84,7 @@ pub const STABILITY_SAFETY: f64 = 0.3;
 pub struct World<F: ExternalForces> {
     /// The floes.
     pub floes: Floes,
-    /// Contacts at the end of the last step, sorted by `(id_a, id_b)`.
+    /// Contacts at the end of the last step, sorted by floe handles `(a, b)`.
     pub contacts: Vec<ContactRecord>,
     /// Contact parameters and friction law.
     pub model: ContactModel,
@@ -107,6 +107,8 @@ pub struct World<F: ExternalForces> {
     external_torque: Vec<f64>,
     adjacency_start: Vec<u32>,
     adjacency: Vec<u32>,
+    trig: Vec<(f64, f64)>,
+    previous_of_pair: Vec<u32>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -155,6 +157,8 @@ impl<F: ExternalForces> World<F> {
             external_torque: vec![0.0; n],
             adjacency_start: Vec::new(),
             adjacency: Vec::new(),
+            trig: Vec::new(),
+            previous_of_pair: Vec::new(),
         };
         world.update_contacts(0.0);
         world.gather_forces();
@@ -215,9 +219,26 @@ impl<F: ExternalForces> World<F> {
         let f = &self.floes;
         self.broad_phase
             .update(&f.position, &f.radius_m, self.periodicity);
+        // Per-floe rotation, once per step rather than once per pair.
+        self.trig.clear();
+        self.trig
+            .par_extend(f.angle.par_iter().map(|a| a.sin_cos()));
+        // The previous contact of each candidate pair, by a merge: pairs and
+        // contacts are both sorted by (a, b) (contacts are made in pair order).
         let previous = &self.contacts;
+        self.previous_of_pair.clear();
+        let mut k = 0;
+        for pair in &self.broad_phase.pairs {
+            while k < previous.len() && (previous[k].a, previous[k].b) < (pair.a, pair.b) {
+                k += 1;
+            }
+            let hit = k < previous.len() && (previous[k].a, previous[k].b) == (pair.a, pair.b);
+            self.previous_of_pair
+                .push(if hit { k as u32 } else { u32::MAX });
+        }
         let model = &self.model;
         let periodicity = self.periodicity;
+        let trig = &self.trig;
         let body = |i: usize, offset: Vec2| Body {
             position: f.position[i] + offset,
             velocity: f.velocity[i],
@@ -227,31 +248,29 @@ impl<F: ExternalForces> World<F> {
             area_m2: f.area_m2[i],
             free: f.is_free(i),
         };
-        let placed = |i: usize, offset: Vec2| {
-            let (s, c) = f.angle[i].sin_cos();
-            Placed {
-                vertices: f.local_vertices(i),
-                position: f.position[i] + offset,
-                cos: c,
-                sin: s,
-            }
+        let placed = |i: usize, offset: Vec2| Placed {
+            vertices: f.local_vertices(i),
+            position: f.position[i] + offset,
+            cos: trig[i].1,
+            sin: trig[i].0,
         };
         let contacts: Vec<ContactRecord> = self
             .broad_phase
             .pairs
             .par_iter()
-            .map_init(ClipScratch::default, |scratch, pair| {
+            .zip(&self.previous_of_pair)
+            .map_init(ClipScratch::default, |scratch, (pair, &prev)| {
                 let (a, b) = (pair.a as usize, pair.b as usize);
                 if !f.is_free(a) && !f.is_free(b) {
                     return None;
                 }
                 let offset = periodicity.nearest_image(f.position[a], f.position[b]);
+                let reach = f.radius_m[a] + f.radius_m[b];
+                if (f.position[b] + offset - f.position[a]).length_squared() > reach * reach {
+                    return None; // bounding circles apart: no clipping needed
+                }
                 let ov = overlap(placed(a, Vec2::ZERO), placed(b, offset), scratch)?;
-                let key = (f.id[a], f.id[b]);
-                let old = previous
-                    .binary_search_by(|c| (f.id[c.a as usize], f.id[c.b as usize]).cmp(&key))
-                    .ok()
-                    .map(|k| &previous[k]);
+                let old = (prev != u32::MAX).then(|| &previous[prev as usize]);
                 let carried = old.map_or_else(
                     || Carried::new_contact(model, &ov, &body(a, Vec2::ZERO), &body(b, offset)),
                     |c| Carried {
@@ -280,14 +299,10 @@ impl<F: ExternalForces> World<F> {
         // Contacts that did not survive the step release what they held.
         let (mut k, mut released) = (0, 0.0);
         for old in previous {
-            let key = (f.id[old.a as usize], f.id[old.b as usize]);
-            while k < contacts.len()
-                && (f.id[contacts[k].a as usize], f.id[contacts[k].b as usize]) < key
-            {
+            while k < contacts.len() && (contacts[k].a, contacts[k].b) < (old.a, old.b) {
                 k += 1;
             }
-            let survived = k < contacts.len()
-                && (f.id[contacts[k].a as usize], f.id[contacts[k].b as usize]) == key;
+            let survived = k < contacts.len() && (contacts[k].a, contacts[k].b) == (old.a, old.b);
             if !survived {
                 released += old.elastic_energy_j();
             }

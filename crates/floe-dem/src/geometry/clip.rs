@@ -53,13 +53,49 @@ pub struct Overlap {
     pub length_m: f64,
 }
 
-/// Reusable buffers, so that the narrow phase does not allocate once warm.
+/// Most vertices a floe may have (checked when floes are created): the
+/// clipper works in fixed-size buffers, so the narrow phase never allocates.
+pub const MAX_VERTICES: usize = 32;
+
+/// A polygon in a fixed buffer.
+#[derive(Debug, Clone, Copy)]
+struct Poly<const N: usize> {
+    v: [Vec2; N],
+    len: usize,
+}
+
+impl<const N: usize> Default for Poly<N> {
+    fn default() -> Self {
+        Self {
+            v: [Vec2::ZERO; N],
+            len: 0,
+        }
+    }
+}
+
+impl<const N: usize> Poly<N> {
+    #[inline(always)]
+    fn as_slice(&self) -> &[Vec2] {
+        &self.v[..self.len]
+    }
+    #[inline(always)]
+    fn push(&mut self, p: Vec2) {
+        // Sutherland-Hodgman adds at most one vertex per clip edge, and the
+        // output of two convex polygons has at most na + nb vertices.
+        if self.len < N {
+            self.v[self.len] = p;
+            self.len += 1;
+        }
+    }
+}
+
+/// Working buffers of the clipper (on the stack; kept as a type so callers
+/// can hold one per thread).
 #[derive(Debug, Default, Clone)]
 pub struct ClipScratch {
-    a: Vec<Vec2>,
-    b: Vec<Vec2>,
-    work: Vec<Vec2>,
-    out: Vec<Vec2>,
+    a: Poly<MAX_VERTICES>,
+    b: Poly<MAX_VERTICES>,
+    bufs: [Poly<{ 2 * MAX_VERTICES }>; 2],
 }
 
 /// Overlaps below this fraction of the smaller floe's squared radius are
@@ -75,17 +111,16 @@ const PENETRATION_FLOOR_ULPS: f64 = 64.0;
 /// The overlap of `a` and `b`, or `None` if they do not overlap.
 pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overlap> {
     let offset = b.position - a.position;
-    scratch.a.clear();
-    scratch
-        .a
-        .extend(a.vertices.iter().map(|&v| rotate(v, a.cos, a.sin)));
-    scratch.b.clear();
-    scratch
-        .b
-        .extend(b.vertices.iter().map(|&v| offset + rotate(v, b.cos, b.sin)));
-
-    clip_convex(&scratch.a, &scratch.b, &mut scratch.work, &mut scratch.out);
-    let poly = &scratch.out;
+    scratch.a.len = 0;
+    for &v in a.vertices {
+        scratch.a.push(rotate(v, a.cos, a.sin));
+    }
+    scratch.b.len = 0;
+    for &v in b.vertices {
+        scratch.b.push(offset + rotate(v, b.cos, b.sin));
+    }
+    let result = clip_convex(&scratch.a, &scratch.b, &mut scratch.bufs);
+    let poly = scratch.bufs[result].as_slice();
     if poly.len() < 3 {
         return None;
     }
@@ -103,7 +138,11 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
     if area <= AREA_FLOOR * ra.min(rb) {
         return None;
     }
-    let (normal, length) = match boundary_chord(&scratch.a, &scratch.b, ra.min(rb).sqrt()) {
+    let (normal, length) = match boundary_chord(
+        scratch.a.as_slice(),
+        scratch.b.as_slice(),
+        ra.min(rb).sqrt(),
+    ) {
         Some(chord) => (
             perp(snap_to_overlap_edge(chord, poly)).normalize(),
             chord.length(),
@@ -132,33 +171,50 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
 }
 
 /// Sutherland-Hodgman: `subject` clipped by every edge of the convex,
-/// counter-clockwise `clip`. Points on a clip line count as inside.
-fn clip_convex(subject: &[Vec2], clip: &[Vec2], work: &mut Vec<Vec2>, out: &mut Vec<Vec2>) {
-    out.clear();
-    out.extend_from_slice(subject);
+/// counter-clockwise `clip`. Points on a clip line count as inside. The two
+/// buffers alternate as source and destination (no copying between them);
+/// returns which one holds the result.
+fn clip_convex<const N: usize, const M: usize>(
+    subject: &Poly<N>,
+    clip: &Poly<N>,
+    bufs: &mut [Poly<M>; 2],
+) -> usize {
+    bufs[0].len = 0;
+    for &p in subject.as_slice() {
+        bufs[0].push(p);
+    }
+    let clip = clip.as_slice();
     let n = clip.len();
+    let mut cur = 0;
     for i in 0..n {
-        if out.is_empty() {
-            return;
+        if bufs[cur].len == 0 {
+            return cur;
         }
         let (s, e) = (clip[i], clip[(i + 1) % n]);
         let dir = e - s;
-        std::mem::swap(out, work);
-        out.clear();
-        let m = work.len();
+        let (first, second) = bufs.split_at_mut(1);
+        let (src, dst) = if cur == 0 {
+            (&first[0], &mut second[0])
+        } else {
+            (&second[0], &mut first[0])
+        };
+        dst.len = 0;
+        let m = src.len;
         for j in 0..m {
-            let (p, q) = (work[j], work[(j + 1) % m]);
+            let (p, q) = (src.v[j], src.v[if j + 1 == m { 0 } else { j + 1 }]);
             let (dp, dq) = (cross(dir, p - s), cross(dir, q - s));
             if dp >= 0.0 {
-                out.push(p);
+                dst.push(p);
                 if dq < 0.0 {
-                    out.push(p + (q - p) * (dp / (dp - dq)));
+                    dst.push(p + (q - p) * (dp / (dp - dq)));
                 }
             } else if dq >= 0.0 {
-                out.push(p + (q - p) * (dp / (dp - dq)));
+                dst.push(p + (q - p) * (dp / (dp - dq)));
             }
         }
+        cur = 1 - cur;
     }
+    cur
 }
 
 /// The chord between the two points where the boundaries of `a` and `b`
@@ -172,15 +228,21 @@ fn boundary_chord(a: &[Vec2], b: &[Vec2], size: f64) -> Option<Vec2> {
         for j in 0..b.len() {
             let (q, s) = (b[j], b[(j + 1) % b.len()] - b[j]);
             let denom = cross(r, s);
-            if denom.abs() <= 1e-14 * r.length() * s.length() {
-                continue; // parallel or collinear edges do not cross
-            }
-            let t = cross(q - p, s) / denom;
-            let u = cross(q - p, r) / denom;
-            if !((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)) {
+            // Crossing parameters t = tn/denom, u = un/denom in [0, 1],
+            // tested without dividing: most edge pairs do not cross.
+            let (tn, un) = (cross(q - p, s), cross(q - p, r));
+            let (tn, un, d) = if denom < 0.0 {
+                (-tn, -un, -denom)
+            } else {
+                (tn, un, denom)
+            };
+            if tn < 0.0 || tn > d || un < 0.0 || un > d {
                 continue;
             }
-            let x = p + r * t;
+            if d * d <= 1e-28 * r.length_squared() * s.length_squared() {
+                continue; // parallel or collinear edges do not cross
+            }
+            let x = p + r * (tn / d);
             if points[..count].iter().any(|&y| (y - x).length() <= tol) {
                 continue; // the same crossing seen from two edges meeting at a vertex
             }

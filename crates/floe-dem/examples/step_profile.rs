@@ -1,0 +1,40 @@
+//! Where a DEM step's time goes (docs/performance.md):
+//! `cargo run --release -p floe-dem --example step_profile -- 10000`
+#[path = "../../../benches/dem_step.rs"]
+#[allow(dead_code)]
+mod bench;
+
+fn main() {
+    let n: usize = std::env::args()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10_000);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let law = std::env::args().nth(2).unwrap_or_default();
+        let model = match law.as_str() {
+            "amontons" => floe_dem::contacts::ContactModel::default().with_law(floe_friction::Law::Amontons(floe_friction::Amontons { mu: 0.5 })),
+            _ => floe_dem::contacts::ContactModel::default(),
+        };
+        let mut w = bench::sheared_channel_with(n, model);
+        let r0 = w.broad_phase().rebuilds;
+        let t = std::time::Instant::now();
+        let steps = 20;
+        for _ in 0..steps {
+            w.step();
+        }
+        let per_step = t.elapsed().as_secs_f64() / steps as f64;
+        println!(
+            "{} floes, {} contacts, {} candidate pairs, {} rebuilds in {steps} steps, {:.2} ms/step, {:.0} ns per contact",
+            w.floes.len(),
+            w.contacts.len(),
+            w.broad_phase().pairs.len(),
+            w.broad_phase().rebuilds - r0,
+            per_step * 1e3,
+            per_step * 1e9 / w.contacts.len() as f64
+        );
+    });
+}
