@@ -109,6 +109,7 @@ pub struct World<F: ExternalForces> {
     adjacency: Vec<u32>,
     trig: Vec<(f64, f64)>,
     previous_of_pair: Vec<u32>,
+    pair_results: Vec<Option<ContactRecord>>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -159,6 +160,7 @@ impl<F: ExternalForces> World<F> {
             adjacency: Vec::new(),
             trig: Vec::new(),
             previous_of_pair: Vec::new(),
+            pair_results: Vec::new(),
         };
         world.update_contacts(0.0);
         world.gather_forces();
@@ -254,8 +256,11 @@ impl<F: ExternalForces> World<F> {
             cos: trig[i].1,
             sin: trig[i].0,
         };
-        let contacts: Vec<ContactRecord> = self
-            .broad_phase
+        // An indexed collect into a reused buffer (one slot per pair), then a
+        // sequential compaction: collecting a flattened parallel iterator
+        // directly cost a quarter of the step (linked chunks, copies).
+        let mut slots = std::mem::take(&mut self.pair_results);
+        self.broad_phase
             .pairs
             .par_iter()
             .zip(&self.previous_of_pair)
@@ -294,8 +299,9 @@ impl<F: ExternalForces> World<F> {
                 record.age_steps = old.map_or(0, |c| c.age_steps + 1);
                 Some(record)
             })
-            .flatten()
-            .collect();
+            .collect_into_vec(&mut slots);
+        let mut contacts = Vec::with_capacity(previous.len() + previous.len() / 8 + 16);
+        contacts.extend(slots.iter().flatten().copied());
         // Contacts that did not survive the step release what they held.
         let (mut k, mut released) = (0, 0.0);
         for old in previous {
@@ -309,6 +315,7 @@ impl<F: ExternalForces> World<F> {
         }
         self.energy.released_at_break_j += released;
         self.contacts = contacts;
+        self.pair_results = slots;
     }
 
     /// External forces and the contact forces, gathered per floe in contact order.
