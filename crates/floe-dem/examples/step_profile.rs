@@ -36,5 +36,21 @@ fn main() {
             per_step * 1e3,
             per_step * 1e9 / w.contacts.len() as f64
         );
+        // Cost of one broad-phase rebuild, against the step it would add to.
+        let mut bp = floe_dem::broad_phase::BroadPhase::new(w.broad_phase().skin_m);
+        let t = std::time::Instant::now();
+        let reps = 5;
+        for _ in 0..reps {
+            bp.rebuild(&w.floes.position, &w.floes.radius_m, w.periodicity);
+        }
+        let rebuild = t.elapsed().as_secs_f64() / reps as f64;
+        println!(
+            "broad-phase rebuild {:.2} ms ({:.0} % of a step); skin {:.0} m; a floe at 0.1 m/s and dt {:.2} s crosses half the skin in {:.0} steps",
+            rebuild * 1e3,
+            100.0 * rebuild / per_step,
+            bp.skin_m,
+            w.dt_s,
+            0.5 * bp.skin_m / (0.1 * w.dt_s)
+        );
     });
 }
