@@ -596,3 +596,75 @@ fn a_diamond_tessellation_starts_without_overlap_and_stays_at_rest() {
         assert!(n > 200, "{n} floes");
     }
 }
+
+#[test]
+fn dropping_clipped_slivers_restores_the_diamond_time_step_and_accounts_the_area() {
+    use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
+    let lattice = DiamondLattice {
+        // 0.5 m beyond whole lattice rows and columns: clipping leaves slivers.
+        domain: Rect {
+            min: Vec2::new(0.0, 0.0),
+            max: Vec2::new(20_000.5, 10.0 * 866.025_403_784_438_6 + 0.5),
+        },
+        side_m: 1000.0,
+        acute_angle_deg: 60.0,
+        orientation_deg: 0.0,
+        thickness: ThicknessDistribution::Uniform { thickness_m: 1.0 },
+        jitter_fraction: 0.0,
+        seed: 5,
+    };
+    let full = lattice.build().unwrap();
+    let cell = lattice.cell_area_m2();
+    let mut trimmed = full.clone();
+    let report = trimmed.drop_floes_smaller_than(0.25 * cell);
+    assert!(report.dropped > 0);
+    assert_eq!(trimmed.len() + report.dropped, full.len());
+    let lost = full.total_area_m2() - trimmed.total_area_m2();
+    assert!(
+        (lost - report.dropped_area_m2).abs() < 1e-6 * full.total_area_m2(),
+        "{lost} vs {}",
+        report.dropped_area_m2
+    );
+    let model = ContactModel::default();
+    let dt = |t: &floe_dem::tessellation::Tessellation| {
+        floe_dem::world::stable_time_step(
+            &Floes::from_polygons(&t.polygons, &t.thickness_m, RHO_ICE).unwrap(),
+            &model,
+        )
+        .0
+    };
+    // A lone full diamond sets the reference limit.
+    let (dt_full, dt_trimmed) = (dt(&full), dt(&trimmed));
+    let one = lattice.build().unwrap();
+    let biggest = (0..one.len())
+        .max_by(|&a, &b| one.area_m2(a).total_cmp(&one.area_m2(b)))
+        .unwrap();
+    let lone = floe_dem::tessellation::Tessellation {
+        polygons: vec![one.polygons[biggest].clone()],
+        thickness_m: vec![1.0],
+    };
+    let dt_diamond = dt(&lone);
+    eprintln!("stable dt: with slivers {dt_full:.3} s, trimmed {dt_trimmed:.3} s, one diamond {dt_diamond:.3} s");
+    assert!(
+        dt_trimmed > 10.0 * dt_full,
+        "dropping slivers lengthens the step"
+    );
+    // dt ~ sqrt(m / (kappa r)) with m ~ A and kappa ~ 1/sqrt(A): dt ~ A^(3/4) / sqrt(r).
+    // A clipped floe of at least a quarter cell, whose radius is at most a
+    // cell diameter (twice a diamond's), keeps dt >= 0.25^(3/4) / sqrt(2) = 0.25 of a diamond's.
+    assert!(
+        dt_trimmed >= 0.25 * dt_diamond,
+        "{dt_trimmed} vs {dt_diamond}"
+    );
+    // The remaining floes still start without contact.
+    let floes = Floes::from_polygons(&trimmed.polygons, &trimmed.thickness_m, RHO_ICE).unwrap();
+    let w = World::new(
+        floes,
+        model,
+        NoForcing,
+        Periodicity::default(),
+        0.5 * dt_trimmed,
+    )
+    .unwrap();
+    assert!(w.contacts.is_empty());
+}

@@ -52,6 +52,15 @@ pub struct Tessellation {
     pub thickness_m: Vec<f64>,
 }
 
+/// What [`Tessellation::drop_floes_smaller_than`] removed.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SmallFloeReport {
+    /// Floes removed.
+    pub dropped: usize,
+    /// Their total area, m^2.
+    pub dropped_area_m2: f64,
+}
+
 impl Tessellation {
     /// Number of floes.
     pub fn len(&self) -> usize {
@@ -87,6 +96,33 @@ impl Tessellation {
             .iter()
             .map(|p| polygon_area(p))
             .min_by(|a, b| a.total_cmp(b))
+    }
+
+    /// Removes the floes smaller than `min_area_m2` and reports what went.
+    ///
+    /// Clipping a lattice to its rectangle leaves pieces down to 1e-5 of a
+    /// cell at the edges, and the smallest floe sets the stable time step of
+    /// a DEM run (a 1 km diamond channel: 0.16 s with them, about 4 s
+    /// without). Dropping them leaves open water where they were, a loss of
+    /// area the report states; the remaining floes still tile without
+    /// overlap.
+    pub fn drop_floes_smaller_than(&mut self, min_area_m2: f64) -> SmallFloeReport {
+        let mut report = SmallFloeReport::default();
+        let mut keep = 0;
+        for i in 0..self.polygons.len() {
+            let area = polygon_area(&self.polygons[i]);
+            if area < min_area_m2 {
+                report.dropped += 1;
+                report.dropped_area_m2 += area;
+            } else {
+                self.polygons.swap(keep, i);
+                self.thickness_m.swap(keep, i);
+                keep += 1;
+            }
+        }
+        self.polygons.truncate(keep);
+        self.thickness_m.truncate(keep);
+        report
     }
 
     /// Area centroid of floe `index` (world coordinates, m). Panics if
