@@ -9,9 +9,12 @@
 //!
 //! A new contact (a pair that did not touch at the end of the previous step)
 //! starts with no tangential force and the state of steady sliding at the
-//! reference slip rate of [`ContactModel::new_contact_slip_rate_m_per_s`]. A
-//! contact that breaks is forgotten: if the pair touches again later, it
-//! starts afresh by the same rule.
+//! reference slip rate of [`ContactModel::new_contact_slip_rate_m_per_s`].
+//! A contact that breaks is remembered for [`ContactModel::memory_s`]
+//! seconds: if the pair touches again within that time, the contact resumes
+//! the `theta` it had when it broke (its spring starts unloaded: the floes
+//! separated). After that, or with `memory_s = 0` (the default), it starts
+//! afresh by the first rule.
 
 use floe_friction::{ContactState, FrictionLaw, Law, RateDependent, RateState, RateStateParams};
 
@@ -35,6 +38,8 @@ pub struct ContactModel {
     pub new_contact_slip_rate_m_per_s: f64,
     /// A contact slips (for the sliding fraction) when its slip rate exceeds this, m/s. Default 1e-6 m/s.
     pub sliding_threshold_m_per_s: f64,
+    /// How long a broken contact's state is remembered, s. Default 0: forgotten at once.
+    pub memory_s: f64,
 }
 
 impl Default for ContactModel {
@@ -50,6 +55,7 @@ impl Default for ContactModel {
             )),
             new_contact_slip_rate_m_per_s: 1e-3,
             sliding_threshold_m_per_s: 1e-6,
+            memory_s: 0.0,
         }
     }
 }
@@ -133,4 +139,17 @@ impl ContactRecord {
     pub fn elastic_energy_j(&self) -> f64 {
         self.normal_energy_j + self.tangential_energy_j
     }
+}
+
+/// The state of a contact that broke, kept for [`ContactModel::memory_s`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BrokenContact {
+    /// First floe.
+    pub a: u32,
+    /// Second floe.
+    pub b: u32,
+    /// Friction state when the contact broke.
+    pub friction: ContactState,
+    /// When it broke, s.
+    pub broke_at_s: f64,
 }

@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 use crate::broad_phase::{BroadPhase, Periodicity};
 use crate::contact_kernel::{contact_forces, force_and_torques, overlap_stiffness, Body, Carried};
-use crate::contacts::{ContactModel, ContactRecord};
+use crate::contacts::{BrokenContact, ContactModel, ContactRecord};
 use crate::error::DemError;
 use crate::floes::{Floes, Motion};
 use crate::geometry::{overlap, ClipScratch, Placed};
@@ -108,6 +108,8 @@ pub struct World<F: ExternalForces> {
     pub steps: u64,
     /// Energy bookkeeping.
     pub energy: EnergyLedger,
+    /// Contacts that broke within the last [`ContactModel::memory_s`], sorted by `(a, b)`.
+    pub broken: Vec<BrokenContact>,
     broad_phase: BroadPhase,
     force: Vec<Vec2>,
     torque: Vec<f64>,
@@ -159,6 +161,7 @@ impl<F: ExternalForces> World<F> {
             time_s: 0.0,
             steps: 0,
             energy: EnergyLedger::default(),
+            broken: Vec::new(),
             broad_phase: BroadPhase::new(SKIN_FRACTION * mean_radius),
             force: vec![Vec2::ZERO; n],
             torque: vec![0.0; n],
@@ -249,6 +252,7 @@ impl<F: ExternalForces> World<F> {
         let model = &self.model;
         let periodicity = self.periodicity;
         let trig = &self.trig;
+        let broken = &self.broken;
         let body = |i: usize, offset: Vec2| Body {
             position: f.position[i] + offset,
             velocity: f.velocity[i],
@@ -285,7 +289,22 @@ impl<F: ExternalForces> World<F> {
                 let ov = overlap(placed(a, Vec2::ZERO), placed(b, offset), scratch)?;
                 let old = (prev != u32::MAX).then(|| &previous[prev as usize]);
                 let carried = old.map_or_else(
-                    || Carried::new_contact(model, &ov, &body(a, Vec2::ZERO), &body(b, offset)),
+                    || {
+                        let mut fresh = Carried::new_contact(
+                            model,
+                            &ov,
+                            &body(a, Vec2::ZERO),
+                            &body(b, offset),
+                        );
+                        // A pair that touched recently resumes its state.
+                        if let Ok(k) =
+                            broken.binary_search_by(|c| (c.a, c.b).cmp(&(pair.a, pair.b)))
+                        {
+                            fresh.friction.theta = broken[k].friction.theta;
+                            fresh.friction.solver_guess = broken[k].friction.solver_guess;
+                        }
+                        fresh
+                    },
                     |c| Carried {
                         friction: c.friction,
                         elastic_force_n: c.elastic_force_n,
@@ -310,8 +329,10 @@ impl<F: ExternalForces> World<F> {
             .collect_into_vec(&mut slots);
         let mut contacts = Vec::with_capacity(previous.len() + previous.len() / 8 + 16);
         contacts.extend(slots.iter().flatten().copied());
-        // Contacts that did not survive the step release what they held.
+        // Contacts that did not survive the step release what they held, and
+        // are remembered if the model asks for memory.
         let (mut k, mut released) = (0, 0.0);
+        let mut newly_broken = Vec::new();
         for old in previous {
             while k < contacts.len() && (contacts[k].a, contacts[k].b) < (old.a, old.b) {
                 k += 1;
@@ -319,7 +340,40 @@ impl<F: ExternalForces> World<F> {
             let survived = k < contacts.len() && (contacts[k].a, contacts[k].b) == (old.a, old.b);
             if !survived {
                 released += old.elastic_energy_j();
+                if model.memory_s > 0.0 {
+                    newly_broken.push(BrokenContact {
+                        a: old.a,
+                        b: old.b,
+                        friction: old.friction,
+                        broke_at_s: self.time_s,
+                    });
+                }
             }
+        }
+        if model.memory_s > 0.0 || !self.broken.is_empty() {
+            let (now, memory) = (self.time_s, model.memory_s);
+            let touching = |c: &BrokenContact| {
+                contacts
+                    .binary_search_by(|r| (r.a, r.b).cmp(&(c.a, c.b)))
+                    .is_ok()
+            };
+            let mut merged: Vec<BrokenContact> = self
+                .broken
+                .iter()
+                .chain(&newly_broken)
+                .filter(|c| now - c.broke_at_s <= memory && !touching(c))
+                .copied()
+                .collect();
+            // Both inputs are sorted; a stable sort keeps the newest entry last.
+            merged.sort_by_key(|c| (c.a, c.b));
+            merged.dedup_by(|later, earlier| {
+                let same = (later.a, later.b) == (earlier.a, earlier.b);
+                if same {
+                    *earlier = *later;
+                }
+                same
+            });
+            self.broken = merged;
         }
         self.energy.released_at_break_j += released;
         self.contacts = contacts;
