@@ -99,10 +99,15 @@ pub fn load(path: &Path) -> Result<SliderSetup, CliError> {
     let raw: RawFile = source.parse_toml()?;
     let f = &source;
 
-    let preset = match raw.apparatus.as_ref().and_then(|a| a.preset.as_ref()) {
-        None => Preset::Lab,
-        Some(p) => parse_preset(f, p)?,
-    };
+    let no_preset = None;
+    let preset_word = raw.apparatus.as_ref().map_or(&no_preset, |a| &a.preset);
+    let preset = keyword(
+        f,
+        preset_word,
+        "apparatus.preset",
+        &[("lab", Preset::Lab), ("tank", Preset::Tank)],
+        Preset::Lab,
+    )?;
     let get =
         |v: &Num, key: &str, default: f64| v.as_ref().map_or(Ok(default), |v| f.positive(v, key));
     let apparatus = match &raw.apparatus {
@@ -189,16 +194,36 @@ pub fn load(path: &Path) -> Result<SliderSetup, CliError> {
     })
 }
 
-fn parse_preset(f: &SourceFile, p: &Spanned<String>) -> Result<Preset, CliError> {
-    match p.get_ref().as_str() {
-        "lab" => Ok(Preset::Lab),
-        "tank" => Ok(Preset::Tank),
-        other => Err(f.error(
-            p.span(),
-            "apparatus.preset",
-            format!("unknown preset `{other}`, expected `lab` or `tank`"),
-        )),
-    }
+/// The value named by a keyword, or `default` if the key is absent.
+fn keyword<T: Copy>(
+    f: &SourceFile,
+    word: &Word,
+    key: &str,
+    choices: &[(&str, T)],
+    default: T,
+) -> Result<T, CliError> {
+    let Some(w) = word else {
+        return Ok(default);
+    };
+    choices
+        .iter()
+        .find(|(name, _)| *name == w.get_ref())
+        .map(|&(_, value)| value)
+        .ok_or_else(|| {
+            let names: Vec<String> = choices
+                .iter()
+                .map(|(name, _)| format!("`{name}`"))
+                .collect();
+            f.error(
+                w.span(),
+                key,
+                format!(
+                    "unknown value `{}`, expected one of {}",
+                    w.get_ref(),
+                    names.join(", ")
+                ),
+            )
+        })
 }
 
 /// Builds a law from a `[law]` table. Unset parameters come from Lishman et
@@ -316,36 +341,28 @@ pub fn build_law(
                     SourceFile::positive,
                 )?,
             };
-            let form = match &raw.form {
-                None => default_form,
-                Some(w) => match w.get_ref().as_str() {
-                    "published" => Form::Published,
-                    "regularized" | "regularised" => Form::Regularized,
-                    other => {
-                        return Err(f.error(
-                            w.span(),
-                            "law.form",
-                            format!(
-                                "unknown form `{other}`, expected `published` or `regularized`"
-                            ),
-                        ))
-                    }
-                },
-            };
-            let state_law = match &raw.state_law {
-                None => StateLaw::Slip,
-                Some(w) => match w.get_ref().as_str() {
-                    "slip" => StateLaw::Slip,
-                    "aging" | "ageing" => StateLaw::Aging,
-                    other => {
-                        return Err(f.error(
-                            w.span(),
-                            "law.state_law",
-                            format!("unknown state law `{other}`, expected `slip` or `aging`"),
-                        ))
-                    }
-                },
-            };
+            let form = keyword(
+                f,
+                &raw.form,
+                "law.form",
+                &[
+                    ("published", Form::Published),
+                    ("regularized", Form::Regularized),
+                    ("regularised", Form::Regularized),
+                ],
+                default_form,
+            )?;
+            let state_law = keyword(
+                f,
+                &raw.state_law,
+                "law.state_law",
+                &[
+                    ("slip", StateLaw::Slip),
+                    ("aging", StateLaw::Aging),
+                    ("ageing", StateLaw::Aging),
+                ],
+                StateLaw::Slip,
+            )?;
             Ok(Law::RateState(RateState::new(params, form, state_law)))
         }
     }
