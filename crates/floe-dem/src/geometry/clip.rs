@@ -186,12 +186,24 @@ fn clip_convex<const N: usize, const M: usize>(
     let clip = clip.as_slice();
     let n = clip.len();
     let mut cur = 0;
+    let mut side = [0.0; 2 * MAX_VERTICES];
     for i in 0..n {
         if bufs[cur].len == 0 {
             return cur;
         }
         let (s, e) = (clip[i], clip[(i + 1) % n]);
         let dir = e - s;
+        // Side of every vertex once; an edge that keeps all of them (most
+        // of the clip polygon's edges) changes nothing and is skipped.
+        let m = bufs[cur].len;
+        let mut inside = 0;
+        for (d, &p) in side.iter_mut().zip(&bufs[cur].v[..m]) {
+            *d = cross(dir, p - s);
+            inside += usize::from(*d >= 0.0);
+        }
+        if inside == m {
+            continue;
+        }
         let (first, second) = bufs.split_at_mut(1);
         let (src, dst) = if cur == 0 {
             (&first[0], &mut second[0])
@@ -199,10 +211,12 @@ fn clip_convex<const N: usize, const M: usize>(
             (&second[0], &mut first[0])
         };
         dst.len = 0;
-        let m = src.len;
+        if inside == 0 {
+            return 1 - cur;
+        }
         for j in 0..m {
-            let (p, q) = (src.v[j], src.v[if j + 1 == m { 0 } else { j + 1 }]);
-            let (dp, dq) = (cross(dir, p - s), cross(dir, q - s));
+            let k = if j + 1 == m { 0 } else { j + 1 };
+            let (p, q, dp, dq) = (src.v[j], src.v[k], side[j], side[k]);
             if dp >= 0.0 {
                 dst.push(p);
                 if dq < 0.0 {
