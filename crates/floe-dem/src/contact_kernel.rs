@@ -131,17 +131,16 @@ pub fn contact_forces(
 
     let k_t = k_n / (2.0 * (1.0 + model.poisson_ratio));
     let mut state = friction;
-    let (tangential, slip, mu) = if dt > 0.0 {
+    let (tangential, slip) = if dt > 0.0 {
         let load = ContactLoad {
             load_point_velocity_m_per_s: v_t,
             stiffness_n_per_m: k_t,
             normal_load_n: normal,
         };
         let out = model.law.step(&mut state, &load, dt);
-        (state.tangential_force_n, out.slip_rate_m_per_s, out.mu)
+        (state.tangential_force_n, out.slip_rate_m_per_s)
     } else {
-        let f = state.tangential_force_n;
-        (f, 0.0, if normal > 0.0 { f / normal } else { 0.0 })
+        (state.tangential_force_n, 0.0)
     };
     // The kicks apply the old spring force over the first half step and the
     // new one over the second: energy accounting uses their mean. Of the
@@ -162,10 +161,7 @@ pub fn contact_forces(
         normal: n,
         length_m: ov.length_m,
         normal_force_n: normal,
-        // The spring resists the slip of b relative to a.
-        tangential_force_n: -tangential,
         slip_rate_m_per_s: slip,
-        mu,
         friction_power_w: friction_power,
         damping_power_w: damping_power.max(0.0),
         elastic_force_n: elastic,
@@ -184,7 +180,7 @@ pub fn force_and_torques(
     a_position: Vec2,
     b_position: Vec2,
 ) -> (Vec2, f64, f64) {
-    let f = c.normal * c.normal_force_n + perp(c.normal) * c.tangential_force_n;
+    let f = c.normal * c.normal_force_n + perp(c.normal) * c.tangential_force_n();
     let torque_b = cross(c.point - b_position, f);
     let torque_a = cross(c.point - a_position, -f);
     (f, torque_a, torque_b)

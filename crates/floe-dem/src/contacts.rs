@@ -115,12 +115,9 @@ pub struct ContactRecord {
     pub length_m: f64,
     /// Normal force on `b` (>= 0, elastic plus damping), N.
     pub normal_force_n: f64,
-    /// Tangential force on `b` along `perp(normal)`, N.
-    pub tangential_force_n: f64,
+
     /// Slip rate of `b` relative to `a` along `perp(normal)`, m/s.
     pub slip_rate_m_per_s: f64,
-    /// Friction coefficient `F_t / F_n`.
-    pub mu: f64,
     /// Power dissipated by friction, W (`F_t` times slip rate).
     pub friction_power_w: f64,
     /// Power dissipated by the normal dashpot, W.
@@ -135,6 +132,22 @@ pub struct ContactRecord {
 }
 
 impl ContactRecord {
+    /// Tangential force on `b` along `perp(normal)`, N: the friction spring's
+    /// force, which resists the slip of `b` relative to `a`.
+    #[inline]
+    pub fn tangential_force_n(&self) -> f64 {
+        -self.friction.tangential_force_n
+    }
+
+    /// Friction coefficient `|F_t| / F_n` (0 without normal force).
+    pub fn mu(&self) -> f64 {
+        if self.normal_force_n > 0.0 {
+            self.friction.tangential_force_n.abs() / self.normal_force_n
+        } else {
+            0.0
+        }
+    }
+
     /// Elastic energy stored in the contact, J.
     pub fn elastic_energy_j(&self) -> f64 {
         self.normal_energy_j + self.tangential_energy_j

@@ -63,7 +63,7 @@ impl<F: ExternalForces> World<F> {
             if c.slip_rate_m_per_s.abs() > self.model.sliding_threshold_m_per_s {
                 sliding += 1;
             }
-            mu_weighted += c.tangential_force_n.abs();
+            mu_weighted += c.tangential_force_n().abs();
             normal_sum += c.normal_force_n;
         }
         for s in &mut o.mean_stress_n_per_m {
