@@ -1,5 +1,5 @@
 //! Where a DEM step's time goes (docs/performance.md):
-//! `cargo run --release -p floe-dem --example step_profile -- 10000`
+//! `cargo run --release -p floe-dem --example step_profile -- 10000 [amontons|rate-state] [threads]`
 #[path = "../../../benches/dem_step.rs"]
 #[allow(dead_code)]
 mod bench;
@@ -9,8 +9,12 @@ fn main() {
         .nth(1)
         .and_then(|s| s.parse().ok())
         .unwrap_or(10_000);
+    let threads: usize = std::env::args()
+        .nth(3)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
+        .num_threads(threads)
         .build()
         .unwrap();
     pool.install(|| {
@@ -19,6 +23,7 @@ fn main() {
             "amontons" => floe_dem::contacts::ContactModel::default().with_law(floe_friction::Law::Amontons(floe_friction::Amontons { mu: 0.5 })),
             _ => floe_dem::contacts::ContactModel::default(),
         };
+        eprintln!("rayon threads in use: {}", rayon::current_num_threads());
         let mut w = bench::sheared_channel_with(n, model);
         let r0 = w.broad_phase().rebuilds;
         let t = std::time::Instant::now();
