@@ -26,9 +26,9 @@ fn load(v: f64) -> ContactLoad {
     }
 }
 
-fn steady_sliding(c: &mut Criterion) {
-    let mut g = c.benchmark_group("steady_sliding");
-    let laws = [
+/// The rate-and-state variants both groups measure.
+fn rate_state_cases() -> [(&'static str, Law); 3] {
+    [
         (
             "rate_state_published_slip",
             lab(Form::Published, StateLaw::Slip),
@@ -41,12 +41,18 @@ fn steady_sliding(c: &mut Criterion) {
             "rate_state_regularized_aging",
             lab(Form::Regularized, StateLaw::Aging),
         ),
+    ]
+}
+
+fn steady_sliding(c: &mut Criterion) {
+    let mut g = c.benchmark_group("steady_sliding");
+    let laws = rate_state_cases().into_iter().chain([
         (
             "rate_dependent",
             Law::RateDependent(RateDependent::lishman_2011(-0.072)),
         ),
         ("amontons", Law::Amontons(Amontons { mu: 0.5 })),
-    ];
+    ]);
     for (name, law) in laws {
         // Lab apparatus at 1 mm/s, already in steady state: each step starts
         // from the previous step's solution.
@@ -101,20 +107,7 @@ fn transients(c: &mut Criterion) {
 fn batch_of_contacts(c: &mut Criterion) {
     let mut g = c.benchmark_group("batch_1024_contacts");
     g.throughput(criterion::Throughput::Elements(1024));
-    for (name, law) in [
-        (
-            "rate_state_published_slip",
-            lab(Form::Published, StateLaw::Slip),
-        ),
-        (
-            "rate_state_regularized_slip",
-            lab(Form::Regularized, StateLaw::Slip),
-        ),
-        (
-            "rate_state_regularized_aging",
-            lab(Form::Regularized, StateLaw::Aging),
-        ),
-    ] {
+    for (name, law) in rate_state_cases() {
         // Contacts in steady sliding at speeds spread over two decades.
         let loads: Vec<ContactLoad> = (0..1024)
             .map(|i| load(1e-4 * 10f64.powf(2.0 * i as f64 / 1024.0)))

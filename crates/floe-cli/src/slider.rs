@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use floe_friction::experiments::{hold_test, velocity_step, Preset, PAPER_DT_S};
 use floe_friction::fit::{compare_models, Experiment, ModelComparison};
 use floe_friction::protocol::Protocol;
-use floe_friction::spring_slider::{Apparatus, Sample, SpringSlider};
+use floe_friction::spring_slider::{Apparatus, OutputThinning, Sample, SpringSlider};
 use floe_friction::{Form, Law, RateDependent, RateState, StateLaw};
 use serde::Serialize;
 
@@ -166,7 +166,7 @@ pub fn simulate(setup: &SliderSetup) -> (Vec<Sample>, RunSummary) {
     let mut samples = vec![slider.sample()];
     let mut segments = Vec::new();
     let mut steps = 0u64;
-    let mut last_slot = 0.0;
+    let mut thinning = OutputThinning::new(0.0, every);
     for (index, seg) in setup.protocol.segments().iter().enumerate() {
         let start_s = slider.sample().t_s;
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -175,9 +175,7 @@ pub fn simulate(setup: &SliderSetup) -> (Vec<Sample>, RunSummary) {
             steps += 1;
             lo = lo.min(s.mu);
             hi = hi.max(s.mu);
-            let slot = (s.t_s / every + 1e-6).floor();
-            if slot > last_slot {
-                last_slot = slot;
+            if thinning.keep(s.t_s) {
                 samples.push(*s);
             }
         });

@@ -118,6 +118,8 @@ pub struct World<F: ExternalForces> {
     torque: Vec<f64>,
     external_force: Vec<Vec2>,
     external_torque: Vec<f64>,
+    previous_external_force: Vec<Vec2>,
+    previous_external_torque: Vec<f64>,
     adjacency_start: Vec<u32>,
     adjacency: Vec<u32>,
     trig: Vec<(f64, f64)>,
@@ -169,6 +171,8 @@ impl<F: ExternalForces> World<F> {
             torque: vec![0.0; n],
             external_force: vec![Vec2::ZERO; n],
             external_torque: vec![0.0; n],
+            previous_external_force: vec![Vec2::ZERO; n],
+            previous_external_torque: vec![0.0; n],
             adjacency_start: Vec::new(),
             adjacency: Vec::new(),
             trig: Vec::new(),
@@ -192,8 +196,6 @@ impl<F: ExternalForces> World<F> {
         let owned = f.owned;
         let (force, torque) = (&self.force, &self.torque);
         // Kick and drift.
-        let old_external: (Vec<Vec2>, Vec<f64>) =
-            (self.external_force.clone(), self.external_torque.clone());
         (
             &mut f.position[..owned],
             &mut f.velocity[..owned],
@@ -211,6 +213,13 @@ impl<F: ExternalForces> World<F> {
             });
         self.time_s += dt;
         self.steps += 1;
+        // Keep this step's starting external forces for the work integral;
+        // gather_forces overwrites every entry of the other buffer.
+        std::mem::swap(&mut self.external_force, &mut self.previous_external_force);
+        std::mem::swap(
+            &mut self.external_torque,
+            &mut self.previous_external_torque,
+        );
         self.update_contacts(dt);
         self.gather_forces();
         // Kick.
@@ -225,7 +234,7 @@ impl<F: ExternalForces> World<F> {
                     *omega += torque[i] / f.inertia_kg_m2[i] * (0.5 * dt);
                 }
             });
-        self.account_energy(dt, &old_external);
+        self.account_energy(dt);
     }
 
     /// Broad phase, narrow phase and contact kernel: the new contact list.
@@ -451,14 +460,14 @@ impl<F: ExternalForces> World<F> {
     }
 
     /// Work of forcing and walls, and dissipation, over the step just taken.
-    fn account_energy(&mut self, dt: f64, old_external: &(Vec<Vec2>, Vec<f64>)) {
+    fn account_energy(&mut self, dt: f64) {
         let f = &self.floes;
         // Trapezoidal in the force, with the velocity at the end of the step
         // and at the half step averaged through the kicks.
         for i in 0..f.owned {
             if f.is_free(i) {
-                let mean_f = 0.5 * (old_external.0[i] + self.external_force[i]);
-                let mean_t = 0.5 * (old_external.1[i] + self.external_torque[i]);
+                let mean_f = 0.5 * (self.previous_external_force[i] + self.external_force[i]);
+                let mean_t = 0.5 * (self.previous_external_torque[i] + self.external_torque[i]);
                 self.energy.forcing_work_j +=
                     dt * (mean_f.dot(f.velocity[i]) + mean_t * f.angular_velocity[i]);
             }

@@ -153,12 +153,9 @@ impl SpringSlider {
     /// seconds (plus the first and the last).
     pub fn record(&mut self, protocol: &Protocol, every_s: f64) -> Vec<Sample> {
         let mut out = vec![self.sample];
-        let t0 = self.sample.t_s;
-        let slot = |t: f64| ((t - t0) / every_s + 1e-6).floor();
-        let mut last_slot = 0.0;
+        let mut thinning = OutputThinning::new(self.sample.t_s, every_s);
         self.run(protocol, |s| {
-            if slot(s.t_s) > last_slot {
-                last_slot = slot(s.t_s);
+            if thinning.keep(s.t_s) {
                 out.push(*s);
             }
         });
@@ -166,5 +163,37 @@ impl SpringSlider {
             out.push(self.sample);
         }
         out
+    }
+}
+
+/// Which steps of a run to keep when output is wanted every `every_s`
+/// seconds: the first step in each interval of that length after `t0_s`.
+/// Step times come from step counts, so the small allowance absorbs their
+/// rounding at interval boundaries.
+#[derive(Debug, Clone, Copy)]
+pub struct OutputThinning {
+    t0_s: f64,
+    every_s: f64,
+    last_slot: f64,
+}
+
+impl OutputThinning {
+    /// Thinning from time `t0_s` (already recorded) every `every_s` seconds.
+    pub fn new(t0_s: f64, every_s: f64) -> Self {
+        Self {
+            t0_s,
+            every_s,
+            last_slot: 0.0,
+        }
+    }
+
+    /// Whether the step ending at `t_s` should be kept.
+    pub fn keep(&mut self, t_s: f64) -> bool {
+        let slot = ((t_s - self.t0_s) / self.every_s + 1e-6).floor();
+        let keep = slot > self.last_slot;
+        if keep {
+            self.last_slot = slot;
+        }
+        keep
     }
 }
