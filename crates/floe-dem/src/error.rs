@@ -56,4 +56,10 @@ pub enum DemError {
         /// The cap.
         limit: u64,
     },
+    /// A saved state is inconsistent (damaged or from another scenario).
+    #[error("invalid checkpoint: {reason}")]
+    InvalidCheckpoint {
+        /// What is wrong.
+        reason: String,
+    },
 }

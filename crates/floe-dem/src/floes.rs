@@ -24,7 +24,7 @@ pub enum Motion {
 }
 
 /// Every floe's state and properties.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Floes {
     /// Global identifier (stable across subdomains and checkpoints).
     pub id: Vec<u64>,

@@ -16,6 +16,7 @@ pub use error::DemError;
 /// The 2-D vector type of the engine (glam's `DVec2`, as used by parry).
 pub use parry2d_f64::math::Vector as Vec2;
 pub mod broad_phase;
+pub mod checkpoint;
 pub mod contact_kernel;
 pub mod contacts;
 pub mod floes;

@@ -18,6 +18,7 @@
 use rayon::prelude::*;
 
 use crate::broad_phase::{BroadPhase, CandidatePair, Periodicity};
+use crate::checkpoint::WorldState;
 use crate::contact_kernel::{contact_forces, force_and_torques, overlap_stiffness, Body, Carried};
 use crate::contacts::{BrokenContact, ContactModel, ContactRecord};
 use crate::error::DemError;
@@ -135,6 +136,74 @@ impl<F: ExternalForces> World<F> {
         periodicity: Periodicity,
         dt_s: f64,
     ) -> Result<Self, DemError> {
+        let mut world = Self::new_checked(floes, model, forcing, periodicity, dt_s)?;
+        world.update_contacts(0.0);
+        world.gather_forces();
+        Ok(world)
+    }
+
+    /// A world continuing from a saved [`WorldState`]: the next step is
+    /// bitwise the step the saved world would have taken. Nothing is
+    /// recomputed: re-detecting contacts would advance their friction state,
+    /// and the saved forces were evaluated at the half-step velocity (drag,
+    /// dashpots), which the end-of-step state no longer holds.
+    pub fn resume(
+        state: WorldState,
+        model: ContactModel,
+        forcing: F,
+        periodicity: Periodicity,
+        dt_s: f64,
+    ) -> Result<Self, DemError> {
+        state.validate()?;
+        let WorldState {
+            floes,
+            contacts,
+            broken,
+            time_s,
+            steps,
+            energy,
+            force,
+            torque,
+            external_force,
+            external_torque,
+        } = state;
+        let mut world = Self::new_checked(floes, model, forcing, periodicity, dt_s)?;
+        world.contacts = contacts;
+        world.broken = broken;
+        world.time_s = time_s;
+        world.steps = steps;
+        world.energy = energy;
+        world.force = force;
+        world.torque = torque;
+        world.external_force = external_force;
+        world.external_torque = external_torque;
+        Ok(world)
+    }
+
+    /// The state a checkpoint must hold to continue this run bitwise.
+    pub fn state(&self) -> WorldState {
+        WorldState {
+            floes: self.floes.clone(),
+            contacts: self.contacts.clone(),
+            broken: self.broken.clone(),
+            time_s: self.time_s,
+            steps: self.steps,
+            energy: self.energy,
+            force: self.force.clone(),
+            torque: self.torque.clone(),
+            external_force: self.external_force.clone(),
+            external_torque: self.external_torque.clone(),
+        }
+    }
+
+    /// Checks `dt` and builds the world with no contacts yet.
+    fn new_checked(
+        floes: Floes,
+        model: ContactModel,
+        forcing: F,
+        periodicity: Periodicity,
+        dt_s: f64,
+    ) -> Result<Self, DemError> {
         if !(dt_s.is_finite() && dt_s > 0.0) {
             return Err(DemError::InvalidParameter {
                 name: "dt_s",
@@ -153,9 +222,19 @@ impl<F: ExternalForces> World<F> {
                 ),
             });
         }
+        Ok(Self::assemble(floes, model, forcing, periodicity, dt_s))
+    }
+
+    fn assemble(
+        floes: Floes,
+        model: ContactModel,
+        forcing: F,
+        periodicity: Periodicity,
+        dt_s: f64,
+    ) -> Self {
         let mean_radius = floes.radius_m.iter().sum::<f64>() / floes.len().max(1) as f64;
         let n = floes.len();
-        let mut world = Self {
+        Self {
             floes,
             contacts: Vec::new(),
             model,
@@ -177,10 +256,7 @@ impl<F: ExternalForces> World<F> {
             adjacency: Vec::new(),
             trig: Vec::new(),
             previous_of_pair: Vec::new(),
-        };
-        world.update_contacts(0.0);
-        world.gather_forces();
-        Ok(world)
+        }
     }
 
     /// The broad phase (for diagnostics: rebuild count, skin).

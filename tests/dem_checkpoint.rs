@@ -1,0 +1,166 @@
+//! A run continued from a saved state is bitwise the uninterrupted run.
+
+use floe_dem::broad_phase::Periodicity;
+use floe_dem::checkpoint::WorldState;
+use floe_dem::contacts::ContactModel;
+use floe_dem::floes::{Floes, Motion};
+use floe_dem::forcing::{Forcing, VelocityField};
+use floe_dem::geometry::FloeShape;
+use floe_dem::world::{stable_time_step, World};
+use floe_dem::Vec2;
+use floe_friction::experiments::Preset;
+use floe_friction::{Form, Law, RateState, StateLaw};
+
+fn square(c: Vec2, s: f64) -> Vec<Vec2> {
+    let h = 0.5 * s;
+    vec![
+        c + Vec2::new(-h, -h),
+        c + Vec2::new(h, -h),
+        c + Vec2::new(h, h),
+        c + Vec2::new(-h, h),
+    ]
+}
+
+/// A wind-driven pack against a wall, with velocity-dependent drag (so the
+/// forces depend on the half-step velocity) and contact memory (so broken
+/// contacts are part of the state).
+fn setup() -> (WorldState, ContactModel, Forcing, f64) {
+    let mut polys = Vec::new();
+    for j in 0..5 {
+        for i in 0..6 {
+            let c = Vec2::new(i as f64 * 100.0 + 3.0 * j as f64, j as f64 * 99.5);
+            polys.push(square(c, 100.0));
+        }
+    }
+    let n = polys.len();
+    let thickness: Vec<f64> = (0..n).map(|i| 1.0 + 0.05 * i as f64).collect();
+    let mut floes = Floes::from_polygons(&polys, &thickness, 917.0).unwrap();
+    let (wall, c) = FloeShape::from_world(0, &square(Vec2::new(900.0, 200.0), 400.0)).unwrap();
+    floes.push(
+        999,
+        &wall,
+        c,
+        1.0,
+        917.0,
+        Motion::Prescribed {
+            velocity: Vec2::new(0.0, 0.01),
+        },
+    );
+    let model = ContactModel {
+        law: Law::RateState(RateState::new(
+            Preset::Tank.params(),
+            Form::Regularized,
+            StateLaw::Slip,
+        )),
+        memory_s: 50.0,
+        ..ContactModel::default()
+    };
+    let forcing = Forcing {
+        wind: VelocityField::Uniform(Vec2::new(15.0, 3.0)),
+        ..Forcing::default()
+    };
+    let dt = 0.5 * stable_time_step(&floes, &model).0;
+    let world = World::new(
+        floes,
+        model.clone(),
+        forcing.clone(),
+        Periodicity::default(),
+        dt,
+    )
+    .unwrap();
+    (world.state(), model, forcing, dt)
+}
+
+#[test]
+fn resuming_from_a_saved_state_is_bitwise_the_uninterrupted_run() {
+    let (start, model, forcing, dt) = setup();
+    let n = 4000;
+    let resume = |s: WorldState| {
+        World::resume(
+            s,
+            model.clone(),
+            forcing.clone(),
+            Periodicity::default(),
+            dt,
+        )
+        .unwrap()
+    };
+    let mut straight = resume(start.clone());
+    for _ in 0..2 * n {
+        straight.step();
+    }
+    let mut first = resume(start);
+    for _ in 0..n {
+        first.step();
+    }
+    let saved = first.state();
+    assert!(
+        !saved.contacts.is_empty(),
+        "the pack is in contact at the save"
+    );
+    let mut second = resume(saved);
+    for _ in 0..n {
+        second.step();
+    }
+    let (a, b) = (straight.state(), second.state());
+    assert!(a.steps == 2 * n as u64 && b.steps == 2 * n as u64);
+    // PartialEq on f64 would accept -0.0 == 0.0; compare bits.
+    let bits = |v: &[Vec2]| {
+        v.iter()
+            .flat_map(|p| [p.x.to_bits(), p.y.to_bits()])
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&a.floes.position), bits(&b.floes.position));
+    assert_eq!(bits(&a.floes.velocity), bits(&b.floes.velocity));
+    assert_eq!(bits(&a.force), bits(&b.force));
+    assert_eq!(format!("{:?}", a.contacts), format!("{:?}", b.contacts));
+    assert_eq!(format!("{:?}", a.broken), format!("{:?}", b.broken));
+    assert_eq!(a.energy, b.energy);
+    assert!(!a.broken.is_empty() || a.contacts.len() > 10);
+}
+
+#[test]
+fn a_resumed_world_that_recomputed_forces_would_differ() {
+    // The reason the forces are saved: re-evaluating them at the end-of-step
+    // velocity (what a naive resume would do) changes the drag.
+    let (start, model, forcing, dt) = setup();
+    let mut w = World::resume(
+        start,
+        model.clone(),
+        forcing.clone(),
+        Periodicity::default(),
+        dt,
+    )
+    .unwrap();
+    for _ in 0..500 {
+        w.step();
+    }
+    let saved = w.state();
+    let fresh = World::new(
+        saved.floes.clone(),
+        model,
+        forcing,
+        Periodicity::default(),
+        dt,
+    )
+    .unwrap();
+    let differs = saved
+        .external_force
+        .iter()
+        .zip(&fresh.state().external_force)
+        .any(|(p, q)| p != q);
+    assert!(
+        differs,
+        "drag at the full-step velocity equals drag at the half step"
+    );
+}
+
+#[test]
+fn a_damaged_state_is_refused() {
+    let (mut s, model, forcing, dt) = setup();
+    s.torque.pop();
+    let err = World::resume(s, model, forcing, Periodicity::default(), dt)
+        .err()
+        .unwrap();
+    assert!(err.to_string().contains("torque"), "{err}");
+}
