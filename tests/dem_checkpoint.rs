@@ -60,14 +60,7 @@ fn setup() -> (WorldState, ContactModel, Forcing, f64) {
         ..Forcing::default()
     };
     let dt = 0.5 * stable_time_step(&floes, &model).0;
-    let world = World::new(
-        floes,
-        model.clone(),
-        forcing.clone(),
-        Periodicity::default(),
-        dt,
-    )
-    .unwrap();
+    let world = World::new(floes, model, forcing.clone(), Periodicity::default(), dt).unwrap();
     (world.state(), model, forcing, dt)
 }
 
@@ -76,14 +69,7 @@ fn resuming_from_a_saved_state_is_bitwise_the_uninterrupted_run() {
     let (start, model, forcing, dt) = setup();
     let n = 4000;
     let resume = |s: WorldState| {
-        World::resume(
-            s,
-            model.clone(),
-            forcing.clone(),
-            Periodicity::default(),
-            dt,
-        )
-        .unwrap()
+        World::resume(s, model, forcing.clone(), Periodicity::default(), dt).unwrap()
     };
     let mut straight = resume(start.clone());
     for _ in 0..2 * n {
@@ -124,14 +110,7 @@ fn a_resumed_world_that_recomputed_forces_would_differ() {
     // The reason the forces are saved: re-evaluating them at the end-of-step
     // velocity (what a naive resume would do) changes the drag.
     let (start, model, forcing, dt) = setup();
-    let mut w = World::resume(
-        start,
-        model.clone(),
-        forcing.clone(),
-        Periodicity::default(),
-        dt,
-    )
-    .unwrap();
+    let mut w = World::resume(start, model, forcing.clone(), Periodicity::default(), dt).unwrap();
     for _ in 0..500 {
         w.step();
     }
