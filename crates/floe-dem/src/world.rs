@@ -553,6 +553,10 @@ impl<F: ExternalForces> World<F> {
             self.energy.damping_dissipation_j += dt * c.damping_power_w;
             // Work done by a wall on the floe it touches: the force the wall
             // exerts (the opposite of the force on it) times its velocity.
+            // Only wall contacts need the force (this loop is sequential).
+            if f.is_free(c.a as usize) && f.is_free(c.b as usize) {
+                continue;
+            }
             let (pa, pb) = (
                 f.position[c.a as usize],
                 f.position[c.b as usize] + c.image_offset,
