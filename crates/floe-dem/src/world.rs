@@ -125,6 +125,12 @@ pub struct World<F: ExternalForces> {
     adjacency: Vec<u32>,
     trig: Vec<(f64, f64)>,
     previous_of_pair: Vec<u32>,
+    // Reused every step: fresh multi-megabyte buffers cost a page fault per
+    // 4 KiB on first touch, which was 15 % of a 1e4-floe step, all of it
+    // sequential (docs/performance.md).
+    chunk_contacts: Vec<Vec<ContactRecord>>,
+    spare_contacts: Vec<ContactRecord>,
+    fill: Vec<u32>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -256,6 +262,9 @@ impl<F: ExternalForces> World<F> {
             adjacency: Vec::new(),
             trig: Vec::new(),
             previous_of_pair: Vec::new(),
+            chunk_contacts: Vec::new(),
+            spare_contacts: Vec::new(),
+            fill: Vec::new(),
         }
     }
 
@@ -323,18 +332,26 @@ impl<F: ExternalForces> World<F> {
         self.trig
             .par_extend(f.angle.par_iter().map(|a| a.sin_cos()));
         // The previous contact of each candidate pair, by a merge: pairs and
-        // contacts are both sorted by (a, b) (contacts are made in pair order).
+        // contacts are both sorted by (a, b) (contacts are made in pair
+        // order). Each chunk finds its start by bisection and merges from there.
         let previous = &self.contacts;
-        self.previous_of_pair.clear();
-        let mut k = 0;
-        for pair in &self.broad_phase.pairs {
-            while k < previous.len() && (previous[k].a, previous[k].b) < (pair.a, pair.b) {
-                k += 1;
-            }
-            let hit = k < previous.len() && (previous[k].a, previous[k].b) == (pair.a, pair.b);
-            self.previous_of_pair
-                .push(if hit { k as u32 } else { u32::MAX });
-        }
+        let pairs = &self.broad_phase.pairs;
+        self.previous_of_pair.resize(pairs.len(), u32::MAX);
+        self.previous_of_pair
+            .par_chunks_mut(PAIR_CHUNK)
+            .zip(pairs.par_chunks(PAIR_CHUNK))
+            .for_each(|(out, pairs)| {
+                let first = (pairs[0].a, pairs[0].b);
+                let mut k = previous.partition_point(|c| (c.a, c.b) < first);
+                for (slot, pair) in out.iter_mut().zip(pairs) {
+                    while k < previous.len() && (previous[k].a, previous[k].b) < (pair.a, pair.b) {
+                        k += 1;
+                    }
+                    let hit =
+                        k < previous.len() && (previous[k].a, previous[k].b) == (pair.a, pair.b);
+                    *slot = if hit { k as u32 } else { u32::MAX };
+                }
+            });
         let model = &self.model;
         let periodicity = self.periodicity;
         let trig = &self.trig;
@@ -401,52 +418,81 @@ impl<F: ExternalForces> World<F> {
             record.age_steps = old.map_or(0, |c| c.age_steps + 1);
             Some(record)
         };
-        // Fixed chunks of pairs, each producing its contacts in order, then
-        // concatenated in chunk order: deterministic for any thread count.
-        // Collecting a flattened parallel iterator cost a quarter of the step
-        // (linked chunks, copies); one result slot per pair instead cost the
-        // same time and 184 B per candidate pair, about 1.1 KB per floe.
-        let per_chunk: Vec<Vec<ContactRecord>> = self
-            .broad_phase
-            .pairs
-            .par_chunks(PAIR_CHUNK)
+        // Fixed chunks of pairs, each producing its contacts in order into
+        // its own reused buffer, then copied in chunk order: deterministic
+        // for any thread count. Collecting a flattened parallel iterator cost
+        // a quarter of the step (linked chunks, copies); one result slot per
+        // pair instead cost 184 B per candidate pair, about 1.1 KB per floe.
+        let n_chunks = pairs.len().div_ceil(PAIR_CHUNK);
+        self.chunk_contacts.resize_with(n_chunks, Vec::new);
+        self.chunk_contacts
+            .par_iter_mut()
+            .zip(pairs.par_chunks(PAIR_CHUNK))
             .zip(self.previous_of_pair.par_chunks(PAIR_CHUNK))
-            .map(|(pairs, prevs)| {
+            .for_each(|((out, pairs), prevs)| {
                 let mut scratch = ClipScratch::default();
-                let mut out = Vec::with_capacity(pairs.len() / 2);
+                out.clear();
                 for (pair, &prev) in pairs.iter().zip(prevs) {
                     if let Some(record) = contact_of_pair(pair, prev, &mut scratch) {
                         out.push(record);
                     }
                 }
-                out
+            });
+        let per_chunk = &self.chunk_contacts[..n_chunks];
+        let total: usize = per_chunk.iter().map(Vec::len).sum();
+        let mut contacts = std::mem::take(&mut self.spare_contacts);
+        match per_chunk.iter().find_map(|c| c.first()) {
+            // Every element is overwritten below; resizing only writes the
+            // entries beyond the buffer's previous length.
+            Some(&fill) => contacts.resize(total, fill),
+            None => contacts.clear(),
+        }
+        let mut rest = contacts.as_mut_slice();
+        let mut targets = Vec::with_capacity(n_chunks);
+        for chunk in per_chunk {
+            let (head, tail) = rest.split_at_mut(chunk.len());
+            targets.push(head);
+            rest = tail;
+        }
+        targets
+            .into_par_iter()
+            .zip(per_chunk.par_iter())
+            .for_each(|(target, chunk)| target.copy_from_slice(chunk));
+        // Contacts that did not survive the step release what they held, and
+        // are remembered if the model asks for memory. Fixed chunks of the
+        // old list, each merged against the new list from a bisection; the
+        // released energy is summed per chunk, then over chunks in order.
+        let remember = model.memory_s > 0.0;
+        let time_s = self.time_s;
+        let ended: Vec<(f64, Vec<BrokenContact>)> = previous
+            .par_chunks(PAIR_CHUNK)
+            .map(|olds| {
+                let first = (olds[0].a, olds[0].b);
+                let mut k = contacts.partition_point(|c| (c.a, c.b) < first);
+                let (mut released, mut broken) = (0.0, Vec::new());
+                for old in olds {
+                    while k < contacts.len() && (contacts[k].a, contacts[k].b) < (old.a, old.b) {
+                        k += 1;
+                    }
+                    let survived =
+                        k < contacts.len() && (contacts[k].a, contacts[k].b) == (old.a, old.b);
+                    if !survived {
+                        released += old.elastic_energy_j();
+                        if remember {
+                            broken.push(BrokenContact {
+                                a: old.a,
+                                b: old.b,
+                                friction: old.friction,
+                                broke_at_s: time_s,
+                            });
+                        }
+                    }
+                }
+                (released, broken)
             })
             .collect();
-        let mut contacts = Vec::with_capacity(per_chunk.iter().map(Vec::len).sum());
-        for chunk in &per_chunk {
-            contacts.extend_from_slice(chunk);
-        }
-        // Contacts that did not survive the step release what they held, and
-        // are remembered if the model asks for memory.
-        let (mut k, mut released) = (0, 0.0);
-        let mut newly_broken = Vec::new();
-        for old in previous {
-            while k < contacts.len() && (contacts[k].a, contacts[k].b) < (old.a, old.b) {
-                k += 1;
-            }
-            let survived = k < contacts.len() && (contacts[k].a, contacts[k].b) == (old.a, old.b);
-            if !survived {
-                released += old.elastic_energy_j();
-                if model.memory_s > 0.0 {
-                    newly_broken.push(BrokenContact {
-                        a: old.a,
-                        b: old.b,
-                        friction: old.friction,
-                        broke_at_s: self.time_s,
-                    });
-                }
-            }
-        }
+        let released: f64 = ended.iter().map(|(r, _)| r).sum();
+        let newly_broken: Vec<BrokenContact> = ended.into_iter().flat_map(|(_, b)| b).collect();
         if model.memory_s > 0.0 || !self.broken.is_empty() {
             let (now, memory) = (self.time_s, model.memory_s);
             let touching = |c: &BrokenContact| {
@@ -473,7 +519,7 @@ impl<F: ExternalForces> World<F> {
             self.broken = merged;
         }
         self.energy.released_at_break_j += released;
-        self.contacts = contacts;
+        self.spare_contacts = std::mem::replace(&mut self.contacts, contacts);
     }
 
     /// External forces and the contact forces, gathered per floe in contact order.
@@ -490,11 +536,12 @@ impl<F: ExternalForces> World<F> {
             self.adjacency_start[i + 1] += self.adjacency_start[i];
         }
         self.adjacency.resize(self.adjacency_start[n] as usize, 0);
-        let mut fill: Vec<u32> = self.adjacency_start[..n].to_vec();
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.adjacency_start[..n]);
         for (k, c) in self.contacts.iter().enumerate() {
             for i in [c.a as usize, c.b as usize] {
-                self.adjacency[fill[i] as usize] = k as u32;
-                fill[i] += 1;
+                self.adjacency[self.fill[i] as usize] = k as u32;
+                self.fill[i] += 1;
             }
         }
         let (f, contacts, forcing, t) = (&self.floes, &self.contacts, &self.forcing, self.time_s);
