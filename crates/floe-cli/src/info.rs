@@ -1,0 +1,105 @@
+//! `floe info`: what a run's output file holds.
+
+use std::fmt::Write;
+use std::path::Path;
+
+use floe_io::RunFile;
+
+use crate::error::CliError;
+use crate::run::progress::format_sim_time;
+
+/// A human-readable description of the run in `file`.
+pub fn describe(file: &Path) -> Result<String, CliError> {
+    let run = RunFile::open(file)?;
+    let meta = run.metadata()?;
+    let floes = run.static_floes()?;
+    let snapshots = run.snapshot_count()?;
+    let mut out = String::new();
+    let mut line = |key: &str, value: String| {
+        let _ = writeln!(out, "{key:<12} {value}");
+    };
+    line("file", file.display().to_string());
+    line("status", run.status()?);
+    line("scenario", meta.scenario_path.clone());
+    line(
+        "created by",
+        format!(
+            "floe {} (commit {}), {} threads",
+            meta.floe_version, meta.git_commit, meta.threads
+        ),
+    );
+    line("command", meta.command_line.join(" "));
+    let walls = floes.prescribed.iter().filter(|&&p| p != 0).count();
+    line(
+        "floes",
+        format!("{} ({} free, {walls} prescribed: walls)", floes.len(), floes.len() - walls),
+    );
+    let d = meta.domain;
+    let periodic: Vec<&str> = [("x", d.periodic[0]), ("y", d.periodic[1])]
+        .iter()
+        .filter(|(_, p)| *p)
+        .map(|(a, _)| *a)
+        .collect();
+    line(
+        "domain",
+        format!(
+            "{} km x {} km from ({}, {}) m, periodic in {}",
+            d.size_m[0] / 1e3,
+            d.size_m[1] / 1e3,
+            d.min_m[0],
+            d.min_m[1],
+            if periodic.is_empty() { "neither".to_string() } else { periodic.join(" and ") }
+        ),
+    );
+    if snapshots > 0 {
+        let (first, last) = (run.snapshot(0)?, run.snapshot(snapshots - 1)?);
+        line(
+            "snapshots",
+            format!(
+                "{snapshots}, steps {} .. {}, t = {} .. {}",
+                first.step,
+                last.step,
+                format_sim_time(first.time),
+                format_sim_time(last.time)
+            ),
+        );
+        let c = run.contacts(snapshots - 1)?;
+        let sliding = c.slip_rate.iter().filter(|v| v.abs() > 1e-6).count();
+        line(
+            "contacts",
+            format!(
+                "{} in the last snapshot ({sliding} slipping faster than 1 um/s)",
+                c.pair.len()
+            ),
+        );
+    } else {
+        line("snapshots", "none".into());
+    }
+    match run.checkpoint()? {
+        Some((_, info)) => line(
+            "checkpoint",
+            format!("step {}, t = {}", info.step, format_sim_time(info.time_s)),
+        ),
+        None => line("checkpoint", "none".into()),
+    }
+    let names = run.observable_names()?;
+    let mut samples = 0;
+    let mut values = Vec::new();
+    for name in &names {
+        let s = run.observable(name)?;
+        samples = s.time.len();
+        if let Some(last) = s.value.chunks(s.value.len() / samples.max(1)).last() {
+            let shown: Vec<String> = last.iter().map(|v| format!("{v:.4e}")).collect();
+            values.push(format!("  {name:<24} {}", shown.join(" ")));
+        }
+    }
+    line("observables", format!("{} series, {samples} samples; last values:", names.len()));
+    for v in values {
+        let _ = writeln!(out, "{v}");
+    }
+    let _ = writeln!(out, "scenario ({}):", meta.scenario_path);
+    for l in meta.scenario_toml.lines() {
+        let _ = writeln!(out, "  {l}");
+    }
+    Ok(out.trim_end().to_string())
+}
