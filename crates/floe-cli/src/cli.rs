@@ -7,7 +7,10 @@ use floe_friction::experiments::Preset;
 use floe_friction::{Form, StateLaw};
 
 use crate::error::CliError;
+use crate::render::Snapshots;
+use crate::run::RunArgs;
 use crate::slider::{self, ExperimentOptions};
+use crate::{info, render, run};
 
 /// floe: sea-ice floes with rate-and-state friction.
 #[derive(Debug, Parser)]
@@ -24,6 +27,69 @@ pub enum Command {
     /// Spring-slider experiments of Lishman, Sammonds & Feltham (2011).
     #[command(subcommand)]
     Slider(SliderCommand),
+    /// Run a DEM scenario (TOML, see docs/scenarios.md) into an HDF5 file
+    /// (H5MD layout, see docs/output.md).
+    Run {
+        /// Scenario file (omit with --resume).
+        #[arg(required_unless_present = "resume")]
+        scenario: Option<PathBuf>,
+        /// Output HDF5 file.
+        #[arg(long, short)]
+        output: PathBuf,
+        /// Worker threads (default: the scenario's `threads`, else every core).
+        /// Results are bitwise identical for any count.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Replace an existing output file.
+        #[arg(long)]
+        force: bool,
+        /// Continue the run in OUTPUT from its last checkpoint.
+        #[arg(long)]
+        resume: bool,
+        /// Take at most this many steps, then write a checkpoint and stop
+        /// (continue with --resume; for batch jobs with a time limit).
+        #[arg(long, value_name = "STEPS")]
+        max_steps: Option<u64>,
+        /// No progress bar or progress lines.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+    /// Describe a run's output file: scenario, snapshots, floes, contacts, observables.
+    Info {
+        /// The run's HDF5 file.
+        file: PathBuf,
+    },
+    /// Draw PNG maps of the floes and plots of the observables.
+    Render {
+        /// The run's HDF5 file.
+        file: PathBuf,
+        /// Draw only this snapshot (0-based; negative counts from the end).
+        #[arg(long, allow_negative_numbers = true, conflicts_with = "every")]
+        snapshot: Option<i64>,
+        /// Draw every K-th snapshot (default: the last snapshot only).
+        #[arg(long, value_name = "K")]
+        every: Option<usize>,
+        /// What colours the floes.
+        #[arg(long, value_enum, default_value_t = ColourBy::Speed)]
+        color: ColourBy,
+        /// Output directory.
+        #[arg(long, short)]
+        output: PathBuf,
+        /// Replace existing pictures.
+        #[arg(long)]
+        force: bool,
+    },
+}
+
+/// `floe render --color`
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ColourBy {
+    /// Floe speed, m/s.
+    Speed,
+    /// Mean rate-and-state theta over the floe's contacts.
+    Theta,
+    /// Floe pressure from its contact forces, N/m (compression positive).
+    Stress,
 }
 
 /// `floe slider ...`
@@ -158,6 +224,44 @@ fn json<T: serde::Serialize>(value: &T) -> String {
 /// Runs a parsed command; returns what to print on standard output.
 pub fn execute(cli: Cli) -> Result<String, CliError> {
     match cli.command {
+        Command::Run {
+            scenario,
+            output,
+            threads,
+            force,
+            resume,
+            max_steps,
+            quiet,
+        } => {
+            let args = RunArgs {
+                scenario,
+                output,
+                threads,
+                force,
+                resume,
+                max_steps,
+                progress: !quiet,
+            };
+            let summary = run::run(&args)?;
+            Ok(summary.describe(&args.output))
+        }
+        Command::Info { file } => info::describe(&file),
+        Command::Render {
+            file,
+            snapshot,
+            every,
+            color,
+            output,
+            force,
+        } => {
+            let which = match (snapshot, every) {
+                (Some(k), _) => Snapshots::One(k),
+                (None, Some(k)) => Snapshots::Every(k),
+                (None, None) => Snapshots::One(-1),
+            };
+            let written = render::render(&file, which, color, &output, force)?;
+            Ok(format!("{} pictures in {}", written.len(), output.display()))
+        }
         Command::Slider(SliderCommand::Hold {
             options,
             hold,

@@ -47,13 +47,39 @@ pub enum CliError {
     /// The friction library refused a parameter or a fit failed.
     #[error("{0}")]
     Friction(#[from] floe_friction::FrictionError),
+    /// The DEM engine refused its input (outside a scenario file, e.g. a
+    /// damaged checkpoint).
+    #[error("{0}")]
+    Engine(#[from] floe_dem::DemError),
+    /// Writing or reading a run's HDF5 file failed.
+    #[error("{0}")]
+    Output(#[from] floe_io::IoError),
+    /// The run was interrupted (Ctrl-C, SIGTERM) and stopped cleanly.
+    #[error("interrupted at step {step}; final snapshot and checkpoint written to {}; continue with `floe run --resume {}`", output.display(), output.display())]
+    Interrupted {
+        /// The run's output file.
+        output: PathBuf,
+        /// The step it stopped at.
+        step: u64,
+    },
+    /// The state went non-finite or floes overlapped beyond reason.
+    #[error("{message}; last snapshot written to {}, its checkpoint holds the last good state", output.display())]
+    BlowUp {
+        /// The run's output file.
+        output: PathBuf,
+        /// What happened, where, and the suggested time step.
+        message: String,
+    },
 }
 
 impl CliError {
-    /// Process exit code: 2 for bad input (files or flags), 1 for everything else.
+    /// Process exit code: 2 for bad input (files or flags), 130 for an
+    /// interrupted run, 1 for everything else.
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Input { .. } | CliError::Usage(_) | CliError::WouldOverwrite(_) => 2,
+            // 128 + SIGINT, as a shell reports a process stopped by Ctrl-C.
+            CliError::Interrupted { .. } => 130,
             _ => 1,
         }
     }

@@ -5,9 +5,13 @@
 
 pub mod cli;
 pub mod error;
+pub mod info;
 pub mod input;
 pub mod plot;
 pub mod protocol_file;
+pub mod render;
+pub mod run;
+pub mod scenario;
 pub mod series_csv;
 pub mod slider;
 

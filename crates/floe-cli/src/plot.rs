@@ -52,7 +52,8 @@ pub struct Axes<'a> {
     pub y: &'a str,
 }
 
-fn register_font() {
+/// Registers the embedded DejaVu font (once per process).
+pub(crate) fn register_font() {
     static FONT: Once = Once::new();
     FONT.call_once(|| {
         // The bytes are a valid TTF shipped by the `dejavu` crate; failure here
@@ -160,15 +161,21 @@ fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
 
 /// Draws panels side by side into one PNG, each `(axes, lines)`.
 pub fn panels(path: &Path, panels: &[(Axes, Vec<Line>)]) -> Result<(), CliError> {
+    grid(path, 1, panels)
+}
+
+/// Draws panels in `rows` rows (filled row by row) into one PNG.
+pub fn grid(path: &Path, rows: usize, panels: &[(Axes, Vec<Line>)]) -> Result<(), CliError> {
     register_font();
     let err = |message: String| CliError::Plot {
         path: path.to_path_buf(),
         message,
     };
-    let width = 620 * panels.len().max(1) as u32;
-    let root = BitMapBackend::new(path, (width, 460)).into_drawing_area();
+    let rows = rows.max(1);
+    let cols = panels.len().div_ceil(rows).max(1);
+    let root = BitMapBackend::new(path, (620 * cols as u32, 460 * rows as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-    let areas = root.split_evenly((1, panels.len().max(1)));
+    let areas = root.split_evenly((rows, cols));
     for (area, (axes, lines)) in areas.iter().zip(panels) {
         draw_chart(area, *axes, lines).map_err(err)?;
     }

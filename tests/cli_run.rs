@@ -1,0 +1,363 @@
+//! `floe run`, `floe info`, `floe render` as a user meets them: a run writes
+//! a readable file, refuses to overwrite it, stops cleanly on Ctrl-C, on a
+//! step budget and on a blow-up, and a resumed run (after a pause, an
+//! interrupt or `kill -9`) is bitwise the uninterrupted one.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use floe_io::RunFile;
+
+/// A sheared channel of small diamonds: a few hundred steps, snapshots,
+/// observables and checkpoints at different cadences, none of which
+/// divides the step budgets used below.
+const SMALL: &str = include_str!("data/run_small.toml");
+
+/// The same channel, long enough to be interrupted while it runs.
+const LONG: &str = include_str!("data/run_long.toml");
+
+/// Walls that close far faster than contacts can push back.
+const BLOW_UP: &str = include_str!("data/run_blow_up.toml");
+
+fn floe() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_floe"));
+    c.env("RUST_BACKTRACE", "1");
+    c
+}
+
+fn run(args: &[&str]) -> Output {
+    floe().args(args).output().expect("floe starts")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn code(out: &Output) -> i32 {
+    out.status.code().unwrap_or(-1)
+}
+
+fn assert_no_panic(stderr: &str) {
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
+        "{stderr}"
+    );
+}
+
+/// Runs to completion; panics with floe's stderr if it fails.
+fn run_ok(args: &[&str]) -> String {
+    let out = run(args);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 0, "floe {args:?}: {err}");
+    text(&out.stdout)
+}
+
+struct Case {
+    dir: tempfile::TempDir,
+}
+
+impl Case {
+    fn new(scenario: &str) -> Self {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("scenario.toml"), scenario).unwrap();
+        Self { dir }
+    }
+    fn scenario(&self) -> String {
+        self.path("scenario.toml")
+    }
+    fn path(&self, name: &str) -> String {
+        self.dir.path().join(name).to_string_lossy().into_owned()
+    }
+    /// `floe run` of the scenario into `name`.
+    fn run(&self, name: &str, extra: &[&str]) -> Output {
+        let (scenario, out) = (self.scenario(), self.path(name));
+        let mut args = vec!["run", &scenario, "-o", &out, "-q"];
+        args.extend_from_slice(extra);
+        run(&args)
+    }
+    fn run_ok(&self, name: &str, extra: &[&str]) {
+        let out = self.run(name, extra);
+        assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    }
+    fn resume(&self, name: &str, extra: &[&str]) -> Output {
+        let out = self.path(name);
+        let mut args = vec!["run", "--resume", "-o", &out, "-q"];
+        args.extend_from_slice(extra);
+        run(&args)
+    }
+    fn spawn(&self, name: &str, extra: &[&str]) -> Child {
+        floe()
+            .args(["run", &self.scenario(), "-o", &self.path(name), "-q"])
+            .args(extra)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    }
+}
+
+/// Everything a run writes, compared bitwise: every snapshot, every contact
+/// list, every observable, and the final checkpointed state.
+fn assert_same_run(a: &Path, b: &Path) {
+    let (fa, fb) = (RunFile::open(a).unwrap(), RunFile::open(b).unwrap());
+    let n = fa.snapshot_count().unwrap();
+    assert!(n > 2, "a run worth comparing has several snapshots, got {n}");
+    assert_eq!(n, fb.snapshot_count().unwrap(), "snapshot count");
+    for k in 0..n {
+        let (sa, sb) = (fa.snapshot(k).unwrap(), fb.snapshot(k).unwrap());
+        assert_eq!(sa.step, sb.step, "snapshot {k}");
+        assert_eq!(bits2(&sa.position), bits2(&sb.position), "positions {k}");
+        assert_eq!(bits2(&sa.velocity), bits2(&sb.velocity), "velocities {k}");
+        assert_eq!(bits(&sa.angle), bits(&sb.angle), "angles {k}");
+        assert_eq!(
+            bits(&sa.angular_velocity),
+            bits(&sb.angular_velocity),
+            "spins {k}"
+        );
+        let (ca, cb) = (fa.contacts(k).unwrap(), fb.contacts(k).unwrap());
+        assert_eq!(ca.pair, cb.pair, "contact pairs {k}");
+        assert_eq!(bits(&ca.theta), bits(&cb.theta), "theta {k}");
+        assert_eq!(
+            bits(&ca.tangential_force_n),
+            bits(&cb.tangential_force_n),
+            "tangential force {k}"
+        );
+    }
+    let names = fa.observable_names().unwrap();
+    assert_eq!(names, fb.observable_names().unwrap());
+    for name in &names {
+        let (oa, ob) = (fa.observable(name).unwrap(), fb.observable(name).unwrap());
+        assert_eq!(oa.step, ob.step, "{name} steps");
+        assert_eq!(bits(&oa.value), bits(&ob.value), "{name} values");
+    }
+    assert!(
+        fa.checkpoint_state().unwrap() == fb.checkpoint_state().unwrap(),
+        "final checkpointed states differ"
+    );
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+fn bits2(v: &[floe_dem::Vec2]) -> Vec<(u64, u64)> {
+    v.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect()
+}
+
+#[test]
+fn a_run_writes_a_file_that_info_describes() {
+    let case = Case::new(SMALL);
+    case.run_ok("run.h5", &[]);
+    let file = RunFile::open(Path::new(&case.path("run.h5"))).unwrap();
+    assert_eq!(file.status().unwrap(), "completed");
+    let checkpoint = file.checkpoint().unwrap().expect("a checkpoint");
+    let n = file.snapshot_count().unwrap();
+    let last = file.snapshot(n - 1).unwrap();
+    assert_eq!(last.step, checkpoint.step, "the run ends with a snapshot");
+    assert_eq!(file.snapshot(0).unwrap().step, 0);
+    // The energy observables sample the same steps as each other.
+    let ke = file.observable("kinetic_translational").unwrap();
+    assert_eq!(*ke.step.last().unwrap(), last.step);
+    assert_eq!(ke.step, file.observable("friction_dissipation").unwrap().step);
+
+    let info = run_ok(&["info", &case.path("run.h5")]);
+    for expected in ["completed", "snapshots", "contacts", "kinetic_translational"] {
+        assert!(info.contains(expected), "`{expected}` in floe info:\n{info}");
+    }
+    let floes = file.static_floes().unwrap().len().to_string();
+    assert!(info.contains(&floes), "floe count {floes} in:\n{info}");
+}
+
+#[test]
+fn a_run_refuses_to_overwrite_unless_forced() {
+    let case = Case::new(SMALL);
+    let target = case.path("run.h5");
+    std::fs::write(&target, b"precious").unwrap();
+    let out = case.run("run.h5", &[]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 2, "{err}");
+    assert!(err.contains("--force"), "{err}");
+    assert_eq!(std::fs::read(&target).unwrap(), b"precious");
+    case.run_ok("run.h5", &["--force"]);
+    assert!(RunFile::open(Path::new(&target)).is_ok());
+}
+
+#[test]
+fn pausing_and_resuming_on_another_thread_count_is_bitwise_the_uninterrupted_run() {
+    let case = Case::new(SMALL);
+    case.run_ok("whole.h5", &["--threads", "1"]);
+    // 137 steps: off every cadence, so the pause writes an extra checkpoint,
+    // snapshot and observables that the resume must drop again.
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    let paused = RunFile::open(Path::new(&case.path("parts.h5"))).unwrap();
+    assert_eq!(paused.status().unwrap(), "paused at step 137");
+    assert_eq!(paused.checkpoint().unwrap().unwrap().step, 137);
+    drop(paused);
+    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &["--threads", "2"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+}
+
+/// Waits until the run has written a checkpoint past step 0, so that a
+/// signal lands in the middle of stepping rather than in start-up.
+fn wait_for_progress(child: &mut Child, file: &Path) {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        assert!(Instant::now() < deadline, "the run made no progress");
+        if let Some(status) = child.try_wait().unwrap() {
+            panic!("the run ended before it could be interrupted: {status}");
+        }
+        // The writer holds the file open; reading it may fail until it
+        // flushes, which is fine: try again.
+        let step = RunFile::open(file)
+            .ok()
+            .and_then(|f| f.checkpoint().ok().flatten())
+            .map_or(0, |c| c.step);
+        if step > 0 {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[test]
+fn ctrl_c_writes_a_final_snapshot_and_checkpoint_and_resume_is_bitwise() {
+    let case = Case::new(LONG);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn("parts.h5", &["--threads", "2"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert_no_panic(&err);
+    assert!(err.contains("--resume"), "the message says how to go on: {err}");
+
+    let file = RunFile::open(Path::new(&target)).unwrap();
+    let status = file.status().unwrap();
+    let step: u64 = status
+        .strip_prefix("interrupted at step ")
+        .unwrap_or_else(|| panic!("status {status}"))
+        .parse()
+        .unwrap();
+    assert_eq!(file.checkpoint().unwrap().unwrap().step, step);
+    let n = file.snapshot_count().unwrap();
+    assert_eq!(file.snapshot(n - 1).unwrap().step, step, "a final snapshot");
+    drop(file);
+
+    let out = case.resume("parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
+fn kill_9_in_the_middle_of_a_run_then_resume_is_bitwise() {
+    let case = Case::new(LONG);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn("parts.h5", &["--threads", "2"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    std::thread::sleep(Duration::from_millis(150));
+    child.kill().unwrap(); // SIGKILL: no handler runs
+    child.wait().unwrap();
+
+    let out = case.resume("parts.h5", &["--threads", "2"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
+fn a_blow_up_stops_the_run_with_the_step_the_floes_and_a_smaller_dt() {
+    let case = Case::new(BLOW_UP);
+    let out = case.run("run.h5", &[]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 1, "{err}");
+    assert_no_panic(&err);
+    for expected in ["blow-up at step", "floes", "try dt_s"] {
+        assert!(err.contains(expected), "`{expected}` in: {err}");
+    }
+    let file = RunFile::open(Path::new(&case.path("run.h5"))).unwrap();
+    assert!(file.status().unwrap().starts_with("stopped"));
+    // The last snapshot shows the bad state, after the last checkpoint.
+    let n = file.snapshot_count().unwrap();
+    let last = file.snapshot(n - 1).unwrap();
+    assert!(last.step > file.checkpoint().unwrap().unwrap().step);
+}
+
+#[test]
+fn an_unwritable_output_is_one_clear_error() {
+    let case = Case::new(SMALL);
+    // A directory that cannot exist (its parent is a file): works as root too.
+    std::fs::write(case.path("plain_file"), b"").unwrap();
+    let out = case.run("plain_file/run.h5", &[]);
+    let err = text(&out.stderr);
+    assert_ne!(code(&out), 0);
+    assert_no_panic(&err);
+    assert!(err.starts_with("error: "), "{err}");
+    assert!(err.contains("plain_file/run.h5"), "names the file: {err}");
+}
+
+#[test]
+fn a_corrupt_or_foreign_resume_file_is_one_clear_error() {
+    let case = Case::new(SMALL);
+    std::fs::write(case.path("junk.h5"), vec![7u8; 4096]).unwrap();
+    for (name, expected) in [("junk.h5", "junk.h5"), ("missing.h5", "missing.h5")] {
+        let out = case.resume(name, &[]);
+        let err = text(&out.stderr);
+        assert_ne!(code(&out), 0, "{err}");
+        assert_no_panic(&err);
+        assert!(err.starts_with("error: ") && err.contains(expected), "{err}");
+    }
+}
+
+#[test]
+fn render_draws_the_floes_and_the_observables() {
+    let case = Case::new(SMALL);
+    case.run_ok("run.h5", &[]);
+    let file = case.path("run.h5");
+    let dir = PathBuf::from(case.path("pictures"));
+    let snapshots = RunFile::open(Path::new(&file))
+        .unwrap()
+        .snapshot_count()
+        .unwrap();
+    let dir_s = dir.to_string_lossy().into_owned();
+    run_ok(&["render", &file, "--every", "2", "-o", &dir_s]);
+    run_ok(&[
+        "render", &file, "--snapshot", "-1", "--color", "stress", "-o", &dir_s, "--force",
+    ]);
+    run_ok(&[
+        "render", &file, "--snapshot", "0", "--color", "theta", "-o", &dir_s, "--force",
+    ]);
+    let pngs: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let speed = pngs
+        .iter()
+        .filter(|p| p.to_string_lossy().contains("floes_speed_"))
+        .count();
+    assert_eq!(speed, snapshots.div_ceil(2), "{pngs:?}");
+    for name in ["observables.png"] {
+        assert!(dir.join(name).exists(), "{name} in {pngs:?}");
+    }
+    assert!(pngs.iter().any(|p| p.to_string_lossy().contains("stress")));
+    assert!(pngs.iter().any(|p| p.to_string_lossy().contains("theta")));
+    for p in &pngs {
+        let bytes = std::fs::read(p).unwrap();
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", p.display());
+    }
+    // Pictures are not overwritten without --force.
+    let out = run(&["render", &file, "--every", "2", "-o", &dir_s]);
+    assert_eq!(code(&out), 2, "{}", text(&out.stderr));
+}
