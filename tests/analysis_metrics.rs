@@ -1,0 +1,290 @@
+//! floe-analysis metrics on constructed cases with known answers, and the
+//! streaming slip-event detector against a brute-force recount.
+
+use std::collections::BTreeMap;
+
+use floe_analysis::profile::{shear_band, velocity_profile};
+use floe_analysis::slip_events::{log_histogram, SlipEvent, SlipEventDetector, SlipEventRule};
+use floe_analysis::stress::{channel_stress, invariants, peak_to_steady};
+use proptest::prelude::*;
+
+/// `per_bin` evenly spaced samples in each of `bins` bins of [0, w): each
+/// bin's mean position is its centre.
+fn samples(w: f64, bins: usize, per_bin: usize) -> Vec<f64> {
+    let n = bins * per_bin;
+    (0..n).map(|j| (j as f64 + 0.5) * w / n as f64).collect()
+}
+
+#[test]
+fn uniform_shear_spans_the_channel() {
+    let (w, bins) = (25_000.0, 50);
+    let y = samples(w, bins, 8);
+    let u: Vec<f64> = y.iter().map(|y| 0.2 * y / w - 0.1).collect();
+    let p = velocity_profile(&y, &u, &vec![1.0; y.len()], 0.0, w, bins).unwrap();
+    assert_eq!(p.centre_m.len(), bins);
+    let band = shear_band(&p).unwrap();
+    let h = w / bins as f64;
+    assert!(
+        (band.equivalent_width_m - (w - h)).abs() < 1e-6 * w,
+        "{band:?}"
+    );
+    assert!(
+        (band.width_10_90_m - 0.8 * (w - h)).abs() < 1e-6 * w,
+        "{band:?}"
+    );
+    assert!((band.peak_shear_rate_per_s - 0.2 / w).abs() < 1e-9 * 0.2 / w);
+}
+
+#[test]
+fn tanh_band_has_width_two_delta() {
+    let (w, bins) = (100_000.0, 400);
+    let delta = w / 20.0;
+    let y = samples(w, bins, 10);
+    let u: Vec<f64> = y
+        .iter()
+        .map(|y| 0.3 * ((y - w / 2.0) / delta).tanh())
+        .collect();
+    let p = velocity_profile(&y, &u, &vec![1.0; y.len()], 0.0, w, bins).unwrap();
+    let band = shear_band(&p).unwrap();
+    // Bin averaging and finite differences err by O((h/δ)²) = O(0.04²).
+    let rel = |got: f64, want: f64| (got - want).abs() / want;
+    assert!(rel(band.equivalent_width_m, 2.0 * delta) < 2e-3, "{band:?}");
+    assert!(
+        rel(band.width_10_90_m, 2.0 * 0.8f64.atanh() * delta) < 2e-3,
+        "{band:?}"
+    );
+    assert!((band.peak_at_m - w / 2.0).abs() <= w / bins as f64);
+}
+
+#[test]
+fn profile_is_weighted_and_skips_empty_bins() {
+    let p = velocity_profile(
+        &[1.0, 1.5, 7.0, -1.0, 10.0],
+        &[0.0, 4.0, 1.0, 99.0, 99.0],
+        &[1.0, 3.0, 2.0, 1.0, 1.0],
+        0.0,
+        10.0,
+        5,
+    )
+    .unwrap();
+    // Bins of 2 m: [0,2) holds the first two, [6,8) the third; the rest empty;
+    // y = -1 and y = 10 are outside [0, 10).
+    assert_eq!(p.centre_m, vec![1.0, 7.0]);
+    assert_eq!(p.velocity_m_per_s, vec![3.0, 1.0]);
+    assert_eq!(p.weight, vec![4.0, 2.0]);
+    assert!(velocity_profile(&[1.0], &[], &[], 0.0, 1.0, 1).is_err());
+    assert!(velocity_profile(&[], &[], &[], 1.0, 1.0, 1).is_err());
+    let flat = velocity_profile(&[0.5, 1.5], &[1.0, 1.0], &[1.0, 1.0], 0.0, 2.0, 2).unwrap();
+    assert!(shear_band(&flat).is_err(), "no jump, no band");
+}
+
+/// A snapshot: its time and its (pair, slip rate) contacts, sorted by pair.
+type Snapshot = (f64, Vec<([u32; 2], f64)>);
+type History = Vec<Snapshot>;
+
+/// Snapshot `k` of a constructed history: (pair, slip rate) sorted by pair.
+fn history() -> History {
+    (0..12)
+        .map(|k| {
+            let t = 10.0 * k as f64;
+            let mut c = Vec::new();
+            // Healed, then fails for snapshots 5..=7, then heals again.
+            c.push(([1, 2], if (5..=7).contains(&k) { 1e-2 } else { 1e-6 }));
+            // Slides steadily: never an event.
+            c.push(([3, 4], 1e-2));
+            // Appears already sliding at snapshot 4: not an event.
+            if k >= 4 {
+                c.push(([5, 6], 1e-2));
+            }
+            // Accelerates fivefold: below the jump factor.
+            c.push(([7, 8], if k >= 6 { 5e-3 } else { 1e-3 }));
+            // Fails at snapshot 9 and the contact breaks after snapshot 10.
+            if k <= 10 {
+                c.push(([9, 10], if k >= 9 { 2e-2 } else { 1e-5 }));
+            }
+            // Two periodic images of one pair: the faster one counts; jumps at 3..=3.
+            let v = if k == 3 { 4e-3 } else { 1e-5 };
+            c.push(([11, 12], 1e-7));
+            c.push(([11, 12], v));
+            (t, c)
+        })
+        .collect()
+}
+
+fn detect(rule: SlipEventRule, h: &[Snapshot]) -> Vec<SlipEvent> {
+    let mut d = SlipEventDetector::new(rule).unwrap();
+    for (t, c) in h {
+        let pairs: Vec<[u32; 2]> = c.iter().map(|x| x.0).collect();
+        let rates: Vec<f64> = c.iter().map(|x| x.1).collect();
+        d.push(*t, &pairs, &rates).unwrap();
+    }
+    let mut e = d.finish();
+    e.sort_by(|a, b| a.pair.cmp(&b.pair).then(a.start_s.total_cmp(&b.start_s)));
+    e
+}
+
+#[test]
+fn slip_events_in_a_constructed_history() {
+    let events = detect(SlipEventRule::default(), &history());
+    let summary: Vec<([u32; 2], f64, f64, f64)> = events
+        .iter()
+        .map(|e| (e.pair, e.start_s, e.end_s, e.slip_m))
+        .collect();
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+    assert_eq!(events.len(), 3, "{summary:?}");
+    assert_eq!(events[0].pair, [1, 2]);
+    assert!(close(events[0].start_s, 50.0) && close(events[0].end_s, 70.0));
+    assert!(close(events[0].slip_m, 3.0 * 1e-2 * 10.0));
+    assert_eq!(events[1].pair, [9, 10]);
+    assert!(close(events[1].slip_m, 2.0 * 2e-2 * 10.0), "{summary:?}");
+    assert_eq!(events[2].pair, [11, 12]);
+    assert!(close(events[2].slip_m, 4e-3 * 10.0));
+    assert!(close(events[2].peak_rate_m_per_s, 4e-3));
+}
+
+/// The rule applied directly to each pair's full rate history.
+fn brute_force(rule: SlipEventRule, h: &[Snapshot]) -> Vec<SlipEvent> {
+    let mut series: BTreeMap<[u32; 2], Vec<Option<f64>>> = BTreeMap::new();
+    for (k, (_, c)) in h.iter().enumerate() {
+        for &(p, v) in c {
+            let s = series.entry(p).or_insert_with(|| vec![None; h.len()]);
+            s[k] = Some(s[k].map_or(v.abs(), |old: f64| old.max(v.abs())));
+        }
+    }
+    let mut events = Vec::new();
+    for (pair, s) in series {
+        let mut open: Option<SlipEvent> = None;
+        for k in 0..h.len() {
+            let (t, dt) = (h[k].0, if k > 0 { h[k].0 - h[k - 1].0 } else { 0.0 });
+            match (open.take(), s[k]) {
+                (Some(mut e), Some(v)) if v >= rule.min_rate_m_per_s => {
+                    e.end_s = t;
+                    e.slip_m += v * dt;
+                    e.peak_rate_m_per_s = e.peak_rate_m_per_s.max(v);
+                    open = Some(e);
+                }
+                (Some(e), _) => events.push(e),
+                (None, Some(v)) => {
+                    if let Some(prev) = k.checked_sub(1).and_then(|j| s[j]) {
+                        if v >= rule.min_rate_m_per_s && v >= rule.jump_factor * prev {
+                            open = Some(SlipEvent {
+                                pair,
+                                start_s: t,
+                                end_s: t,
+                                slip_m: v * dt,
+                                peak_rate_m_per_s: v,
+                            });
+                        }
+                    }
+                }
+                (None, None) => {}
+            }
+        }
+        events.extend(open);
+    }
+    events
+}
+
+proptest! {
+    #[test]
+    fn detector_agrees_with_a_brute_force_recount(
+        raw in prop::collection::vec(
+            prop::collection::vec((0u32..6, 0u32..6, -7.0f64..-1.0), 0..25), 2..15),
+        dts in prop::collection::vec(0.5f64..20.0, 15),
+    ) {
+        let mut t = 0.0;
+        let h: History = raw
+            .into_iter()
+            .enumerate()
+            .map(|(k, c)| {
+                t += dts[k];
+                let mut c: Vec<([u32; 2], f64)> =
+                    c.into_iter().map(|(a, b, e)| ([a, b], 10f64.powf(e))).collect();
+                c.sort_by_key(|x| x.0);
+                (t, c)
+            })
+            .collect();
+        let rule = SlipEventRule { jump_factor: 5.0, min_rate_m_per_s: 1e-4 };
+        let mut want = brute_force(rule, &h);
+        want.sort_by(|a, b| a.pair.cmp(&b.pair).then(a.start_s.total_cmp(&b.start_s)));
+        prop_assert_eq!(detect(rule, &h), want);
+    }
+}
+
+#[test]
+fn detector_refuses_bad_input() {
+    assert!(SlipEventDetector::new(SlipEventRule {
+        jump_factor: 1.0,
+        min_rate_m_per_s: 1.0
+    })
+    .is_err());
+    let mut d = SlipEventDetector::new(SlipEventRule::default()).unwrap();
+    assert!(
+        d.push(0.0, &[[2, 3], [1, 2]], &[0.0, 0.0]).is_err(),
+        "unsorted"
+    );
+    assert!(d.push(0.0, &[[1, 2]], &[]).is_err(), "lengths");
+    d.push(1.0, &[], &[]).unwrap();
+    assert!(d.push(1.0, &[], &[]).is_err(), "time must increase");
+}
+
+#[test]
+fn log_histogram_counts_per_decade() {
+    let h = log_histogram(&[1.5e-3, 2e-3, 5e-2, 0.9, 0.0, -1.0], 1);
+    let counts: Vec<usize> = h.iter().map(|b| b.2).collect();
+    assert_eq!(counts, vec![2, 1, 1]);
+    assert!((h[0].0 - 1e-3).abs() < 1e-15 && (h[2].1 - 1.0).abs() < 1e-12);
+    assert_eq!(
+        log_histogram(&[1.5e-3, 2e-3, 5e-2, 0.9], 2)
+            .iter()
+            .map(|b| b.2)
+            .sum::<usize>(),
+        4
+    );
+    assert!(log_histogram(&[], 3).is_empty());
+}
+
+#[test]
+fn peak_to_steady_of_an_exponential_overshoot() {
+    // s(t) = s_ss (1 + a exp(-t/τ)): peak s_ss (1 + a) at t = 0, steady s_ss.
+    let (s_ss, a, tau) = (-5e3, 0.8, 100.0);
+    let t: Vec<f64> = (0..=2000).map(|k| k as f64).collect();
+    let s: Vec<f64> = t
+        .iter()
+        .map(|t| s_ss * (1.0 + a * (-t / tau).exp()))
+        .collect();
+    let r = peak_to_steady(&t, &s, 0.25).unwrap();
+    assert_eq!(r.peak_at_s, 0.0);
+    assert!((r.ratio - (1.0 + a)).abs() < 1e-6, "{r:?}");
+    assert!((r.steady - s_ss).abs() < 1e-6 * s_ss.abs());
+    assert!(peak_to_steady(&t, &vec![0.0; t.len()], 0.5).is_err());
+    assert!(peak_to_steady(&t, &s, 0.0).is_err());
+}
+
+#[test]
+fn channel_components_of_a_simple_shear() {
+    // Pure shear plus confinement: σxy = σyx = 2, σyy = -3 (compressive).
+    let c = channel_stress([0.0, 2.0, 2.0, -3.0]);
+    assert_eq!(c.shear_n_per_m, 2.0);
+    assert_eq!(c.normal_n_per_m, 3.0);
+    let i = invariants([-1.0, 0.0, 0.0, -3.0]);
+    assert_eq!(i.pressure_n_per_m, 2.0);
+    assert_eq!(i.max_shear_n_per_m, 1.0);
+}
+
+proptest! {
+    #[test]
+    fn invariants_do_not_depend_on_the_frame(
+        xx in -1e5f64..1e5, xy in -1e5f64..1e5, yy in -1e5f64..1e5, angle in 0.0f64..6.3,
+    ) {
+        let (c, s) = (angle.cos(), angle.sin());
+        // σ' = R σ Rᵀ for a symmetric σ.
+        let rxx = c * c * xx + 2.0 * c * s * xy + s * s * yy;
+        let ryy = s * s * xx - 2.0 * c * s * xy + c * c * yy;
+        let rxy = (c * c - s * s) * xy + c * s * (yy - xx);
+        let (a, b) = (invariants([xx, xy, xy, yy]), invariants([rxx, rxy, rxy, ryy]));
+        let tol = 1e-9 * (xx.abs() + xy.abs() + yy.abs() + 1.0);
+        prop_assert!((a.pressure_n_per_m - b.pressure_n_per_m).abs() < tol);
+        prop_assert!((a.max_shear_n_per_m - b.max_shear_n_per_m).abs() < tol);
+    }
+}
