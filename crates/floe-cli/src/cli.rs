@@ -10,7 +10,11 @@ use crate::error::CliError;
 use crate::render::Snapshots;
 use crate::run::RunArgs;
 use crate::slider::{self, ExperimentOptions};
-use crate::{info, render, run};
+use crate::compare::variants::{LawChoice, Matching};
+use crate::compare::CompareArgs;
+use crate::sweep::grid::parse_setting;
+use crate::sweep::SweepArgs;
+use crate::{compare, info, render, run, sweep};
 
 /// floe: sea-ice floes with rate-and-state friction.
 #[derive(Debug, Parser)]
@@ -59,6 +63,62 @@ pub enum Command {
         /// The run's HDF5 file.
         file: PathBuf,
     },
+    /// Run one scenario under several friction laws and report the differences.
+    Compare {
+        /// Scenario file.
+        scenario: PathBuf,
+        /// Laws to compare, comma-separated.
+        #[arg(long, default_value = "amontons,rate,rate-state")]
+        laws: String,
+        /// Output directory: <law>.h5, <law>.toml, <law>/ maps, report.md and figures.
+        #[arg(long, short)]
+        output: PathBuf,
+        /// Slip speed at which Amontons' mu equals the rate-and-state steady state, m/s.
+        #[arg(long, default_value_t = 1e-2, value_name = "M_PER_S")]
+        reference_slip_speed: f64,
+        /// Give Amontons' mu explicitly instead.
+        #[arg(long, value_name = "MU")]
+        amontons_mu: Option<f64>,
+        /// Worker threads per run.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Replace existing outputs.
+        #[arg(long)]
+        force: bool,
+        /// No progress bars.
+        #[arg(long, short)]
+        quiet: bool,
+        /// Metric options.
+        #[command(flatten)]
+        metrics: MetricArgs,
+    },
+    /// Run a scenario over the cartesian product of --set values and tabulate metrics.
+    Sweep {
+        /// Scenario file (omit with --gather).
+        #[arg(required_unless_present = "gather")]
+        scenario: Option<PathBuf>,
+        /// KEY=V1,V2,...: a dotted scenario key and its values (repeat for more keys).
+        #[arg(long = "set", value_name = "KEY=VALUES")]
+        set: Vec<String>,
+        /// Sweep directory.
+        #[arg(long, short)]
+        output: PathBuf,
+        /// Only write one scenario file per variant and the manifest (for HPC job arrays).
+        #[arg(long)]
+        emit: bool,
+        /// Tabulate the outputs already in the sweep directory.
+        #[arg(long, conflicts_with_all = ["emit", "set"])]
+        gather: bool,
+        /// Total thread budget; variants run in parallel.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Replace existing files.
+        #[arg(long)]
+        force: bool,
+        /// Metric options.
+        #[command(flatten)]
+        metrics: MetricArgs,
+    },
     /// Draw PNG maps of the floes and plots of the observables.
     Render {
         /// The run's HDF5 file.
@@ -79,6 +139,33 @@ pub enum Command {
         #[arg(long)]
         force: bool,
     },
+}
+
+/// `floe compare` / `floe sweep` metric options shared by both.
+#[derive(Debug, Clone, clap::Args)]
+pub struct MetricArgs {
+    /// Bins across the channel for the velocity profile.
+    #[arg(long, default_value_t = 25)]
+    pub profile_bins: usize,
+    /// A slip event: the slip rate jumps by at least this factor between snapshots...
+    #[arg(long, default_value_t = 10.0)]
+    pub slip_jump: f64,
+    /// ...to at least this slip rate, m/s.
+    #[arg(long, default_value_t = 1e-3)]
+    pub slip_min_rate: f64,
+}
+
+impl MetricArgs {
+    fn options(&self) -> crate::compare::metrics::MetricOptions {
+        crate::compare::metrics::MetricOptions {
+            profile_bins: self.profile_bins,
+            slip: floe_analysis::slip_events::SlipEventRule {
+                jump_factor: self.slip_jump,
+                min_rate_m_per_s: self.slip_min_rate,
+            },
+            ..Default::default()
+        }
+    }
 }
 
 /// `floe render --color`
@@ -246,6 +333,72 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             Ok(summary.describe(&args.output))
         }
         Command::Info { file } => info::describe(&file),
+        Command::Compare {
+            scenario,
+            laws,
+            output,
+            reference_slip_speed,
+            amontons_mu,
+            threads,
+            force,
+            quiet,
+            metrics,
+        } => {
+            if !(reference_slip_speed.is_finite() && reference_slip_speed > 0.0) {
+                return Err(CliError::Usage(format!(
+                    "--reference-slip-speed {reference_slip_speed}: must be a positive speed in m/s"
+                )));
+            }
+            let args = CompareArgs {
+                scenario,
+                laws: LawChoice::parse_list(&laws)?,
+                out_dir: output,
+                threads,
+                force,
+                matching: Matching {
+                    reference_slip_m_per_s: reference_slip_speed,
+                    amontons_mu,
+                },
+                metrics: metrics.options(),
+                progress: !quiet,
+            };
+            let report = compare::compare(&args)?;
+            Ok(format!("report: {}", report.display()))
+        }
+        Command::Sweep {
+            scenario,
+            set,
+            output,
+            emit,
+            gather,
+            threads,
+            force,
+            metrics,
+        } => {
+            if gather {
+                let table = sweep::gather(&output, &metrics.options())?;
+                return Ok(format!("results: {}", table.display()));
+            }
+            let settings = set
+                .iter()
+                .map(|s| parse_setting(s))
+                .collect::<Result<Vec<_>, _>>()?;
+            let args = SweepArgs {
+                scenario: scenario.expect("clap requires it without --gather"),
+                settings,
+                out_dir: output,
+                threads,
+                force,
+                emit_only: emit,
+                metrics: metrics.options(),
+            };
+            let path = sweep::sweep(&args)?;
+            Ok(if emit {
+                format!("variants written; manifest: {} (run each variant_NNN.toml with `floe run`, then `floe sweep --gather`)", path.display())
+            } else {
+                format!("results: {}", path.display())
+            })
+        }
         Command::Render {
             file,
             snapshot,

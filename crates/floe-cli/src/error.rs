@@ -54,6 +54,9 @@ pub enum CliError {
     /// Writing or reading a run's HDF5 file failed.
     #[error("{0}")]
     Output(#[from] floe_io::IoError),
+    /// A metric could not be computed from a run's output.
+    #[error("{0}")]
+    Analysis(#[from] floe_analysis::AnalysisError),
     /// The run was interrupted (Ctrl-C, SIGTERM) and stopped cleanly.
     #[error("interrupted at step {step}; final snapshot and checkpoint written to {}; continue with `floe run --resume {}`", output.display(), output.display())]
     Interrupted {

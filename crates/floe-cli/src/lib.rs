@@ -4,6 +4,7 @@
 #![deny(missing_docs)]
 
 pub mod cli;
+pub mod compare;
 pub mod error;
 pub mod info;
 pub mod input;
@@ -14,5 +15,6 @@ pub mod run;
 pub mod scenario;
 pub mod series_csv;
 pub mod slider;
+pub mod sweep;
 
 pub use error::CliError;
