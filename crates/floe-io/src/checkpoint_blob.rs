@@ -1,0 +1,518 @@
+//! A [`WorldState`] as a self-checking byte string.
+//!
+//! Layout (all integers little-endian, every `f64` as its IEEE bits, so the
+//! state round-trips bitwise):
+//!
+//! | bytes | content |
+//! | --- | --- |
+//! | 8 | magic `FLOECKPT` |
+//! | 4 | format version ([`FORMAT_VERSION`]) |
+//! | 4 | zero |
+//! | 8 | payload length |
+//! | 8 | FNV-1a 64 checksum of the payload |
+//! | ... | payload |
+//!
+//! The payload holds the output counts at the checkpoint (snapshots,
+//! contact rows, samples per observable), then every field of the state in
+//! declaration order; a vector is its length (u64) then its elements.
+//! Bytes after the payload are ignored (a slot is reused for smaller states
+//! without shrinking).
+
+use floe_dem::checkpoint::WorldState;
+use floe_dem::contacts::{BrokenContact, ContactRecord};
+use floe_dem::floes::{Floes, Motion};
+use floe_dem::world::EnergyLedger;
+use floe_dem::Vec2;
+use floe_friction::ContactState;
+
+/// First bytes of every checkpoint.
+pub const MAGIC: &[u8; 8] = b"FLOECKPT";
+/// Version of the encoding written; others are refused.
+pub const FORMAT_VERSION: u32 = 1;
+/// Bytes before the payload.
+pub const HEADER_LEN: usize = 32;
+
+/// How much output had been written when a checkpoint was taken: what a
+/// resume truncates the file back to.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct OutputCounts {
+    /// Snapshots written.
+    pub snapshots: u64,
+    /// Rows of the contact datasets (including the padding to chunk starts).
+    pub contact_rows: u64,
+    /// Samples written, per observable.
+    pub observables: Vec<(String, u64)>,
+}
+
+/// FNV-1a, 64 bit.
+pub fn fnv1a64(bytes: &[u8]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+struct Enc(Vec<u8>);
+
+impl Enc {
+    fn u8(&mut self, v: u8) {
+        self.0.push(v);
+    }
+    fn u32(&mut self, v: u32) {
+        self.0.extend_from_slice(&v.to_le_bytes());
+    }
+    fn u64(&mut self, v: u64) {
+        self.0.extend_from_slice(&v.to_le_bytes());
+    }
+    fn f64(&mut self, v: f64) {
+        self.u64(v.to_bits());
+    }
+    fn v2(&mut self, v: Vec2) {
+        self.f64(v.x);
+        self.f64(v.y);
+    }
+    fn len(&mut self, n: usize) {
+        self.u64(n as u64);
+    }
+    fn f64s(&mut self, v: &[f64]) {
+        self.len(v.len());
+        v.iter().for_each(|&x| self.f64(x));
+    }
+    fn v2s(&mut self, v: &[Vec2]) {
+        self.len(v.len());
+        v.iter().for_each(|&x| self.v2(x));
+    }
+    fn friction(&mut self, s: &ContactState) {
+        let ContactState {
+            tangential_force_n,
+            theta,
+            solver_guess,
+        } = *s;
+        self.f64(tangential_force_n);
+        self.f64(theta);
+        self.f64(solver_guess);
+    }
+    fn str(&mut self, s: &str) {
+        self.len(s.len());
+        self.0.extend_from_slice(s.as_bytes());
+    }
+}
+
+/// The checkpoint bytes of `state` with the output `counts`.
+pub fn encode(state: &WorldState, counts: &OutputCounts) -> Vec<u8> {
+    let mut e = Enc(Vec::with_capacity(estimate_len(state)));
+    e.u64(counts.snapshots);
+    e.u64(counts.contact_rows);
+    e.len(counts.observables.len());
+    for (name, n) in &counts.observables {
+        e.str(name);
+        e.u64(*n);
+    }
+    // Exhaustive destructuring: a field added to the engine's state fails
+    // to compile here instead of being silently left out of checkpoints.
+    let WorldState {
+        floes,
+        contacts,
+        broken,
+        time_s,
+        steps,
+        energy,
+        force,
+        torque,
+        external_force,
+        external_torque,
+    } = state;
+    let Floes {
+        id,
+        position,
+        angle,
+        velocity,
+        angular_velocity,
+        thickness_m,
+        mass_kg,
+        inertia_kg_m2,
+        area_m2,
+        radius_m,
+        r3_moment_m5,
+        motion,
+        vertex_start,
+        vertices,
+        owned,
+    } = floes;
+    e.len(id.len());
+    id.iter().for_each(|&v| e.u64(v));
+    e.v2s(position);
+    e.f64s(angle);
+    e.v2s(velocity);
+    e.f64s(angular_velocity);
+    e.f64s(thickness_m);
+    e.f64s(mass_kg);
+    e.f64s(inertia_kg_m2);
+    e.f64s(area_m2);
+    e.f64s(radius_m);
+    e.f64s(r3_moment_m5);
+    e.len(motion.len());
+    for m in motion {
+        match *m {
+            Motion::Free => e.u8(0),
+            Motion::Prescribed { velocity } => {
+                e.u8(1);
+                e.v2(velocity);
+            }
+        }
+    }
+    e.len(vertex_start.len());
+    vertex_start.iter().for_each(|&v| e.u32(v));
+    e.v2s(vertices);
+    e.len(*owned);
+    e.len(contacts.len());
+    for c in contacts {
+        let ContactRecord {
+            a,
+            b,
+            image_offset,
+            friction,
+            age_steps,
+            overlap_m2,
+            point,
+            normal,
+            length_m,
+            normal_force_n,
+            slip_rate_m_per_s,
+            friction_power_w,
+            damping_power_w,
+            elastic_force_n,
+            normal_energy_j,
+            tangential_energy_j,
+        } = c;
+        e.u32(*a);
+        e.u32(*b);
+        e.v2(*image_offset);
+        e.friction(friction);
+        e.u64(*age_steps);
+        for v in [
+            *overlap_m2,
+            point.x,
+            point.y,
+            normal.x,
+            normal.y,
+            *length_m,
+            *normal_force_n,
+            *slip_rate_m_per_s,
+            *friction_power_w,
+            *damping_power_w,
+            *elastic_force_n,
+            *normal_energy_j,
+            *tangential_energy_j,
+        ] {
+            e.f64(v);
+        }
+    }
+    e.len(broken.len());
+    for c in broken {
+        let BrokenContact {
+            a,
+            b,
+            friction,
+            broke_at_s,
+        } = c;
+        e.u32(*a);
+        e.u32(*b);
+        e.friction(friction);
+        e.f64(*broke_at_s);
+    }
+    e.f64(*time_s);
+    e.u64(*steps);
+    let EnergyLedger {
+        forcing_work_j,
+        friction_dissipation_j,
+        damping_dissipation_j,
+        boundary_work_j,
+        released_at_break_j,
+    } = *energy;
+    for v in [
+        forcing_work_j,
+        friction_dissipation_j,
+        damping_dissipation_j,
+        boundary_work_j,
+        released_at_break_j,
+    ] {
+        e.f64(v);
+    }
+    e.v2s(force);
+    e.f64s(torque);
+    e.v2s(external_force);
+    e.f64s(external_torque);
+
+    let payload = e.0;
+    let mut out = Vec::with_capacity(HEADER_LEN + payload.len());
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    out.extend_from_slice(&0u32.to_le_bytes());
+    out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
+    out.extend_from_slice(&fnv1a64(&payload).to_le_bytes());
+    out.extend_from_slice(&payload);
+    out
+}
+
+/// A generous guess of the encoded size, for reserving slot space.
+pub fn estimate_len(state: &WorldState) -> usize {
+    HEADER_LEN
+        + 1024
+        + state.floes.len() * 200
+        + state.floes.vertices.len() * 16
+        + state.contacts.len() * 168
+        + state.broken.len() * 40
+}
+
+struct Dec<'a> {
+    buf: &'a [u8],
+    pos: usize,
+}
+
+type DecResult<T> = Result<T, String>;
+
+impl<'a> Dec<'a> {
+    fn take(&mut self, n: usize) -> DecResult<&'a [u8]> {
+        let end = self
+            .pos
+            .checked_add(n)
+            .filter(|&e| e <= self.buf.len())
+            .ok_or_else(|| format!("truncated at byte {} (wanted {n} more)", self.pos))?;
+        let s = &self.buf[self.pos..end];
+        self.pos = end;
+        Ok(s)
+    }
+    fn u8(&mut self) -> DecResult<u8> {
+        Ok(self.take(1)?[0])
+    }
+    fn u32(&mut self) -> DecResult<u32> {
+        let mut b = [0; 4];
+        b.copy_from_slice(self.take(4)?);
+        Ok(u32::from_le_bytes(b))
+    }
+    fn u64(&mut self) -> DecResult<u64> {
+        let mut b = [0; 8];
+        b.copy_from_slice(self.take(8)?);
+        Ok(u64::from_le_bytes(b))
+    }
+    fn f64(&mut self) -> DecResult<f64> {
+        Ok(f64::from_bits(self.u64()?))
+    }
+    fn v2(&mut self) -> DecResult<Vec2> {
+        Ok(Vec2::new(self.f64()?, self.f64()?))
+    }
+    /// A length prefix, checked against the bytes left (each element is at
+    /// least `min_elem` bytes), so a corrupt length cannot allocate wildly.
+    fn len(&mut self, min_elem: usize) -> DecResult<usize> {
+        let n = self.u64()?;
+        let left = (self.buf.len() - self.pos) as u64;
+        if n.saturating_mul(min_elem as u64) > left {
+            return Err(format!(
+                "length {n} at byte {} exceeds the {left} bytes left",
+                self.pos - 8
+            ));
+        }
+        Ok(n as usize)
+    }
+    fn vec<T>(
+        &mut self,
+        min_elem: usize,
+        mut f: impl FnMut(&mut Self) -> DecResult<T>,
+    ) -> DecResult<Vec<T>> {
+        let n = self.len(min_elem)?;
+        let mut v = Vec::with_capacity(n);
+        for _ in 0..n {
+            v.push(f(self)?);
+        }
+        Ok(v)
+    }
+    fn f64s(&mut self) -> DecResult<Vec<f64>> {
+        self.vec(8, Self::f64)
+    }
+    fn v2s(&mut self) -> DecResult<Vec<Vec2>> {
+        self.vec(16, Self::v2)
+    }
+    fn friction(&mut self) -> DecResult<ContactState> {
+        Ok(ContactState {
+            tangential_force_n: self.f64()?,
+            theta: self.f64()?,
+            solver_guess: self.f64()?,
+        })
+    }
+    fn str(&mut self) -> DecResult<String> {
+        let n = self.len(1)?;
+        String::from_utf8(self.take(n)?.to_vec()).map_err(|_| "a series name is not UTF-8".into())
+    }
+}
+
+/// Checks the header and checksum only; returns the payload.
+pub fn verify(bytes: &[u8]) -> DecResult<&[u8]> {
+    if bytes.len() < HEADER_LEN {
+        return Err(format!("{} bytes, shorter than the header", bytes.len()));
+    }
+    if &bytes[..8] != MAGIC {
+        return Err("bad magic (not a floe checkpoint)".into());
+    }
+    let word = |at: usize| {
+        let mut b = [0; 8];
+        b.copy_from_slice(&bytes[at..at + 8]);
+        u64::from_le_bytes(b)
+    };
+    let version = u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]);
+    if version != FORMAT_VERSION {
+        return Err(format!(
+            "format version {version}; this floe reads version {FORMAT_VERSION}"
+        ));
+    }
+    let len = word(16);
+    let available = (bytes.len() - HEADER_LEN) as u64;
+    if len > available {
+        return Err(format!(
+            "payload of {len} bytes but only {available} stored"
+        ));
+    }
+    let payload = &bytes[HEADER_LEN..HEADER_LEN + len as usize];
+    let (stored, actual) = (word(24), fnv1a64(payload));
+    if stored != actual {
+        return Err(format!(
+            "checksum mismatch (stored {stored:016x}, computed {actual:016x})"
+        ));
+    }
+    Ok(payload)
+}
+
+/// The state and counts of checkpoint `bytes`, after checking the header,
+/// the checksum and the state's consistency.
+pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
+    let payload = verify(bytes)?;
+    let d = &mut Dec {
+        buf: payload,
+        pos: 0,
+    };
+    let snapshots = d.u64()?;
+    let contact_rows = d.u64()?;
+    let observables = d.vec(16, |d| Ok((d.str()?, d.u64()?)))?;
+    let counts = OutputCounts {
+        snapshots,
+        contact_rows,
+        observables,
+    };
+    let floes = Floes {
+        id: d.vec(8, Dec::u64)?,
+        position: d.v2s()?,
+        angle: d.f64s()?,
+        velocity: d.v2s()?,
+        angular_velocity: d.f64s()?,
+        thickness_m: d.f64s()?,
+        mass_kg: d.f64s()?,
+        inertia_kg_m2: d.f64s()?,
+        area_m2: d.f64s()?,
+        radius_m: d.f64s()?,
+        r3_moment_m5: d.f64s()?,
+        motion: d.vec(1, |d| match d.u8()? {
+            0 => Ok(Motion::Free),
+            1 => Ok(Motion::Prescribed { velocity: d.v2()? }),
+            t => Err(format!("unknown motion tag {t}")),
+        })?,
+        vertex_start: d.vec(4, Dec::u32)?,
+        vertices: d.v2s()?,
+        owned: d.u64()? as usize,
+    };
+    let contacts = d.vec(8, |d| {
+        Ok(ContactRecord {
+            a: d.u32()?,
+            b: d.u32()?,
+            image_offset: d.v2()?,
+            friction: d.friction()?,
+            age_steps: d.u64()?,
+            overlap_m2: d.f64()?,
+            point: d.v2()?,
+            normal: d.v2()?,
+            length_m: d.f64()?,
+            normal_force_n: d.f64()?,
+            slip_rate_m_per_s: d.f64()?,
+            friction_power_w: d.f64()?,
+            damping_power_w: d.f64()?,
+            elastic_force_n: d.f64()?,
+            normal_energy_j: d.f64()?,
+            tangential_energy_j: d.f64()?,
+        })
+    })?;
+    let broken = d.vec(8, |d| {
+        Ok(BrokenContact {
+            a: d.u32()?,
+            b: d.u32()?,
+            friction: d.friction()?,
+            broke_at_s: d.f64()?,
+        })
+    })?;
+    let time_s = d.f64()?;
+    let steps = d.u64()?;
+    let energy = EnergyLedger {
+        forcing_work_j: d.f64()?,
+        friction_dissipation_j: d.f64()?,
+        damping_dissipation_j: d.f64()?,
+        boundary_work_j: d.f64()?,
+        released_at_break_j: d.f64()?,
+    };
+    let state = WorldState {
+        floes,
+        contacts,
+        broken,
+        time_s,
+        steps,
+        energy,
+        force: d.v2s()?,
+        torque: d.f64s()?,
+        external_force: d.v2s()?,
+        external_torque: d.f64s()?,
+    };
+    if d.pos != payload.len() {
+        return Err(format!(
+            "{} unread bytes after the state",
+            payload.len() - d.pos
+        ));
+    }
+    check_floes(&state.floes)?;
+    state.validate().map_err(|e| e.to_string())?;
+    Ok((state, counts))
+}
+
+/// The floe arrays agree in length and the vertex offsets are in range, so
+/// that stepping a decoded state cannot index out of bounds.
+fn check_floes(f: &Floes) -> DecResult<()> {
+    let n = f.id.len();
+    for (name, len) in [
+        ("position", f.position.len()),
+        ("angle", f.angle.len()),
+        ("velocity", f.velocity.len()),
+        ("angular_velocity", f.angular_velocity.len()),
+        ("thickness", f.thickness_m.len()),
+        ("mass", f.mass_kg.len()),
+        ("inertia", f.inertia_kg_m2.len()),
+        ("area", f.area_m2.len()),
+        ("radius", f.radius_m.len()),
+        ("r3_moment", f.r3_moment_m5.len()),
+        ("motion", f.motion.len()),
+    ] {
+        if len != n {
+            return Err(format!("floe {name} has {len} entries for {n} floes"));
+        }
+    }
+    if f.vertex_start.len() != n + 1
+        || f.vertex_start.first() != Some(&0)
+        || f.vertex_start
+            .windows(2)
+            .any(|w| w[1].saturating_sub(w[0]) < 3)
+        || f.vertex_start.last().map(|&v| v as usize) != Some(f.vertices.len())
+    {
+        return Err("floe vertex offsets do not describe the stored vertices".into());
+    }
+    if f.owned > n {
+        return Err(format!("{} owned floes of {n}", f.owned));
+    }
+    Ok(())
+}

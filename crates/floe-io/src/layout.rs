@@ -1,0 +1,79 @@
+//! Names of the groups, datasets and attributes of a run file (H5MD 1.1
+//! plus floe-specific groups); docs/output.md describes each.
+
+/// The H5MD version written, `[major, minor]`.
+pub const H5MD_VERSION: [i32; 2] = [1, 1];
+/// The floe layout version written; files with a larger one are refused.
+pub const LAYOUT_VERSION: u32 = 1;
+/// `creator/name` of every floe file: how a floe file is recognised.
+pub const CREATOR: &str = "floe";
+
+/// H5MD metadata group.
+pub const H5MD: &str = "h5md";
+/// The floes' particle group.
+pub const FLOES: &str = "particles/floes";
+/// The simulation box, inside [`FLOES`].
+pub const BOX: &str = "particles/floes/box";
+/// The time-dependent floe elements, inside [`FLOES`], with their units.
+pub const FLOE_ELEMENTS: [(&str, &str, usize); 4] = [
+    ("position", "m", 2),
+    ("velocity", "m s-1", 2),
+    ("angle", "rad", 1),
+    ("angular_velocity", "rad s-1", 1),
+];
+/// Contact lists, one per snapshot.
+pub const CONTACTS: &str = "contacts";
+/// Assembly-wide time series.
+pub const OBSERVABLES: &str = "observables";
+/// Run parameters (floe-specific).
+pub const PARAMETERS: &str = "parameters";
+/// The two checkpoint slots and which one is valid.
+pub const CHECKPOINT: &str = "checkpoint";
+/// Attribute of [`CHECKPOINT`]: the valid slot (0 or 1), -1 for none.
+pub const VALID_SLOT: &str = "valid_slot";
+/// The checkpoint slots' names inside [`CHECKPOINT`].
+pub const SLOTS: [&str; 2] = ["slot0", "slot1"];
+
+/// Per-contact datasets of [`CONTACTS`]: name, unit, values per row.
+pub const CONTACT_FIELDS: [(&str, &str, usize); 8] = [
+    ("theta", "1", 1),
+    ("mu", "1", 1),
+    ("normal_force", "N", 1),
+    ("tangential_force", "N", 1),
+    ("slip_rate", "m s-1", 1),
+    ("overlap_area", "m2", 1),
+    ("point", "m", 2),
+    ("normal", "1", 2),
+];
+
+/// Rows of a time series dataset per chunk (uncompressed: see
+/// docs/output.md, "Why some datasets are not compressed").
+pub const SERIES_CHUNK: usize = 256;
+/// Largest number of floes in one chunk of a snapshot array.
+pub const MAX_FLOE_CHUNK: usize = 65_536;
+
+/// The observables written for each sample: name, unit, and the values
+/// (one, or four for the stress tensor `[xx, xy, yx, yy]`).
+pub fn observable_samples(
+    o: &floe_dem::observables::Observables,
+) -> [(&'static str, &'static str, Vec<f64>); 12] {
+    let l = &o.ledger;
+    [
+        (
+            "kinetic_translational",
+            "J",
+            vec![o.kinetic_translational_j],
+        ),
+        ("kinetic_rotational", "J", vec![o.kinetic_rotational_j]),
+        ("contact_energy", "J", vec![o.contact_energy_j]),
+        ("forcing_work", "J", vec![l.forcing_work_j]),
+        ("friction_dissipation", "J", vec![l.friction_dissipation_j]),
+        ("damping_dissipation", "J", vec![l.damping_dissipation_j]),
+        ("boundary_work", "J", vec![l.boundary_work_j]),
+        ("released_at_break", "J", vec![l.released_at_break_j]),
+        ("mean_stress", "N m-1", o.mean_stress_n_per_m.to_vec()),
+        ("contacts", "1", vec![o.contacts as f64]),
+        ("sliding_fraction", "1", vec![o.sliding_fraction]),
+        ("mean_mu", "1", vec![o.mean_mu]),
+    ]
+}
