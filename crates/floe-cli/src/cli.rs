@@ -7,10 +7,10 @@ use floe_friction::experiments::Preset;
 use floe_friction::{Form, StateLaw};
 
 use crate::error::CliError;
-use crate::render::Snapshots;
-use crate::run::RunArgs;
+// TEMP (until floe-io lands): use crate::render::Snapshots;
+// TEMP (until floe-io lands): use crate::run::RunArgs;
 use crate::slider::{self, ExperimentOptions};
-use crate::{info, render, run};
+// TEMP (until floe-io lands): use crate::{info, render, run};
 
 /// floe: sea-ice floes with rate-and-state friction.
 #[derive(Debug, Parser)]
@@ -224,44 +224,48 @@ fn json<T: serde::Serialize>(value: &T) -> String {
 /// Runs a parsed command; returns what to print on standard output.
 pub fn execute(cli: Cli) -> Result<String, CliError> {
     match cli.command {
-        Command::Run {
-            scenario,
-            output,
-            threads,
-            force,
-            resume,
-            max_steps,
-            quiet,
-        } => {
-            let args = RunArgs {
-                scenario,
-                output,
-                threads,
-                force,
-                resume,
-                max_steps,
-                progress: !quiet,
-            };
-            let summary = run::run(&args)?;
-            Ok(summary.describe(&args.output))
-        }
-        Command::Info { file } => info::describe(&file),
-        Command::Render {
-            file,
-            snapshot,
-            every,
-            color,
-            output,
-            force,
-        } => {
-            let which = match (snapshot, every) {
-                (Some(k), _) => Snapshots::One(k),
-                (None, Some(k)) => Snapshots::Every(k),
-                (None, None) => Snapshots::One(-1),
-            };
-            let written = render::render(&file, which, color, &output, force)?;
-            Ok(format!("{} pictures in {}", written.len(), output.display()))
-        }
+        // TEMP (until floe-io lands): run, info and render are disabled.
+        Command::Run { .. } | Command::Info { .. } | Command::Render { .. } => Err(CliError::Usage(
+            "`floe run`, `info` and `render` need floe-io, not on this branch yet".into(),
+        )),
+        // Command::Run {
+        //     scenario,
+        //     output,
+        //     threads,
+        //     force,
+        //     resume,
+        //     max_steps,
+        //     quiet,
+        // } => {
+        //     let args = RunArgs {
+        //         scenario,
+        //         output,
+        //         threads,
+        //         force,
+        //         resume,
+        //         max_steps,
+        //         progress: !quiet,
+        //     };
+        //     let summary = run::run(&args)?;
+        //     Ok(summary.describe(&args.output))
+        // }
+        // Command::Info { file } => info::describe(&file),
+        // Command::Render {
+        //     file,
+        //     snapshot,
+        //     every,
+        //     color,
+        //     output,
+        //     force,
+        // } => {
+        //     let which = match (snapshot, every) {
+        //         (Some(k), _) => Snapshots::One(k),
+        //         (None, Some(k)) => Snapshots::Every(k),
+        //         (None, None) => Snapshots::One(-1),
+        //     };
+        //     let written = render::render(&file, which, color, &output, force)?;
+        //     Ok(format!("{} pictures in {}", written.len(), output.display()))
+        // }
         Command::Slider(SliderCommand::Hold {
             options,
             hold,

@@ -51,9 +51,10 @@ pub enum CliError {
     /// damaged checkpoint).
     #[error("{0}")]
     Engine(#[from] floe_dem::DemError),
-    /// Writing or reading a run's HDF5 file failed.
-    #[error("{0}")]
-    Output(#[from] floe_io::IoError),
+    // TEMP (until floe-io lands):
+    // /// Writing or reading a run's HDF5 file failed.
+    // #[error("{0}")]
+    // Output(#[from] floe_io::IoError),
     /// The run was interrupted (Ctrl-C, SIGTERM) and stopped cleanly.
     #[error("interrupted at step {step}; final snapshot and checkpoint written to {}; continue with `floe run --resume {}`", output.display(), output.display())]
     Interrupted {

@@ -5,12 +5,12 @@
 
 pub mod cli;
 pub mod error;
-pub mod info;
+// TEMP (until floe-io lands): pub mod info;
 pub mod input;
 pub mod plot;
 pub mod protocol_file;
-pub mod render;
-pub mod run;
+// TEMP (until floe-io lands): pub mod render;
+// TEMP (until floe-io lands): pub mod run;
 pub mod scenario;
 pub mod series_csv;
 pub mod slider;
