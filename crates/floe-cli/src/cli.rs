@@ -225,9 +225,11 @@ fn json<T: serde::Serialize>(value: &T) -> String {
 pub fn execute(cli: Cli) -> Result<String, CliError> {
     match cli.command {
         // TEMP (until floe-io lands): run, info and render are disabled.
-        Command::Run { .. } | Command::Info { .. } | Command::Render { .. } => Err(CliError::Usage(
-            "`floe run`, `info` and `render` need floe-io, not on this branch yet".into(),
-        )),
+        Command::Run { .. } | Command::Info { .. } | Command::Render { .. } => {
+            Err(CliError::Usage(
+                "`floe run`, `info` and `render` need floe-io, not on this branch yet".into(),
+            ))
+        }
         // Command::Run {
         //     scenario,
         //     output,
