@@ -40,17 +40,17 @@ struct RawApparatus {
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawLaw {
-    kind: Word,
-    form: Word,
-    state_law: Word,
-    mu: Num,
-    mu0: Num,
-    a: Num,
-    b: Num,
-    c1: Num,
-    v_star_m_per_s: Num,
-    critical_slip_m: Num,
-    v_floor_m_per_s: Num,
+    pub(crate) kind: Word,
+    pub(crate) form: Word,
+    pub(crate) state_law: Word,
+    pub(crate) mu: Num,
+    pub(crate) mu0: Num,
+    pub(crate) a: Num,
+    pub(crate) b: Num,
+    pub(crate) c1: Num,
+    pub(crate) v_star_m_per_s: Num,
+    pub(crate) critical_slip_m: Num,
+    pub(crate) v_floor_m_per_s: Num,
 }
 
 #[derive(Debug, Deserialize)]
@@ -195,7 +195,7 @@ pub fn load(path: &Path) -> Result<SliderSetup, CliError> {
 }
 
 /// The value named by a keyword, or `default` if the key is absent.
-fn keyword<T: Copy>(
+pub(crate) fn keyword<T: Copy>(
     f: &SourceFile,
     word: &Word,
     key: &str,
@@ -235,6 +235,20 @@ pub fn build_law(
     preset: Preset,
     default_form: Form,
 ) -> Result<Law, CliError> {
+    build_law_in(f, raw, preset, default_form, "law", "kind")
+}
+
+/// [`build_law`] for a table named `table` whose law is chosen by the key
+/// `kind_key`: `[law] kind = ...` in protocol files, `[friction] law = ...`
+/// in scenario files. Error messages name the keys as `table.key`.
+pub fn build_law_in(
+    f: &SourceFile,
+    raw: &RawLaw,
+    preset: Preset,
+    default_form: Form,
+    table: &str,
+    kind_key: &str,
+) -> Result<Law, CliError> {
     let kind = raw
         .kind
         .as_ref()
@@ -256,7 +270,7 @@ pub fn build_law(
             let span = raw.kind.as_ref().map(|k| k.span()).unwrap_or(0..0);
             return Err(f.error(
                 span,
-                "law.kind",
+                format!("{table}.{kind_key}"),
                 format!("unknown law `{other}`, expected `amontons`, `rate` or `rate-state`"),
             ));
         }
@@ -284,8 +298,8 @@ pub fn build_law(
         if !allowed.contains(&name) {
             return Err(f.error(
                 span,
-                format!("law.{name}"),
-                format!("does not apply to law kind `{kind}`"),
+                format!("{table}.{name}"),
+                format!("does not apply to law `{kind}`"),
             ));
         }
     }
@@ -295,15 +309,15 @@ pub fn build_law(
               default: f64,
               check: fn(&SourceFile, &Spanned<f64>, &str) -> Result<f64, CliError>| {
         v.as_ref()
-            .map_or(Ok(default), |v| check(f, v, &format!("law.{name}")))
+            .map_or(Ok(default), |v| check(f, v, &format!("{table}.{name}")))
     };
     match kind {
         "amontons" => {
             let Some(mu) = &raw.mu else {
-                return Err(f.error_in_file("law kind `amontons` needs `mu` in [law]"));
+                return Err(f.error_in_file(format!("law `amontons` needs `mu` in [{table}]")));
             };
             Ok(Law::Amontons(Amontons {
-                mu: f.non_negative(mu, "law.mu")?,
+                mu: f.non_negative(mu, &format!("{table}.mu"))?,
             }))
         }
         "rate" => Ok(Law::RateDependent(RateDependent {
@@ -344,7 +358,7 @@ pub fn build_law(
             let form = keyword(
                 f,
                 &raw.form,
-                "law.form",
+                &format!("{table}.form"),
                 &[
                     ("published", Form::Published),
                     ("regularized", Form::Regularized),
@@ -355,7 +369,7 @@ pub fn build_law(
             let state_law = keyword(
                 f,
                 &raw.state_law,
-                "law.state_law",
+                &format!("{table}.state_law"),
                 &[
                     ("slip", StateLaw::Slip),
                     ("aging", StateLaw::Aging),
