@@ -29,7 +29,7 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
         ),
     );
     line("command", meta.command_line.join(" "));
-    let walls = floes.prescribed.iter().filter(|&&p| p != 0).count();
+    let walls = floes.prescribed.iter().filter(|&&p| p).count();
     line(
         "floes",
         format!("{} ({} free, {walls} prescribed: walls)", floes.len(), floes.len() - walls),
@@ -59,12 +59,12 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
                 "{snapshots}, steps {} .. {}, t = {} .. {}",
                 first.step,
                 last.step,
-                format_sim_time(first.time),
-                format_sim_time(last.time)
+                format_sim_time(first.time_s),
+                format_sim_time(last.time_s)
             ),
         );
         let c = run.contacts(snapshots - 1)?;
-        let sliding = c.slip_rate.iter().filter(|v| v.abs() > 1e-6).count();
+        let sliding = c.slip_rate_m_per_s.iter().filter(|v| v.abs() > 1e-6).count();
         line(
             "contacts",
             format!(
@@ -76,7 +76,7 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
         line("snapshots", "none".into());
     }
     match run.checkpoint()? {
-        Some((_, info)) => line(
+        Some(info) => line(
             "checkpoint",
             format!("step {}, t = {}", info.step, format_sim_time(info.time_s)),
         ),
@@ -87,7 +87,7 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
     let mut values = Vec::new();
     for name in &names {
         let s = run.observable(name)?;
-        samples = s.time.len();
+        samples = s.time_s.len();
         if let Some(last) = s.value.chunks(s.value.len() / samples.max(1)).last() {
             let shown: Vec<String> = last.iter().map(|v| format!("{v:.4e}")).collect();
             values.push(format!("  {name:<24} {}", shown.join(" ")));

@@ -93,15 +93,15 @@ pub fn render(
                 let view = ContactView {
                     pair: &c.pair,
                     normal: &c.normal,
-                    normal_force_n: &c.normal_force,
-                    tangential_force_n: &c.tangential_force,
+                    normal_force_n: &c.normal_force_n,
+                    tangential_force_n: &c.tangential_force_n,
                     point: &c.point,
                     theta: &c.theta,
                 };
                 if colour == ColourBy::Theta {
                     per_floe::mean_theta(floes.len(), &view)
                 } else {
-                    per_floe::pressure(&snap.position, &floes.area, &view, period)
+                    per_floe::pressure(&snap.position, &floes.area_m2, &view, period)
                         .into_iter()
                         .map(|p| p.map(|p| p * 1e-3))
                         .collect()
@@ -111,7 +111,7 @@ pub fn render(
         values.push(v);
         snapshots.push(snap);
     }
-    let prescribed: Vec<bool> = floes.prescribed.iter().map(|&p| p != 0).collect();
+    let prescribed: Vec<bool> = floes.prescribed.clone();
     let free_values = values
         .iter()
         .flat_map(|v| v.iter().zip(&prescribed))
@@ -150,7 +150,7 @@ pub fn render(
         let title = format!(
             "{name}: step {}, t = {}",
             snap.step,
-            format_sim_time(snap.time)
+            format_sim_time(snap.time_s)
         );
         floe_map::draw(
             target,
@@ -175,8 +175,8 @@ fn observables_figure(run: &RunFile, path: &Path) -> Result<(), CliError> {
     let hours = |t: &[f64]| t.iter().map(|t| t / 3600.0).collect::<Vec<_>>();
     let line = |name: &str, label: &str, scale: f64| -> Result<Line, CliError> {
         let s = run.observable(name)?;
-        let t = hours(&s.time);
-        let width = s.value.len() / s.time.len().max(1);
+        let t = hours(&s.time_s);
+        let width = s.value.len() / s.time_s.len().max(1);
         Ok(Line::new(
             label,
             t.iter()
@@ -186,7 +186,7 @@ fn observables_figure(run: &RunFile, path: &Path) -> Result<(), CliError> {
         ))
     };
     let stress = run.observable("mean_stress")?;
-    let t = hours(&stress.time);
+    let t = hours(&stress.time_s);
     let component = |c: usize, label: &str| {
         Line::new(
             label,
