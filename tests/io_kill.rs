@@ -177,11 +177,12 @@ fn kill_9_at_any_moment_leaves_a_file_that_resumes_bitwise() {
                     f.checkpoint().unwrap().unwrap().step,
                     info.step + CHECKPOINT_EVERY
                 );
-                assert!(
-                    fingerprint(&f.checkpoint_state().unwrap().unwrap())
-                        == states[&(info.step + CHECKPOINT_EVERY)]
-                        || info.step + CHECKPOINT_EVERY > STEPS
-                );
+                // (The reference ends at STEPS; a kill after the writer
+                // finished resumes from its last checkpoint, at STEPS.)
+                if let Some(next) = states.get(&(info.step + CHECKPOINT_EVERY)) {
+                    let state = f.checkpoint_state().unwrap().unwrap();
+                    assert!(&fingerprint(&state) == next, "{context}: continued state");
+                }
                 steps_seen.push(info.step);
                 resumed += 1;
             }
