@@ -262,3 +262,42 @@ fn requests_that_do_not_fit_the_file_are_errors() {
     assert!(names(&e, &path).contains("floes"), "{e}");
     let _ = parts;
 }
+
+#[test]
+fn checkpoint_bytes_that_pass_the_checksum_but_lie_are_refused_without_panic() {
+    use floe_io::checkpoint_blob::{decode, encode, fnv1a64, OutputCounts, HEADER_LEN};
+    let (mut world, _) = pack();
+    for _ in 0..200 {
+        world.step();
+    }
+    let state = world.state();
+    let good = encode(&state, &OutputCounts::default());
+    let (back, _) = decode(&good).unwrap();
+    assert_eq!(format!("{back:?}"), format!("{state:?}"));
+    // Re-sign a damaged payload so that only the structural checks remain.
+    let resign = |mut b: Vec<u8>| {
+        let len = (b.len() - HEADER_LEN) as u64;
+        b[16..24].copy_from_slice(&len.to_le_bytes());
+        let sum = fnv1a64(&b[HEADER_LEN..]);
+        b[24..32].copy_from_slice(&sum.to_le_bytes());
+        b
+    };
+    for cut in [HEADER_LEN, HEADER_LEN + 9, good.len() / 2, good.len() - 1] {
+        let e = decode(&resign(good[..cut].to_vec())).expect_err("truncated");
+        assert!(e.contains("truncated") || e.contains("exceeds"), "{e}");
+    }
+    // A vector length of 2^60 (the floe count, after the three counts).
+    let mut huge = good.clone();
+    huge[HEADER_LEN + 24..HEADER_LEN + 32].copy_from_slice(&(1u64 << 60).to_le_bytes());
+    assert!(decode(&resign(huge)).is_err());
+    // Every byte of the payload in turn set to 0xff: errors or a state, never a panic.
+    for at in (HEADER_LEN..good.len()).step_by(7) {
+        let mut b = good.clone();
+        b[at] = 0xff;
+        let _ = decode(&resign(b));
+    }
+    // The checksum itself.
+    let mut b = good.clone();
+    b[good.len() - 3] ^= 1;
+    assert!(decode(&b).expect_err("checksum").contains("checksum"));
+}
