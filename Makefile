@@ -5,16 +5,53 @@ CARGO ?= cargo
 FLOE  := target/release/floe
 DEMO  := out/demo
 
-.PHONY: demo test deps check-tools validation bench clean
+.PHONY: demo test deps check-tools system-deps python-deps validation bench clean
 
-## Tools and system packages. Only Rust is needed so far; the HDF5 output
-## (issue 4) will add libhdf5-dev and pkg-config here, apt-installed when missing.
-deps: check-tools
+## Tools and system packages: Rust's tools, HDF5 and pkg-config (apt-installed
+## when missing), and optionally h5py for the Python example of docs/output.md.
+deps: check-tools system-deps python-deps
 
 check-tools:
 	@command -v $(CARGO) >/dev/null 2>&1 || { echo "error: cargo not found; install Rust (rustup) first" >&2; exit 1; }
 	@$(CARGO) fmt --version >/dev/null 2>&1 || { echo "error: rustfmt missing: rustup component add rustfmt" >&2; exit 1; }
 	@$(CARGO) clippy --version >/dev/null 2>&1 || { echo "error: clippy missing: rustup component add clippy" >&2; exit 1; }
+
+## HDF5 (>= 1.10.7; tested with Debian 12's 1.10.8) for the run files, found
+## through pkg-config. With HDF5_DIR set (an HPC module system), nothing is
+## installed: hdf5-metno builds against $$HDF5_DIR.
+system-deps:
+	@if [ -n "$$HDF5_DIR" ]; then \
+	  echo "HDF5_DIR=$$HDF5_DIR: building against that HDF5, installing nothing"; \
+	else \
+	  missing=""; \
+	  command -v pkg-config >/dev/null 2>&1 || missing="$$missing pkg-config"; \
+	  if ! dpkg -s libhdf5-dev >/dev/null 2>&1 \
+	     && ! pkg-config --exists hdf5 2>/dev/null \
+	     && ! pkg-config --exists hdf5-serial 2>/dev/null; then \
+	    missing="$$missing libhdf5-dev"; \
+	  fi; \
+	  if [ -n "$$missing" ]; then \
+	    command -v apt-get >/dev/null 2>&1 || { echo "error: missing$$missing and no apt-get: install HDF5 >= 1.10.7 and pkg-config, or set HDF5_DIR (see README.md)" >&2; exit 1; }; \
+	    sudo=""; [ "$$(id -u)" = 0 ] || sudo="sudo"; \
+	    echo "installing$$missing"; \
+	    $$sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq $$missing; \
+	  fi; \
+	fi
+
+## Optional: h5py, numpy and matplotlib for the h5py example of docs/output.md
+## (tests/io_h5py.rs skips without them). Never fails.
+python-deps:
+	@if ! command -v python3 >/dev/null 2>&1; then \
+	  echo "note: no python3: the h5py example is skipped (optional)"; \
+	elif python3 -c "import h5py, numpy, matplotlib" >/dev/null 2>&1; then \
+	  :; \
+	elif python3 -m pip --version >/dev/null 2>&1; then \
+	  python3 -m pip install --user -q h5py numpy matplotlib >/dev/null 2>&1 \
+	  || python3 -m pip install --user --break-system-packages -q h5py numpy matplotlib >/dev/null 2>&1 \
+	  || echo "note: could not pip-install h5py numpy matplotlib (optional: tests/io_h5py.rs skips)"; \
+	else \
+	  echo "note: no pip for python3: the h5py example is skipped (optional; apt-get install python3-h5py python3-matplotlib)"; \
+	fi
 
 ## The main job: the paper's lab slide-hold-slide as a spring-slider run, and
 ## the hold-time table. Writes $(DEMO)/{series.csv,summary.json,friction.png}.

@@ -94,14 +94,20 @@ fn an_hdf5_file_not_written_by_floe_is_refused() {
     let other = dir.path().join("other.h5");
     {
         let f = hdf5::File::create(&other).unwrap();
-        let c = f.create_group("h5md").unwrap().create_group("creator").unwrap();
+        let c = f
+            .create_group("h5md")
+            .unwrap()
+            .create_group("creator")
+            .unwrap();
         c.new_attr::<hdf5::types::VarLenUnicode>()
             .create("name")
             .unwrap()
             .write_scalar(&"halmd".parse::<hdf5::types::VarLenUnicode>().unwrap())
             .unwrap();
     }
-    let e = RunWriter::reopen_for_resume(&other).err().expect("not floe");
+    let e = RunWriter::reopen_for_resume(&other)
+        .err()
+        .expect("not floe");
     assert!(names(&e, &other).contains("halmd"), "{e}");
 }
 
@@ -114,7 +120,9 @@ fn a_file_without_checkpoint_cannot_be_resumed() {
     assert_eq!(f.checkpoint().unwrap(), None);
     assert_eq!(f.checkpoint_state().unwrap(), None);
     drop(f);
-    let e = RunWriter::reopen_for_resume(&path).err().expect("no checkpoint");
+    let e = RunWriter::reopen_for_resume(&path)
+        .err()
+        .expect("no checkpoint");
     assert!(matches!(e, IoError::NoCheckpoint { .. }), "{e}");
     assert!(names(&e, &path).contains("no valid checkpoint"));
 }
@@ -124,7 +132,11 @@ fn a_damaged_checkpoint_is_detected_by_its_checksum() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("damaged.h5");
     new_run(&path, true);
-    assert!(RunFile::open(&path).unwrap().checkpoint_state().unwrap().is_some());
+    assert!(RunFile::open(&path)
+        .unwrap()
+        .checkpoint_state()
+        .unwrap()
+        .is_some());
     // Flip one byte of the state (past the header) in the valid slot.
     {
         let f = hdf5::File::open_rw(&path).unwrap();
@@ -136,11 +148,21 @@ fn a_damaged_checkpoint_is_detected_by_its_checksum() {
     let e = RunWriter::reopen_for_resume(&path).err().expect("damaged");
     assert!(matches!(e, IoError::CorruptCheckpoint { .. }), "{e}");
     let text = names(&e, &path);
-    assert!(text.contains("checksum") && text.contains("slot0"), "{text}");
-    let e = RunFile::open(&path).unwrap().checkpoint_state().err().expect("damaged");
+    assert!(
+        text.contains("checksum") && text.contains("slot0"),
+        "{text}"
+    );
+    let e = RunFile::open(&path)
+        .unwrap()
+        .checkpoint_state()
+        .expect_err("damaged");
     assert!(e.to_string().contains("checksum"), "{e}");
     // The step and time (slot attributes) are still there to report.
-    assert!(RunFile::open(&path).unwrap().checkpoint().unwrap().is_some());
+    assert!(RunFile::open(&path)
+        .unwrap()
+        .checkpoint()
+        .unwrap()
+        .is_some());
 }
 
 #[test]
@@ -179,7 +201,9 @@ fn a_truncated_or_scrambled_file_is_an_error_not_a_panic() {
             RunWriter::reopen_for_resume(&p)?;
             Ok(())
         })();
-        let e = outcome.err().unwrap_or_else(|| panic!("{name} read without error"));
+        let e = outcome
+            .err()
+            .unwrap_or_else(|| panic!("{name} read without error"));
         eprintln!("{name}: {e}");
         names(&e, &p);
     }
@@ -221,17 +245,59 @@ fn requests_that_do_not_fit_the_file_are_errors() {
     new_run(&path, true);
     let f = RunFile::open(&path).unwrap();
     assert_eq!(f.snapshot_count().unwrap(), 1);
-    let e = f.snapshot(1).err().expect("past the end");
+    let e = f.snapshot(1).expect_err("past the end");
     assert!(names(&e, &path).contains("no snapshot 1"));
     assert!(f.contacts(5).is_err());
-    let e = f.observable("kinetic").err().expect("unknown");
-    assert!(names(&e, &path).contains("kinetic_translational"), "lists the names: {e}");
+    let e = f.observable("kinetic").expect_err("unknown");
+    assert!(
+        names(&e, &path).contains("kinetic_translational"),
+        "lists the names: {e}"
+    );
     drop(f);
     // A world with another floe count than the file's.
     let (mut w, _, _) = RunWriter::reopen_for_resume(&path).unwrap();
     let (mut world, parts) = pack();
     world.floes.owned -= 1;
-    let e = w.write_snapshot(&world).err().expect("floe count");
+    let e = w.write_snapshot(&world).expect_err("floe count");
     assert!(names(&e, &path).contains("floes"), "{e}");
     let _ = parts;
+}
+
+#[test]
+fn checkpoint_bytes_that_pass_the_checksum_but_lie_are_refused_without_panic() {
+    use floe_io::checkpoint_blob::{decode, encode, fnv1a64, OutputCounts, HEADER_LEN};
+    let (mut world, _) = pack();
+    for _ in 0..200 {
+        world.step();
+    }
+    let state = world.state();
+    let good = encode(&state, &OutputCounts::default());
+    let (back, _) = decode(&good).unwrap();
+    assert_eq!(format!("{back:?}"), format!("{state:?}"));
+    // Re-sign a damaged payload so that only the structural checks remain.
+    let resign = |mut b: Vec<u8>| {
+        let len = (b.len() - HEADER_LEN) as u64;
+        b[16..24].copy_from_slice(&len.to_le_bytes());
+        let sum = fnv1a64(&b[HEADER_LEN..]);
+        b[24..32].copy_from_slice(&sum.to_le_bytes());
+        b
+    };
+    for cut in [HEADER_LEN, HEADER_LEN + 9, good.len() / 2, good.len() - 1] {
+        let e = decode(&resign(good[..cut].to_vec())).expect_err("truncated");
+        assert!(e.contains("truncated") || e.contains("exceeds"), "{e}");
+    }
+    // A vector length of 2^60 (the floe count, after the three counts).
+    let mut huge = good.clone();
+    huge[HEADER_LEN + 24..HEADER_LEN + 32].copy_from_slice(&(1u64 << 60).to_le_bytes());
+    assert!(decode(&resign(huge)).is_err());
+    // Every byte of the payload in turn set to 0xff: errors or a state, never a panic.
+    for at in (HEADER_LEN..good.len()).step_by(7) {
+        let mut b = good.clone();
+        b[at] = 0xff;
+        let _ = decode(&resign(b));
+    }
+    // The checksum itself.
+    let mut b = good.clone();
+    b[good.len() - 3] ^= 1;
+    assert!(decode(&b).expect_err("checksum").contains("checksum"));
 }

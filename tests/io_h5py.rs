@@ -42,7 +42,7 @@ fn the_documented_h5py_snippet_reads_a_run_and_draws_it() {
     for _ in 0..3 {
         for _ in 0..100 {
             world.step();
-            if world.steps % 20 == 0 {
+            if world.steps.is_multiple_of(20) {
                 w.write_observables(world.steps, &world.observables(domain_area()))
                     .unwrap();
             }

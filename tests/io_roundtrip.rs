@@ -27,8 +27,8 @@ fn everything_written_reads_back_bitwise() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.h5");
     let (mut world, parts) = pack();
-    let mut w = RunWriter::create(&path, &metadata(), &world.floes, &OutputOptions::default())
-        .unwrap();
+    let mut w =
+        RunWriter::create(&path, &metadata(), &world.floes, &OutputOptions::default()).unwrap();
     assert_eq!(w.path(), path.as_path());
     w.set_status("running").unwrap();
     let mut expected = Vec::new();
@@ -46,7 +46,7 @@ fn everything_written_reads_back_bitwise() {
     for round in 0..4 {
         for _ in 0..150 {
             world.step();
-            if world.steps % 30 == 0 {
+            if world.steps.is_multiple_of(30) {
                 observe(&mut w, &world);
                 observables.push((world.steps, world.observables(domain_area())));
             }
@@ -92,13 +92,21 @@ fn everything_written_reads_back_bitwise() {
         let s = file.snapshot(k).unwrap();
         assert_eq!((s.step, s.time_s.to_bits()), (e.step, e.time_s.to_bits()));
         let f = &e.world_floes;
-        assert_eq!(bits2(&s.position), vec2_bits(&f.position[..n]), "snapshot {k}");
+        assert_eq!(
+            bits2(&s.position),
+            vec2_bits(&f.position[..n]),
+            "snapshot {k}"
+        );
         assert_eq!(bits2(&s.velocity), vec2_bits(&f.velocity[..n]));
         assert_eq!(bits(&s.angle), bits(&f.angle[..n]));
         assert_eq!(bits(&s.angular_velocity), bits(&f.angular_velocity[..n]));
         for i in [0, 7, n - 1] {
             let engine: Vec<[f64; 2]> = f.world_vertices(i).iter().map(|v| [v.x, v.y]).collect();
-            assert_eq!(bits2(&s.world_vertices(&sf, i)), bits2(&engine), "floe {i} outline");
+            assert_eq!(
+                bits2(&s.world_vertices(&sf, i)),
+                bits2(&engine),
+                "floe {i} outline"
+            );
         }
         let c = file.contacts(k).unwrap();
         assert_eq!((c.step, c.time_s.to_bits()), (e.step, e.time_s.to_bits()));
@@ -129,10 +137,16 @@ fn everything_written_reads_back_bitwise() {
     let ke = file.observable("kinetic_translational").unwrap();
     assert_eq!(ke.unit, "J");
     assert!(ke.sample_shape.is_empty());
-    assert_eq!(ke.step, observables.iter().map(|(s, _)| *s).collect::<Vec<_>>());
+    assert_eq!(
+        ke.step,
+        observables.iter().map(|(s, _)| *s).collect::<Vec<_>>()
+    );
     assert_eq!(
         bits(&ke.time_s),
-        observables.iter().map(|(_, o)| o.time_s.to_bits()).collect::<Vec<_>>()
+        observables
+            .iter()
+            .map(|(_, o)| o.time_s.to_bits())
+            .collect::<Vec<_>>()
     );
     assert_eq!(
         bits(&ke.value),
@@ -142,7 +156,10 @@ fn everything_written_reads_back_bitwise() {
             .collect::<Vec<_>>()
     );
     let stress = file.observable("mean_stress").unwrap();
-    assert_eq!((stress.sample_shape.clone(), stress.unit.as_str()), (vec![4], "N m-1"));
+    assert_eq!(
+        (stress.sample_shape.clone(), stress.unit.as_str()),
+        (vec![4], "N m-1")
+    );
     let flat: Vec<f64> = observables
         .iter()
         .flat_map(|(_, o)| o.mean_stress_n_per_m)
@@ -159,13 +176,19 @@ fn everything_written_reads_back_bitwise() {
     let contacts = file.observable("contacts").unwrap();
     assert_eq!(
         contacts.value,
-        observables.iter().map(|(_, o)| o.contacts as f64).collect::<Vec<_>>()
+        observables
+            .iter()
+            .map(|(_, o)| o.contacts as f64)
+            .collect::<Vec<_>>()
     );
     assert!(file.observable("no_such_thing").is_err());
 
     // The checkpoint is the last state, and resumes bitwise.
     let info = file.checkpoint().unwrap().unwrap();
-    assert_eq!((info.step, info.time_s.to_bits()), (saved.steps, saved.time_s.to_bits()));
+    assert_eq!(
+        (info.step, info.time_s.to_bits()),
+        (saved.steps, saved.time_s.to_bits())
+    );
     let state = file.checkpoint_state().unwrap().unwrap();
     assert_eq!(fingerprint(&state), fingerprint(&saved));
     let mut resumed = parts.resume(state);
@@ -183,13 +206,13 @@ fn everything_written_reads_back_bitwise() {
 fn run(path: &std::path::Path, world: &mut World<Forcing>, w: &mut RunWriter, until: u64) {
     while world.steps < until {
         world.step();
-        if world.steps % 25 == 0 {
+        if world.steps.is_multiple_of(25) {
             observe(w, world);
         }
-        if world.steps % 100 == 0 {
+        if world.steps.is_multiple_of(100) {
             w.write_snapshot(world).unwrap();
         }
-        if world.steps % 200 == 0 {
+        if world.steps.is_multiple_of(200) {
             w.write_checkpoint(&world.state()).unwrap();
         }
     }
@@ -201,7 +224,11 @@ fn assert_same_file(a: &std::path::Path, b: &std::path::Path) {
     let n = fa.snapshot_count().unwrap();
     assert_eq!(n, fb.snapshot_count().unwrap());
     for k in 0..n {
-        assert_eq!(fa.snapshot(k).unwrap(), fb.snapshot(k).unwrap(), "snapshot {k}");
+        assert_eq!(
+            fa.snapshot(k).unwrap(),
+            fb.snapshot(k).unwrap(),
+            "snapshot {k}"
+        );
         let (sa, sb) = (fa.snapshot(k).unwrap(), fb.snapshot(k).unwrap());
         assert_eq!(bits2(&sa.position), bits2(&sb.position));
         let (ca, cb) = (fa.contacts(k).unwrap(), fb.contacts(k).unwrap());
@@ -249,7 +276,11 @@ fn a_resumed_file_drops_what_followed_the_checkpoint_and_ends_as_the_uninterrupt
     assert_eq!(info.step, 600);
     {
         let f = RunFile::open(&parts_path).unwrap();
-        assert_eq!(f.snapshot_count().unwrap(), 7, "the snapshot at 700 is dropped");
+        assert_eq!(
+            f.snapshot_count().unwrap(),
+            7,
+            "the snapshot at 700 is dropped"
+        );
         let last = f.snapshot(6).unwrap();
         assert_eq!(last.step, 600);
         for name in f.observable_names().unwrap() {

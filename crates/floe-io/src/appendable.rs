@@ -96,7 +96,7 @@ impl Appendable {
     /// Appends `data` (whole rows, row-major) and then `pad` rows left at
     /// the fill value.
     pub fn append_padded<T: H5Type>(&mut self, data: &[T], pad: usize) -> hdf5::Result<()> {
-        if self.width == 0 || data.len() % self.width != 0 {
+        if self.width == 0 || !data.len().is_multiple_of(self.width) {
             return Err(format!(
                 "{} values do not make whole rows of {}",
                 data.len(),
