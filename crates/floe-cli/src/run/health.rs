@@ -53,8 +53,9 @@ impl fmt::Display for BlowUp {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "numerical blow-up at step {} (t = {} s): ",
-            self.step, self.time_s
+            "numerical blow-up at step {} (t = {}): ",
+            self.step,
+            super::progress::format_sim_time(self.time_s)
         )?;
         match &self.what {
             Fault::NonFinite { floe_id } => {
@@ -71,9 +72,9 @@ impl fmt::Display for BlowUp {
         }
         write!(
             f,
-            "; try dt_s = {:.3e} (half of {:.3e}) or weaker forcing",
-            self.suggested_dt_s(),
-            self.dt_s
+            "; try dt_s = {} (half of {} s) or weaker forcing",
+            seconds(self.suggested_dt_s()),
+            seconds(self.dt_s)
         )
     }
 }
@@ -106,4 +107,13 @@ pub fn check_health<F: ExternalForces>(world: &World<F>) -> Option<BlowUp> {
         dt_s: world.dt_s,
         what: fault,
     })
+}
+
+/// A time step for a message: four significant digits, plain or scientific.
+fn seconds(x: f64) -> String {
+    if (1e-2..1e4).contains(&x.abs()) {
+        format!("{x:.4}")
+    } else {
+        format!("{x:.3e}")
+    }
 }
