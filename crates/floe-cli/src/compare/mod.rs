@@ -76,8 +76,20 @@ pub fn compare(args: &CompareArgs) -> Result<PathBuf, CliError> {
         });
     }
     if args.laws.contains(&LawChoice::Rate) {
-        notes.push("Rate law: the rate-and-state mu0 and V*, with C1 = A - B, so both have the same steady-state friction at every speed; it lacks only the memory.".into());
+        if let floe_friction::law::Law::RateState(rs) = &reference {
+            let v = args.matching.reference_slip_m_per_s;
+            notes.push(format!(
+                "Rate law: the rate-and-state mu0 = {} and V* = {} m/s, with C1 = A - B = {:.4}: the steady state of the published form, without memory. At the reference slip speed {v:e} m/s it gives mu = {:.4}; the rate-and-state law used here ({:?} form) gives {:.4} in steady state.",
+                rs.params.mu0,
+                rs.params.v_star_m_per_s,
+                rs.params.a - rs.params.b,
+                rs.params.mu_steady_published(v),
+                rs.form,
+                reference.mu_steady(v)
+            ));
+        }
     }
+
 
     let mut out = Vec::new();
     for &law in &args.laws {

@@ -112,7 +112,17 @@ pub fn apply(
                 ))
             })?;
         }
-        table.insert(last, Item::Value(value));
+        // In place when the key exists, so its comments stay with it.
+        match table.get_mut(last).and_then(Item::as_value_mut) {
+            Some(old) => {
+                let decor = old.decor().clone();
+                *old = value;
+                *old.decor_mut() = decor;
+            }
+            None => {
+                table.insert(last, Item::Value(value));
+            }
+        }
     }
     Ok(doc.to_string())
 }
