@@ -200,3 +200,16 @@ fn lab_double_shear_carries_1_kn_per_face() {
     // The whole run (20 s, 10 L of slip, 517,000 steps) reaches steady sliding.
     pooled(|| double_shear("lab_double_shear.toml", 1000.0, 1e-4, 20.0));
 }
+
+#[test]
+fn the_minimal_example_in_the_docs_builds() {
+    let docs = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scenarios.md"),
+    )
+    .unwrap();
+    let start = docs.find("```toml\n").unwrap() + "```toml\n".len();
+    let end = start + docs[start..].find("```").unwrap();
+    let s = Scenario::from_text(&docs[start..end], Path::new("docs/scenarios.md")).unwrap();
+    let n = s.build().unwrap().world.floes.len();
+    assert!((400..470).contains(&n), "{n} floes");
+}
