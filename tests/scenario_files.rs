@@ -211,5 +211,5 @@ fn the_minimal_example_in_the_docs_builds() {
     let end = start + docs[start..].find("```").unwrap();
     let s = Scenario::from_text(&docs[start..end], Path::new("docs/scenarios.md")).unwrap();
     let n = s.build().unwrap().world.floes.len();
-    assert!((400..470).contains(&n), "{n} floes");
+    assert!((440..520).contains(&n), "{n} floes");
 }
