@@ -83,7 +83,15 @@ fn probe(path: &std::path::Path, max_steps: Option<u64>) {
         }
         let f = &world.floes;
         for i in 0..f.len() {
-            println!("floe {i}: x [{:.6}, {:.6}] v [{:.4e}, {:.4e}] angle {:.3e} omega {:.3e}", f.position[i].x, f.position[i].y, f.velocity[i].x, f.velocity[i].y, f.angle[i], f.angular_velocity[i]);
+            println!(
+                "floe {i}: x [{:.6}, {:.6}] v [{:.4e}, {:.4e}] angle {:.3e} omega {:.3e}",
+                f.position[i].x,
+                f.position[i].y,
+                f.velocity[i].x,
+                f.velocity[i].y,
+                f.angle[i],
+                f.angular_velocity[i]
+            );
         }
     }
     println!(

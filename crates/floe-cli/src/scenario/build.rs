@@ -27,7 +27,12 @@ pub(crate) fn sig(x: f64) -> String {
     let e = x.abs().log10().floor() as i32;
     if (-3..6).contains(&e) {
         let decimals = (3 - e).max(0) as usize;
-        format!("{x:.decimals$}")
+        let s = format!("{x:.decimals$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
     } else {
         format!("{x:.3e}")
     }
@@ -38,7 +43,7 @@ pub(crate) fn thousands(n: usize) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i) % 3 == 0 {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(c);

@@ -72,7 +72,7 @@ pub(crate) fn walls_fit(f: &SourceFile, r: &Resolved) -> Result<(), CliError> {
             ));
         }
     }
-    for axis in 0..2 {
+    for (axis, axis_label) in axis_name.iter().enumerate() {
         let (lo_side, hi_side) = if axis == 0 {
             (Side::Left, Side::Right)
         } else {
@@ -108,7 +108,7 @@ pub(crate) fn walls_fit(f: &SourceFile, r: &Resolved) -> Result<(), CliError> {
                     format!("wall[{}].velocity_m_per_s", w.index),
                     format!(
                         "the walls across {} close {} m in {} s, before duration_s = {} s: {}",
-                        axis_name[axis],
+                        axis_label,
                         sig(gap),
                         sig(meet_s),
                         sig(r.duration_s),

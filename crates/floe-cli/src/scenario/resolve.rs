@@ -13,6 +13,7 @@ use floe_friction::experiments::Preset;
 use floe_friction::Form;
 use toml::Spanned;
 
+use super::build::sig;
 use super::spec::*;
 use super::{Domain, OutputCadence};
 use crate::error::CliError;
@@ -215,7 +216,7 @@ fn within(
         Err(f.error(
             v.span(),
             key,
-            format!("must lie in [{lo}, {hi}{close}, got {x}"),
+            format!("must lie in [{}, {}{close}, got {x}", sig(lo), sig(hi)),
         ))
     }
 }

@@ -1,0 +1,405 @@
+//! Bad scenario files: one message naming file:line:column, the key and the
+//! reason, for every class of mistake, and never a panic. Through the
+//! library (`Scenario::from_text`); `floe run` passes the same error on
+//! with exit code 2.
+
+use std::path::Path;
+
+use floe_cli::scenario::Scenario;
+use floe_cli::CliError;
+
+/// A small valid scenario that the cases below break one way each.
+const BASE: &str = r#"title = "base"
+duration_s = 100.0
+
+[domain]
+size_m = [4000.0, 4000.0]
+
+[tessellation]
+kind = "grid"
+columns = 2
+rows = 2
+gap_m = 100.0
+
+[ice]
+thickness_m = 1.0
+"#;
+
+/// The error of `text` (which must fail to load or to build).
+fn error(text: &str) -> CliError {
+    let origin = Path::new("bad.toml");
+    match Scenario::from_text(text, origin) {
+        Err(e) => e,
+        Ok(s) => match s.build() {
+            Err(e) => e,
+            Ok(_) => panic!("accepted:\n{text}"),
+        },
+    }
+}
+
+/// `bad.toml:line:column` of the first occurrence of `needle` in `text`,
+/// plus `offset` characters.
+fn at(text: &str, needle: &str, offset: usize) -> String {
+    let start = text
+        .find(needle)
+        .unwrap_or_else(|| panic!("{needle} not in text"))
+        + offset;
+    let before = &text[..start];
+    let line = before.matches('\n').count() + 1;
+    let column = start - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+    format!("bad.toml:{line}:{column}")
+}
+
+/// Checks the message: located at `needle` (+ `offset`), names `key`, and
+/// says each of `reasons`; exit code 2.
+fn check(text: &str, needle: &str, offset: usize, key: &str, reasons: &[&str]) {
+    let e = error(text);
+    let msg = e.to_string();
+    assert_eq!(e.exit_code(), 2, "{msg}");
+    assert!(matches!(e, CliError::Input { .. }), "{msg}");
+    let place = at(text, needle, offset);
+    assert!(msg.starts_with(&place), "expected {place}: {msg}");
+    assert!(msg.contains(key), "expected key {key}: {msg}");
+    for r in reasons {
+        assert!(msg.contains(r), "expected `{r}`: {msg}");
+    }
+}
+
+/// `BASE` with `from` replaced by `to`.
+fn edit(from: &str, to: &str) -> String {
+    assert!(BASE.contains(from), "{from}");
+    BASE.replacen(from, to, 1)
+}
+
+#[test]
+fn the_base_scenario_builds() {
+    let s = Scenario::from_text(BASE, Path::new("base.toml")).unwrap();
+    assert_eq!(s.build().unwrap().world.floes.len(), 4);
+}
+
+#[test]
+fn toml_syntax_errors_are_located() {
+    let t = edit("columns = 2", "columns = = 2");
+    let msg = error(&t).to_string();
+    assert!(msg.starts_with("bad.toml:9:"), "{msg}");
+}
+
+#[test]
+fn unknown_keys_are_refused_everywhere() {
+    let t = edit("duration_s = 100.0", "duration_s = 100.0\ndurration = 3.0");
+    check(&t, "durration", 0, "durration", &["unknown field"]);
+    let t = edit("thickness_m = 1.0", "thickness_m = 1.0\ncolour = \"white\"");
+    check(&t, "colour", 0, "colour", &["unknown field"]);
+    let t = format!("{BASE}\n[[wall]]\nside = \"left\"\nspeed_m_per_s = [0.0, 1.0]\n");
+    check(&t, "speed_m_per_s", 0, "speed_m_per_s", &["unknown field"]);
+    let t = format!("{BASE}\n[wind]\nshear = {{ y_min_m = 0.0, y_max_m = 1.0, velocity_at_y_min_m_per_s = [0.0, 0.0], velocity_at_y_max_m_per_s = [1.0, 0.0], kink = 2.0 }}\n");
+    let msg = error(&t).to_string();
+    assert!(msg.contains("unknown field `kink`"), "{msg}");
+    assert!(msg.starts_with("bad.toml:17:"), "{msg}");
+}
+
+#[test]
+fn wrong_types_are_refused() {
+    let t = edit("duration_s = 100.0", "duration_s = \"long\"");
+    check(&t, "\"long\"", 0, "duration_s", &["invalid type"]);
+    let t = edit("columns = 2", "columns = 2.5");
+    check(&t, "2.5", 0, "columns", &["invalid type"]);
+}
+
+#[test]
+fn missing_required_keys_are_named() {
+    let t = edit("duration_s = 100.0\n", "");
+    let msg = error(&t).to_string();
+    assert!(msg.starts_with("bad.toml:1:1"), "{msg}");
+    assert!(msg.contains("duration_s"), "{msg}");
+    let t = edit("columns = 2\n", "");
+    check(
+        &t,
+        "[tessellation]",
+        0,
+        "tessellation.columns",
+        &["missing"],
+    );
+}
+
+#[test]
+fn non_positive_sizes_thickness_density_and_durations_are_refused() {
+    let t = edit("thickness_m = 1.0", "thickness_m = 0.0");
+    check(
+        &t,
+        "thickness_m = 0.0",
+        14,
+        "ice.thickness_m",
+        &["> 0", "got 0"],
+    );
+    let t = edit(
+        "thickness_m = 1.0",
+        "thickness_m = 1.0\ndensity_kg_per_m3 = -917.0",
+    );
+    check(&t, "-917", 0, "ice.density_kg_per_m3", &["> 0"]);
+    let t = edit("size_m = [4000.0, 4000.0]", "size_m = [4000.0, 0.0]");
+    check(&t, "[4000.0, 0.0]", 0, "domain.size_m", &["> 0"]);
+    let t = edit("duration_s = 100.0", "duration_s = -1.0");
+    check(&t, "-1.0", 0, "duration_s", &["> 0"]);
+    let t = edit("duration_s = 100.0", "duration_s = 100.0\ndt_s = 0.0");
+    check(&t, "0.0\n\n[domain]", 0, "dt_s", &["> 0"]);
+}
+
+#[test]
+fn a_time_step_above_the_stable_limit_is_refused_with_the_limit() {
+    let s = Scenario::from_text(BASE, Path::new("base.toml")).unwrap();
+    let limit = s.build().unwrap().stable_limit_s;
+    let t = edit(
+        "duration_s = 100.0",
+        &format!("duration_s = 100.0\ndt_s = {}", 2.0 * limit),
+    );
+    let e = error(&t);
+    let msg = e.to_string();
+    assert!(msg.starts_with("bad.toml:3:8"), "{msg}");
+    assert!(
+        msg.contains("`dt_s`") && msg.contains("above the stable limit"),
+        "{msg}"
+    );
+    let shown = format!("{:.3}", limit);
+    assert!(msg.contains(&shown[..4]), "limit {limit} not in {msg}");
+    // Just below the limit is accepted.
+    let t = edit(
+        "duration_s = 100.0",
+        &format!("duration_s = 100.0\ndt_s = {}", 0.99 * limit),
+    );
+    Scenario::from_text(&t, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+}
+
+#[test]
+fn overlapping_floes_are_named() {
+    let t = r#"duration_s = 10.0
+[domain]
+size_m = [100.0, 100.0]
+
+[[floe]]
+box_m = [10.0, 10.0, 30.0, 30.0]
+
+[[floe]]
+box_m = [50.0, 10.0, 70.0, 30.0]
+
+[[floe]]
+box_m = [25.0, 10.0, 45.0, 30.0]
+"#;
+    check(
+        t,
+        "[[floe]]\nbox_m = [25.0",
+        0,
+        "floe[2]",
+        &["overlaps floe[0]"],
+    );
+    // Touching is fine.
+    let ok = t.replace("[25.0, 10.0, 45.0, 30.0]", "[30.0, 10.0, 45.0, 30.0]");
+    Scenario::from_text(&ok, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    // A non-convex outline.
+    let t = r#"duration_s = 10.0
+[domain]
+size_m = [100.0, 100.0]
+
+[[floe]]
+vertices_m = [[0.0, 0.0], [10.0, 0.0], [5.0, 2.0], [10.0, 10.0], [0.0, 10.0]]
+"#;
+    check(t, "[[floe]]", 0, "floe[0]", &["not convex"]);
+}
+
+#[test]
+fn walls_outside_the_domain_or_across_a_periodic_axis_are_refused() {
+    let t = format!("{BASE}\n[[wall]]\nside = \"left\"\ninset_m = 2500.0\n\n[[wall]]\nside = \"right\"\ninset_m = 2000.0\n");
+    check(
+        &t,
+        "2000.0\n",
+        0,
+        "wall[1].inset_m",
+        &["outside the domain"],
+    );
+    let t = edit(
+        "size_m = [4000.0, 4000.0]",
+        "size_m = [4000.0, 4000.0]\nperiodic = [true, false]",
+    );
+    let t = format!("{t}\n[[wall]]\nside = \"right\"\n");
+    check(&t, "\"right\"", 0, "wall[0].side", &["periodic along x"]);
+    let t = format!("{BASE}\n[[wall]]\nside = \"middle\"\n");
+    check(
+        &t,
+        "\"middle\"",
+        0,
+        "wall[0].side",
+        &["unknown value `middle`"],
+    );
+    let t = format!("{BASE}\n[[wall]]\nside = \"top\"\n\n[[wall]]\nside = \"top\"\n");
+    check(
+        &t,
+        "\"top\"\n\n[[wall]]\nside = \"top",
+        23,
+        "wall[1].side",
+        &["already on the top side"],
+    );
+}
+
+#[test]
+fn walls_that_would_cross_each_other_are_refused() {
+    let t = format!("{BASE}\n[[wall]]\nside = \"bottom\"\nvelocity_m_per_s = [0.0, 30.0]\n\n[[wall]]\nside = \"top\"\nvelocity_m_per_s = [0.0, -30.0]\n");
+    check(
+        &t,
+        "[0.0, -30.0]",
+        0,
+        "wall[1].velocity_m_per_s",
+        &["before duration_s", "cross each other"],
+    );
+}
+
+#[test]
+fn keys_that_do_not_apply_and_unknown_kinds_are_refused() {
+    let t = edit("gap_m = 100.0", "gap_m = 100.0\nside_m = 3.0");
+    check(
+        &t,
+        "3.0",
+        0,
+        "tessellation.side_m",
+        &["does not apply to kind `grid`"],
+    );
+    let t = edit("kind = \"grid\"", "kind = \"hexagon\"");
+    check(
+        &t,
+        "\"hexagon\"",
+        0,
+        "tessellation.kind",
+        &["unknown kind `hexagon`"],
+    );
+    let t = format!("{BASE}\n[friction]\nlaw = \"amontons\"\nmu = 0.3\na = 0.01\n");
+    check(
+        &t,
+        "0.01",
+        0,
+        "friction.a",
+        &["does not apply to law `amontons`"],
+    );
+    let t = format!("{BASE}\n[friction]\nlaw = \"coulomb\"\n");
+    check(
+        &t,
+        "\"coulomb\"",
+        0,
+        "friction.law",
+        &["unknown law `coulomb`"],
+    );
+    let t = format!("{BASE}\n[friction]\nlaw = \"amontons\"\n");
+    check(&t, "\"amontons\"", 0, "friction.law", &["needs `mu`"]);
+    let t = format!("{BASE}\n[friction]\nstate_law = \"sticky\"\n");
+    check(
+        &t,
+        "\"sticky\"",
+        0,
+        "friction.state_law",
+        &["unknown value `sticky`"],
+    );
+    let t = format!("{BASE}\n[wind]\nsea_surface_tilt = false\n");
+    check(
+        &t,
+        "false",
+        0,
+        "wind.sea_surface_tilt",
+        &["belongs in [ocean]"],
+    );
+}
+
+#[test]
+fn out_of_range_parameters_are_refused() {
+    let t = format!("{BASE}\n[coriolis]\nlatitude_deg = 100.0\n");
+    check(
+        &t,
+        "latitude_deg = 100.0",
+        15,
+        "coriolis.latitude_deg",
+        &["[-90, 90]"],
+    );
+    let t = format!("{BASE}\n[contact]\npoisson_ratio = 0.7\n");
+    check(&t, "0.7", 0, "contact.poisson_ratio", &["[0, 0.5)"]);
+    let t = format!("{BASE}\n[ocean]\nturning_angle_deg = 95.0\n");
+    check(
+        &t,
+        "95.0",
+        0,
+        "ocean.turning_angle_deg",
+        &["between -90 and 90"],
+    );
+    let t = format!("{BASE}\n[wind]\ntime_series = {{ times_s = [0.0, 10.0, 5.0], velocities_m_per_s = [[1.0, 0.0], [2.0, 0.0], [3.0, 0.0]] }}\n");
+    check(
+        &t,
+        "{ times_s",
+        0,
+        "wind.time_series",
+        &["strictly increasing"],
+    );
+    let t = format!("{BASE}\n[wind]\nvelocity_m_per_s = [1.0, 0.0]\ngyre = {{ center_m = [0.0, 0.0], core_radius_m = 10.0, max_speed_m_per_s = 1.0 }}\n");
+    check(&t, "{ center_m", 0, "wind", &["give one of"]);
+    let diamond = edit(
+        "kind = \"grid\"\ncolumns = 2\nrows = 2\ngap_m = 100.0",
+        "kind = \"diamond\"\nside_m = 500.0\njitter_fraction = 0.5",
+    );
+    check(
+        &diamond,
+        "0.5\n",
+        0,
+        "tessellation.jitter_fraction",
+        &["must lie in [0, 0.125"],
+    );
+}
+
+#[test]
+fn double_shear_set_ups_that_do_not_fit_are_refused() {
+    let t = r#"duration_s = 100.0
+[domain]
+size_m = [8.0, 8.0]
+
+[tessellation]
+kind = "double-shear"
+block_m = [2.0, 2.0]
+side_block_m = [2.5, 2.0]
+normal_load_per_face_n = 5000.0
+push_velocity_m_per_s = 0.008
+"#;
+    check(
+        t,
+        "[tessellation]",
+        0,
+        "tessellation.side_block_m",
+        &["too short", "at least 2.8"],
+    );
+    let small = t
+        .replace("[2.5, 2.0]", "[4.0, 2.0]")
+        .replace("[8.0, 8.0]", "[3.0, 8.0]");
+    check(
+        &small,
+        "[tessellation]",
+        0,
+        "domain.size_m",
+        &["does not fit"],
+    );
+    let heavy = t
+        .replace("[2.5, 2.0]", "[4.0, 2.0]")
+        .replace("5000.0", "5e9");
+    check(
+        &heavy,
+        "[tessellation]",
+        0,
+        "tessellation.normal_load_per_face_n",
+        &["youngs_modulus_pa"],
+    );
+}
+
+#[test]
+fn load_reports_unreadable_files() {
+    let e = Scenario::load(Path::new("/nonexistent/scenario.toml")).unwrap_err();
+    assert_eq!(e.exit_code(), 1);
+    assert!(e.to_string().contains("/nonexistent/scenario.toml"));
+}

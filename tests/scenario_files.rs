@@ -1,0 +1,215 @@
+//! The shipped scenario files (`scenarios/*.toml`): every one loads and
+//! builds, and the cheap physics checks hold: free drift reaches the
+//! analytic velocity, the double-shear set-ups carry the intended normal
+//! load and slide at the law's steady friction.
+
+use std::path::{Path, PathBuf};
+
+use floe_cli::scenario::{checks, Scenario};
+use floe_dem::floes::Motion;
+use floe_dem::forcing::{free_drift_velocity, DragParameters};
+use floe_dem::Vec2;
+use floe_friction::FrictionLaw;
+
+/// Runs `f` on a one-thread rayon pool: stepping a world from outside a
+/// pool hands every parallel loop to another thread (~0.1 ms per step).
+fn pooled<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+fn scenario_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios")
+}
+
+fn scenario(name: &str) -> Scenario {
+    let path = scenario_dir().join(name);
+    Scenario::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+#[test]
+fn every_scenario_file_loads_and_builds() {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(scenario_dir())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    let names: Vec<String> = files
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    for expected in [
+        "demo.toml",
+        "shear_zone.toml",
+        "lab_double_shear.toml",
+        "tank_double_shear.toml",
+        "free_drift.toml",
+        "uniaxial_compression.toml",
+    ] {
+        assert!(names.iter().any(|n| n == expected), "{expected} missing");
+    }
+    for path in &files {
+        let s = Scenario::load(path).unwrap_or_else(|e| panic!("{e}"));
+        let setup = s.build().unwrap_or_else(|e| panic!("{e}"));
+        let w = &setup.world;
+        assert!(w.floes.owned > 0, "{}: no floes", path.display());
+        assert!(setup.dt_s > 0.0 && setup.dt_s <= setup.stable_limit_s);
+        assert_eq!(w.dt_s, setup.dt_s);
+        assert!(!setup.report.is_empty());
+        assert!(s.title().is_some(), "{}: give a title", path.display());
+        // Resuming uses the same model, forcing, periodicity and dt.
+        let parts = s.engine_parts().unwrap();
+        assert_eq!(parts.dt_s.to_bits(), setup.dt_s.to_bits());
+        assert_eq!(parts.model, w.model);
+        assert_eq!(parts.forcing, w.forcing);
+        assert_eq!(parts.periodicity, w.periodicity);
+        // The text is kept verbatim (it is stored in the output file).
+        assert_eq!(s.text(), std::fs::read_to_string(path).unwrap());
+        let out = s.output();
+        assert!(out.snapshot_every_s > 0.0 && out.observables_every_s > 0.0);
+        // Building is deterministic.
+        let again = s.build().unwrap().world;
+        assert_eq!(again.floes, w.floes, "{}", path.display());
+    }
+}
+
+#[test]
+fn free_drift_reaches_the_analytic_velocity() {
+    pooled(free_drift)
+}
+
+fn free_drift() {
+    let s = scenario("free_drift.toml");
+    let mut w = s.build().unwrap().world;
+    // The file's parameters, written out independently of the reader.
+    let ocean = DragParameters {
+        turning_angle_deg: 20.0,
+        ..DragParameters::ocean()
+    };
+    let f = 2.0 * floe_dem::forcing::EARTH_ROTATION_RATE_RAD_S * 75f64.to_radians().sin();
+    let rho_h = 917.0 * 2.0;
+    let expected = free_drift_velocity(
+        Vec2::new(10.0, 0.0),
+        Vec2::ZERO,
+        &DragParameters::air(),
+        &ocean,
+        f,
+        rho_h,
+        true,
+    )
+    .unwrap();
+    let from_forcing = w
+        .forcing
+        .free_drift_velocity_at(0.0, w.floes.position[0], rho_h)
+        .unwrap();
+    assert!((from_forcing - expected).length() < 1e-12 * expected.length());
+    // Turned to the right of the wind, and about 1.5 % of its speed.
+    assert!(expected.y < 0.0 && (0.01..0.02).contains(&(expected.length() / 10.0)));
+    // Two days of stepping: inertial oscillations have decayed.
+    let steps = (2.0 * 86400.0 / w.dt_s) as usize;
+    for _ in 0..steps {
+        w.step();
+    }
+    assert!(w.contacts.is_empty());
+    for i in 0..w.floes.len() {
+        let err = (w.floes.velocity[i] - expected).length() / expected.length();
+        assert!(
+            err < 1e-3,
+            "floe {i}: {:?} vs {expected:?}",
+            w.floes.velocity[i]
+        );
+    }
+}
+
+/// The double-shear set-up's side contacts carry the file's load, and after
+/// the push the block slides at the push speed with the law's steady
+/// friction, the pusher carrying twice the friction force.
+fn double_shear(name: &str, load: f64, speed: f64, run_s: f64) {
+    let s = load_and_check_geometry(name, load);
+    let mut w = s.build().unwrap().world;
+    let steps = (run_s / w.dt_s) as usize;
+    for _ in 0..steps {
+        w.step();
+    }
+    let block = w
+        .floes
+        .motion
+        .iter()
+        .position(|m| matches!(m, Motion::Free))
+        .unwrap();
+    let v = w.floes.velocity[block].x;
+    assert!((v - speed).abs() < 1e-4 * speed, "{name}: block at {v} m/s");
+    let mu_ss = w.model.law.mu_steady(speed);
+    let mut friction = 0.0;
+    let mut push = 0.0;
+    for c in &w.contacts {
+        if c.normal.y.abs() > 0.99 {
+            assert!((c.normal_force_n - load).abs() < 1e-6 * load);
+            assert!((c.mu() - mu_ss).abs() < 1e-4, "mu {} vs {mu_ss}", c.mu());
+            friction += c.tangential_force_n().abs();
+        } else {
+            push += c.normal_force_n;
+        }
+    }
+    assert!(
+        (push - friction).abs() < 1e-4 * friction,
+        "{push} vs {friction}"
+    );
+}
+
+fn load_and_check_geometry(name: &str, load: f64) -> Scenario {
+    let s = scenario(name);
+    let setup = s.build().unwrap();
+    let w = &setup.world;
+    // At t = 0 the side blocks press on the block with the intended load.
+    let side: Vec<f64> = w
+        .contacts
+        .iter()
+        .filter(|c| c.normal.y.abs() > 0.99)
+        .map(|c| c.normal_force_n)
+        .collect();
+    assert_eq!(side.len(), 2, "{name}: two side contacts");
+    for n in side {
+        assert!((n - load).abs() < 1e-9 * load, "{name}: {n} N vs {load} N");
+    }
+    assert!(setup
+        .report
+        .iter()
+        .any(|l| l.contains("loading spring") && l.contains("in series")));
+    s
+}
+
+#[test]
+fn tank_double_shear_carries_5_kn_and_slides_at_steady_friction() {
+    pooled(|| double_shear("tank_double_shear.toml", 5000.0, 0.008, 60.0));
+    // The stiffness matches the tank apparatus, 2 MN/m.
+    let s = scenario("tank_double_shear.toml");
+    let g = checks::double_shear_geometry(s.contact_model(), 0.25, [2.0, 2.0], [0.5, 2.0], 5e3);
+    assert!((g.series_stiffness_n_per_m - 2e6).abs() < 0.01 * 2e6);
+}
+
+#[test]
+fn lab_double_shear_carries_1_kn_per_face() {
+    let s = load_and_check_geometry("lab_double_shear.toml", 1000.0);
+    let g = checks::double_shear_geometry(s.contact_model(), 0.1, [0.2, 0.1], [0.05, 0.1], 1e3);
+    assert!((g.series_stiffness_n_per_m - 20e6).abs() < 0.01 * 20e6);
+    // The whole run (20 s, 10 L of slip, 517,000 steps) reaches steady sliding.
+    pooled(|| double_shear("lab_double_shear.toml", 1000.0, 1e-4, 20.0));
+}
+
+#[test]
+fn the_minimal_example_in_the_docs_builds() {
+    let docs = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scenarios.md"),
+    )
+    .unwrap();
+    let start = docs.find("```toml\n").unwrap() + "```toml\n".len();
+    let end = start + docs[start..].find("```").unwrap();
+    let s = Scenario::from_text(&docs[start..end], Path::new("docs/scenarios.md")).unwrap();
+    let n = s.build().unwrap().world.floes.len();
+    assert!((440..520).contains(&n), "{n} floes");
+}
