@@ -5,7 +5,7 @@ CARGO ?= cargo
 FLOE  := target/release/floe
 DEMO  := out/demo
 
-.PHONY: demo test deps check-tools system-deps python-deps validation bench clean
+.PHONY: demo slider-demo test deps check-tools system-deps python-deps validation bench clean
 
 ## Tools and system packages: Rust's tools, HDF5 and pkg-config (apt-installed
 ## when missing), and optionally h5py for the Python example of docs/output.md.
@@ -53,13 +53,25 @@ python-deps:
 	  echo "note: no pip for python3: the h5py example is skipped (optional; apt-get install python3-h5py python3-matplotlib)"; \
 	fi
 
-## The main job: the paper's lab slide-hold-slide as a spring-slider run, and
-## the hold-time table. Writes $(DEMO)/{series.csv,summary.json,friction.png}.
+## The main job: a DEM run of the default scenario (a few hundred diamond
+## floes sheared by the wind in a walled channel) into an HDF5 file, pictures
+## of it, a summary, then the same ice under Amontons, rate and rate-and-state
+## friction side by side. Writes $(DEMO)/demo.h5, $(DEMO)/pictures/*.png and
+## $(DEMO)/compare/report.md.
 demo: deps
 	$(CARGO) build --release -p floe-cli
-	$(FLOE) slider run scenarios/slider/lab_slide_hold_slide.toml --out $(DEMO) --force
+	$(FLOE) run scenarios/demo.toml -o $(DEMO)/demo.h5 --force
+	$(FLOE) render $(DEMO)/demo.h5 --every 5 -o $(DEMO)/pictures --force
+	$(FLOE) info $(DEMO)/demo.h5 | head -20
+	$(FLOE) compare scenarios/demo.toml -o $(DEMO)/compare --force --quiet
+	@echo "pictures: $(DEMO)/pictures/   comparison: $(DEMO)/compare/report.md"
+
+## The spring-slider experiments of the paper: the lab slide-hold-slide and
+## the hold-time table. Writes $(DEMO)/slider/{series.csv,summary.json,friction.png}.
+slider-demo: deps
+	$(CARGO) build --release -p floe-cli
+	$(FLOE) slider run scenarios/slider/lab_slide_hold_slide.toml --out $(DEMO)/slider --force
 	$(FLOE) slider hold --preset lab --hold 1,10,100,1000
-	@echo "plot: $(DEMO)/friction.png"
 
 ## The whole test suite: formatting, lints, and every test (release mode: the
 ## physics tests run spring-sliders for millions of steps).
@@ -75,6 +87,7 @@ validation: deps
 ## Criterion benchmarks (figures in docs/performance.md).
 bench: deps
 	$(CARGO) bench -p floe-friction --bench contact_update
+	$(CARGO) bench -p floe-dem --bench dem_step
 
 clean:
 	$(CARGO) clean

@@ -140,6 +140,10 @@ pub fn run(args: &RunArgs) -> Result<RunSummary, CliError> {
                 periodic: domain.periodic,
             },
         };
+        // The output's directory is made if missing, as `-o out/run.h5` suggests.
+        if let Some(parent) = args.output.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(parent).map_err(|e| CliError::io(&args.output, e))?;
+        }
         let mut writer = RunWriter::create(
             &args.output,
             &metadata,
