@@ -19,6 +19,10 @@ use super::resolve::{dem_error, DtChoice, FloeSource, Resolved, Side, Wall, AUTO
 use crate::error::CliError;
 use crate::input::SourceFile;
 
+/// Most segments one wall is made of (a wall much longer than the floes are
+/// wide gets longer segments rather than millions of them).
+const MAX_WALL_SEGMENTS: usize = 100_000;
+
 /// Four significant digits, without trailing noise.
 pub(crate) fn sig(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
@@ -248,12 +252,12 @@ fn generate(
                     ),
                 ));
             }
-            let n = columns * rows;
+            let n = columns.saturating_mul(*rows);
             if n > MAX_FLOES {
                 return Err(f.error(
                     span,
                     "tessellation.columns",
-                    format!("{n} floes is above the cap of {MAX_FLOES}"),
+                    format!("{columns} x {rows} floes is above the cap of {MAX_FLOES}"),
                 ));
             }
             let thickness = r.thickness.sample(n, r.seed).map_err(dem)?;
@@ -594,8 +598,11 @@ fn wall_segments(r: &Resolved, w: &Wall, r_max: f64) -> Vec<Vec<Vec2>> {
     } else {
         (region.min[along] - reach, region.max[along] + reach)
     };
-    let target = (2.0 * r_max).max(f64::MIN_POSITIVE);
-    let n = ((hi - lo) / target).ceil().max(1.0) as usize;
+    // Segments of one floe diameter, but at most MAX_WALL_SEGMENTS of them.
+    let target = (2.0 * r_max).max((hi - lo) / MAX_WALL_SEGMENTS as f64);
+    let n = ((hi - lo) / target)
+        .ceil()
+        .clamp(1.0, MAX_WALL_SEGMENTS as f64) as usize;
     let step = (hi - lo) / n as f64;
     let (a, b) = match w.side {
         Side::Left => (region.min.x - t, region.min.x),
