@@ -45,7 +45,11 @@ fn table_without_friction(text: &str) -> toml::Table {
 }
 
 fn friction(file: &Path) -> toml::Table {
-    let text = RunFile::open(file).unwrap().metadata().unwrap().scenario_toml;
+    let text = RunFile::open(file)
+        .unwrap()
+        .metadata()
+        .unwrap()
+        .scenario_toml;
     let t: toml::Table = text.parse().unwrap();
     t["friction"].as_table().unwrap().clone()
 }
@@ -59,7 +63,15 @@ fn compare_runs_the_same_ice_under_each_law() {
     let (dir, scenario) = setup();
     let out = dir.path().join("cmp");
     let o = out.display().to_string();
-    ok(&["compare", &scenario, "-o", &o, "--quiet", "--reference-slip-speed", "0.003"]);
+    ok(&[
+        "compare",
+        &scenario,
+        "-o",
+        &o,
+        "--quiet",
+        "--reference-slip-speed",
+        "0.003",
+    ]);
 
     // Only the friction table differs, and the initial floes are the same.
     let first = RunFile::open(&out.join("rate-state.h5")).unwrap();
@@ -67,14 +79,21 @@ fn compare_runs_the_same_ice_under_each_law() {
     let start = first.snapshot(0).unwrap();
     for law in ["amontons", "rate"] {
         let f = RunFile::open(&out.join(format!("{law}.h5"))).unwrap();
-        assert_eq!(table_without_friction(&f.metadata().unwrap().scenario_toml), base, "{law}");
+        assert_eq!(
+            table_without_friction(&f.metadata().unwrap().scenario_toml),
+            base,
+            "{law}"
+        );
         assert_eq!(f.snapshot(0).unwrap().position, start.position, "{law}");
         assert_eq!(f.status().unwrap(), "completed");
     }
     // ... and the laws did make a difference.
     let n = first.snapshot_count().unwrap();
     let end = first.snapshot(n - 1).unwrap();
-    let other = RunFile::open(&out.join("amontons.h5")).unwrap().snapshot(n - 1).unwrap();
+    let other = RunFile::open(&out.join("amontons.h5"))
+        .unwrap()
+        .snapshot(n - 1)
+        .unwrap();
     assert_ne!(end.position, other.position);
 
     // Amontons' mu: the rate-and-state steady state at 3 mm/s, computed here
@@ -96,8 +115,17 @@ fn compare_runs_the_same_ice_under_each_law() {
     assert!((rate["c1"].as_float().unwrap() - (p.a - p.b)).abs() < 1e-15);
 
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
-    for expected in ["| amontons |", "| rate |", "| rate-state |", "histories.png", "3e-3 m/s"] {
-        assert!(report.contains(expected), "`{expected}` in report:\n{report}");
+    for expected in [
+        "| amontons |",
+        "| rate |",
+        "| rate-state |",
+        "histories.png",
+        "3e-3 m/s",
+    ] {
+        assert!(
+            report.contains(expected),
+            "`{expected}` in report:\n{report}"
+        );
     }
     for png in ["histories.png", "profile.png", "slip_events.png"] {
         assert!(is_png(&out.join(png)), "{png}");
@@ -105,7 +133,12 @@ fn compare_runs_the_same_ice_under_each_law() {
     let maps: Vec<PathBuf> = std::fs::read_dir(out.join("rate-state"))
         .unwrap()
         .map(|e| e.unwrap().path())
-        .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("floes_speed"))
+        .filter(|p| {
+            p.file_name()
+                .unwrap()
+                .to_string_lossy()
+                .starts_with("floes_speed")
+        })
         .collect();
     assert_eq!(maps.len(), 1);
     assert!(is_png(&maps[0]));
@@ -143,8 +176,16 @@ fn a_parallel_sweep_equals_runs_made_one_by_one() {
     let out = dir.path().join("sweep");
     let o = out.display().to_string();
     let stdout = ok(&[
-        "sweep", &scenario, "--set", "friction.a=0.30,0.34", "--set", "seed=3,4", "-o", &o,
-        "--threads", "2",
+        "sweep",
+        &scenario,
+        "--set",
+        "friction.a=0.30,0.34",
+        "--set",
+        "seed=3,4",
+        "-o",
+        &o,
+        "--threads",
+        "2",
     ]);
     assert!(stdout.contains("results.csv"), "{stdout}");
     let mut rows = csv::Reader::from_path(out.join("results.csv")).unwrap();
@@ -183,7 +224,10 @@ fn a_parallel_sweep_equals_runs_made_one_by_one() {
     let (sa, sb) = (a.snapshot(n - 1).unwrap(), b.snapshot(n - 1).unwrap());
     assert_eq!(sa.position, sb.position);
     assert_eq!(sa.velocity, sb.velocity);
-    assert_eq!(a.contacts(n - 1).unwrap().theta, b.contacts(n - 1).unwrap().theta);
+    assert_eq!(
+        a.contacts(n - 1).unwrap().theta,
+        b.contacts(n - 1).unwrap().theta
+    );
 }
 
 #[test]
@@ -191,7 +235,15 @@ fn an_emitted_sweep_is_gathered_from_whatever_ran() {
     let (dir, scenario) = setup();
     let out = dir.path().join("emit");
     let o = out.display().to_string();
-    ok(&["sweep", &scenario, "--set", "friction.critical_slip_m=0.001,0.005,0.02", "--emit", "-o", &o]);
+    ok(&[
+        "sweep",
+        &scenario,
+        "--set",
+        "friction.critical_slip_m=0.001,0.005,0.02",
+        "--emit",
+        "-o",
+        &o,
+    ]);
     for k in 1..=3 {
         assert!(out.join(format!("variant_{k:03}.toml")).exists());
         assert!(!out.join(format!("variant_{k:03}.h5")).exists());

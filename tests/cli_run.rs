@@ -102,7 +102,10 @@ impl Case {
 fn assert_same_run(a: &Path, b: &Path) {
     let (fa, fb) = (RunFile::open(a).unwrap(), RunFile::open(b).unwrap());
     let n = fa.snapshot_count().unwrap();
-    assert!(n > 2, "a run worth comparing has several snapshots, got {n}");
+    assert!(
+        n > 2,
+        "a run worth comparing has several snapshots, got {n}"
+    );
     assert_eq!(n, fb.snapshot_count().unwrap(), "snapshot count");
     for k in 0..n {
         let (sa, sb) = (fa.snapshot(k).unwrap(), fb.snapshot(k).unwrap());
@@ -159,11 +162,22 @@ fn a_run_writes_a_file_that_info_describes() {
     // The energy observables sample the same steps as each other.
     let ke = file.observable("kinetic_translational").unwrap();
     assert_eq!(*ke.step.last().unwrap(), last.step);
-    assert_eq!(ke.step, file.observable("friction_dissipation").unwrap().step);
+    assert_eq!(
+        ke.step,
+        file.observable("friction_dissipation").unwrap().step
+    );
 
     let info = run_ok(&["info", &case.path("run.h5")]);
-    for expected in ["completed", "snapshots", "contacts", "kinetic_translational"] {
-        assert!(info.contains(expected), "`{expected}` in floe info:\n{info}");
+    for expected in [
+        "completed",
+        "snapshots",
+        "contacts",
+        "kinetic_translational",
+    ] {
+        assert!(
+            info.contains(expected),
+            "`{expected}` in floe info:\n{info}"
+        );
     }
     let floes = file.static_floes().unwrap().len().to_string();
     assert!(info.contains(&floes), "floe count {floes} in:\n{info}");
@@ -242,7 +256,10 @@ fn ctrl_c_writes_a_final_snapshot_and_checkpoint_and_resume_is_bitwise() {
     let err = text(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "{err}");
     assert_no_panic(&err);
-    assert!(err.contains("--resume"), "the message says how to go on: {err}");
+    assert!(
+        err.contains("--resume"),
+        "the message says how to go on: {err}"
+    );
 
     let file = RunFile::open(Path::new(&target)).unwrap();
     let status = file.status().unwrap();
@@ -308,7 +325,10 @@ fn an_unwritable_output_is_one_clear_error() {
     let errors: Vec<&str> = err.lines().filter(|l| l.starts_with("error: ")).collect();
     assert_eq!(errors.len(), 1, "{err}");
     assert_eq!(err.trim_end().lines().last(), Some(errors[0]), "{err}");
-    assert!(errors[0].contains("plain_file/run.h5"), "names the file: {err}");
+    assert!(
+        errors[0].contains("plain_file/run.h5"),
+        "names the file: {err}"
+    );
 }
 
 #[test]
@@ -320,7 +340,10 @@ fn a_corrupt_or_foreign_resume_file_is_one_clear_error() {
         let err = text(&out.stderr);
         assert_ne!(code(&out), 0, "{err}");
         assert_no_panic(&err);
-        assert!(err.starts_with("error: ") && err.contains(expected), "{err}");
+        assert!(
+            err.starts_with("error: ") && err.contains(expected),
+            "{err}"
+        );
     }
 }
 
@@ -337,10 +360,26 @@ fn render_draws_the_floes_and_the_observables() {
     let dir_s = dir.to_string_lossy().into_owned();
     run_ok(&["render", &file, "--every", "2", "-o", &dir_s]);
     run_ok(&[
-        "render", &file, "--snapshot", "-1", "--color", "stress", "-o", &dir_s, "--force",
+        "render",
+        &file,
+        "--snapshot",
+        "-1",
+        "--color",
+        "stress",
+        "-o",
+        &dir_s,
+        "--force",
     ]);
     run_ok(&[
-        "render", &file, "--snapshot", "0", "--color", "theta", "-o", &dir_s, "--force",
+        "render",
+        &file,
+        "--snapshot",
+        "0",
+        "--color",
+        "theta",
+        "-o",
+        &dir_s,
+        "--force",
     ]);
     let pngs: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap()
@@ -351,9 +390,10 @@ fn render_draws_the_floes_and_the_observables() {
         .filter(|p| p.to_string_lossy().contains("floes_speed_"))
         .count();
     assert_eq!(speed, snapshots.div_ceil(2), "{pngs:?}");
-    for name in ["observables.png"] {
-        assert!(dir.join(name).exists(), "{name} in {pngs:?}");
-    }
+    assert!(
+        dir.join("observables.png").exists(),
+        "observables.png in {pngs:?}"
+    );
     assert!(pngs.iter().any(|p| p.to_string_lossy().contains("stress")));
     assert!(pngs.iter().any(|p| p.to_string_lossy().contains("theta")));
     for p in &pngs {

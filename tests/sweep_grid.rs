@@ -14,7 +14,13 @@ fn set_values_split_at_top_level_commas_only() {
     assert_eq!(s.values, vec!["\"lab\"", "\"tank\""]);
     let s = parse_setting(" friction.a = 0.25, 0.31 ,0.37").unwrap();
     assert_eq!(s.values, vec!["0.25", "0.31", "0.37"]);
-    for bad in ["friction.a", "friction.a=", "friction.a=0.3,", "friction..a=1", "x=lab"] {
+    for bad in [
+        "friction.a",
+        "friction.a=",
+        "friction.a=0.3,",
+        "friction..a=1",
+        "x=lab",
+    ] {
         let e = parse_setting(bad).unwrap_err().to_string();
         assert!(e.contains(bad.trim()), "{bad}: {e}");
     }
@@ -45,7 +51,10 @@ fn apply_replaces_only_the_swept_keys() {
         parse_setting("output.snapshot_every_s=60").unwrap(),
     ];
     let out = apply(text, Path::new("x.toml"), &settings, &[1, 0, 0]).unwrap();
-    assert!(out.contains("# my channel") && out.contains("# tank"), "comments kept:\n{out}");
+    assert!(
+        out.contains("# my channel") && out.contains("# tank"),
+        "comments kept:\n{out}"
+    );
     let v: toml::Table = out.parse().unwrap();
     assert_eq!(v["friction"]["a"].as_float(), Some(0.37));
     assert_eq!(v["friction"]["law"].as_str(), Some("rate-state"));

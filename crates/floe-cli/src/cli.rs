@@ -6,12 +6,12 @@ use clap::{Parser, Subcommand, ValueEnum};
 use floe_friction::experiments::Preset;
 use floe_friction::{Form, StateLaw};
 
+use crate::compare::variants::{LawChoice, Matching};
+use crate::compare::CompareArgs;
 use crate::error::CliError;
 use crate::render::Snapshots;
 use crate::run::RunArgs;
 use crate::slider::{self, ExperimentOptions};
-use crate::compare::variants::{LawChoice, Matching};
-use crate::compare::CompareArgs;
 use crate::sweep::grid::parse_setting;
 use crate::sweep::SweepArgs;
 use crate::{compare, info, render, run, sweep};
@@ -413,7 +413,11 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 (None, None) => Snapshots::One(-1),
             };
             let written = render::render(&file, which, color, &output, force)?;
-            Ok(format!("{} pictures in {}", written.len(), output.display()))
+            Ok(format!(
+                "{} pictures in {}",
+                written.len(),
+                output.display()
+            ))
         }
         Command::Slider(SliderCommand::Hold {
             options,

@@ -32,7 +32,11 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
     let walls = floes.prescribed.iter().filter(|&&p| p).count();
     line(
         "floes",
-        format!("{} ({} free, {walls} prescribed: walls)", floes.len(), floes.len() - walls),
+        format!(
+            "{} ({} free, {walls} prescribed: walls)",
+            floes.len(),
+            floes.len() - walls
+        ),
     );
     let d = meta.domain;
     let periodic: Vec<&str> = [("x", d.periodic[0]), ("y", d.periodic[1])]
@@ -48,7 +52,11 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
             d.size_m[1] / 1e3,
             d.min_m[0],
             d.min_m[1],
-            if periodic.is_empty() { "neither".to_string() } else { periodic.join(" and ") }
+            if periodic.is_empty() {
+                "neither".to_string()
+            } else {
+                periodic.join(" and ")
+            }
         ),
     );
     if snapshots > 0 {
@@ -64,7 +72,11 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
             ),
         );
         let c = run.contacts(snapshots - 1)?;
-        let sliding = c.slip_rate_m_per_s.iter().filter(|v| v.abs() > 1e-6).count();
+        let sliding = c
+            .slip_rate_m_per_s
+            .iter()
+            .filter(|v| v.abs() > 1e-6)
+            .count();
         line(
             "contacts",
             format!(
@@ -93,7 +105,10 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
             values.push(format!("  {name:<24} {}", shown.join(" ")));
         }
     }
-    line("observables", format!("{} series, {samples} samples; last values:", names.len()));
+    line(
+        "observables",
+        format!("{} series, {samples} samples; last values:", names.len()),
+    );
     for v in values {
         let _ = writeln!(out, "{v}");
     }

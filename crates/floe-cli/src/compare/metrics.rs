@@ -103,8 +103,8 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, CliEr
         )));
     }
     // At least the last snapshot.
-    let late_from = (((1.0 - options.late_fraction) * snapshots as f64).floor() as usize)
-        .min(snapshots - 1);
+    let late_from =
+        (((1.0 - options.late_fraction) * snapshots as f64).floor() as usize).min(snapshots - 1);
     let (mut y, mut u, mut w) = (Vec::new(), Vec::new(), Vec::new());
     let mut detector = SlipEventDetector::new(options.slip)?;
     for k in 0..snapshots {

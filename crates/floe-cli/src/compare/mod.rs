@@ -42,7 +42,8 @@ pub struct CompareArgs {
 
 /// Runs the variants and writes the report; returns the report's path.
 pub fn compare(args: &CompareArgs) -> Result<PathBuf, CliError> {
-    let text = std::fs::read_to_string(&args.scenario).map_err(|e| CliError::io(&args.scenario, e))?;
+    let text =
+        std::fs::read_to_string(&args.scenario).map_err(|e| CliError::io(&args.scenario, e))?;
     let origin = args.scenario.as_path();
     // Checks the user's file as written first, so its errors point into it.
     Scenario::from_text(&text, origin)?;
@@ -90,7 +91,6 @@ pub fn compare(args: &CompareArgs) -> Result<PathBuf, CliError> {
         }
     }
 
-
     let mut out = Vec::new();
     for &law in &args.laws {
         let (variant_text, friction) = variant(
@@ -102,7 +102,8 @@ pub fn compare(args: &CompareArgs) -> Result<PathBuf, CliError> {
             args.matching,
         )?;
         let scenario_file = args.out_dir.join(format!("{}.toml", law.name()));
-        std::fs::write(&scenario_file, &variant_text).map_err(|e| CliError::io(&scenario_file, e))?;
+        std::fs::write(&scenario_file, &variant_text)
+            .map_err(|e| CliError::io(&scenario_file, e))?;
         let output = args.out_dir.join(format!("{}.h5", law.name()));
         eprintln!("compare: {} -> {}", law.name(), output.display());
         let summary = run(&RunArgs {
@@ -130,4 +131,3 @@ pub fn compare(args: &CompareArgs) -> Result<PathBuf, CliError> {
     std::fs::write(&report_path, md).map_err(|e| CliError::io(&report_path, e))?;
     Ok(report_path)
 }
-

@@ -26,11 +26,7 @@ fn hours(t: &[f64]) -> impl Iterator<Item = f64> + '_ {
     t.iter().map(|t| t / 3600.0)
 }
 
-fn lines(
-    variants: &[Variant],
-    pick: impl Fn(&RunMetrics) -> &[f64],
-    scale: f64,
-) -> Vec<Line> {
+fn lines(variants: &[Variant], pick: impl Fn(&RunMetrics) -> &[f64], scale: f64) -> Vec<Line> {
     variants
         .iter()
         .map(|v| {
@@ -167,14 +163,29 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
             "| {} | {} | {} | {} | {} | {} | {} | {} | {:.3} | {} |",
             v.name,
             or_dash(m.peak_to_steady.map(|p| p.ratio), |r| format!("{r:.3}")),
-            or_dash(m.peak_to_steady.map(|p| p.steady), |x| format!("{:.2}", x * 1e-3)),
-            or_dash(m.normal_stress_n_per_m.last().copied(), |x| format!("{:.2}", x * 1e-3)),
-            or_dash(m.band.map(|b| b.equivalent_width_m), |x| format!("{:.2}", x * 1e-3)),
-            or_dash(m.band.map(|b| b.width_10_90_m), |x| format!("{:.2}", x * 1e-3)),
+            or_dash(m.peak_to_steady.map(|p| p.steady), |x| format!(
+                "{:.2}",
+                x * 1e-3
+            )),
+            or_dash(m.normal_stress_n_per_m.last().copied(), |x| format!(
+                "{:.2}",
+                x * 1e-3
+            )),
+            or_dash(m.band.map(|b| b.equivalent_width_m), |x| format!(
+                "{:.2}",
+                x * 1e-3
+            )),
+            or_dash(m.band.map(|b| b.width_10_90_m), |x| format!(
+                "{:.2}",
+                x * 1e-3
+            )),
             m.slip_events.len(),
             or_dash(median, |x| format!("{x:.3e}")),
             mean_sliding,
-            or_dash(m.friction_dissipation_j.last().copied(), |x| format!("{:.3}", x * 1e-6)),
+            or_dash(m.friction_dissipation_j.last().copied(), |x| format!(
+                "{:.3}",
+                x * 1e-6
+            )),
         );
     }
     let _ = writeln!(

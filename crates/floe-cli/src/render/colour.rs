@@ -22,7 +22,11 @@ const DIVERGING: [(u8, u8, u8); 3] = [(33, 102, 172), (247, 247, 247), (178, 24,
 
 /// Piecewise-linear interpolation in a colour table, `t` clamped to [0, 1].
 fn interpolate(table: &[(u8, u8, u8)], t: f64) -> RGBColor {
-    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let x = t * (table.len() - 1) as f64;
     let i = (x.floor() as usize).min(table.len() - 2);
     let f = x - i as f64;

@@ -79,20 +79,22 @@ pub fn draw(path: &Path, map: &FloeMap) -> Result<(), CliError> {
             .collect();
         Some(Polygon::new(pts, colour.filled()))
     });
-    chart
-        .draw_series(fills)
-        .map_err(|e| err(e.to_string()))?;
+    chart.draw_series(fills).map_err(|e| err(e.to_string()))?;
     // Outlines only when floes are big enough on screen to show them.
     let pixels_per_floe = (width as f64 - 220.0) / (map.polygons.len() as f64).sqrt().max(1.0);
     if pixels_per_floe > 6.0 {
-        let outlines = map.polygons.iter().filter(|p| p.iter().any(inside)).map(|poly| {
-            let mut pts: Vec<(f64, f64)> = poly
-                .iter()
-                .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
-                .collect();
-            pts.push(pts[0]);
-            PathElement::new(pts, BLACK.mix(0.35).stroke_width(1))
-        });
+        let outlines = map
+            .polygons
+            .iter()
+            .filter(|p| p.iter().any(inside))
+            .map(|poly| {
+                let mut pts: Vec<(f64, f64)> = poly
+                    .iter()
+                    .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
+                    .collect();
+                pts.push(pts[0]);
+                PathElement::new(pts, BLACK.mix(0.35).stroke_width(1))
+            });
         chart
             .draw_series(outlines)
             .map_err(|e| err(e.to_string()))?;
@@ -123,7 +125,10 @@ fn colour_bar(area: &Area, scale: ColourScale, label: &str) -> Result<(), String
     let dv = (scale.hi - scale.lo) / n as f64;
     bar.draw_series((0..n).map(|k| {
         let v = scale.lo + k as f64 * dv;
-        Rectangle::new([(0.0, v), (1.0, v + dv)], scale.colour(v + 0.5 * dv).filled())
+        Rectangle::new(
+            [(0.0, v), (1.0, v + dv)],
+            scale.colour(v + 0.5 * dv).filled(),
+        )
     }))
     .map_err(|e| e.to_string())?;
     Ok(())

@@ -131,10 +131,18 @@ pub fn render(
     std::fs::create_dir_all(out_dir).map_err(|e| CliError::io(out_dir, e))?;
     let margin = 0.04 * domain.size_m[0].max(domain.size_m[1]);
     let view = (
-        (domain.min_m[0] - margin, domain.min_m[0] + domain.size_m[0] + margin),
-        (domain.min_m[1] - margin, domain.min_m[1] + domain.size_m[1] + margin),
+        (
+            domain.min_m[0] - margin,
+            domain.min_m[0] + domain.size_m[0] + margin,
+        ),
+        (
+            domain.min_m[1] - margin,
+            domain.min_m[1] + domain.size_m[1] + margin,
+        ),
     );
-    let name = file.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let name = file
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
     for ((snap, v), target) in snapshots.iter().zip(&values).zip(&targets) {
         let polygons: Vec<Vec<(f64, f64)>> = (0..floes.len())
             .map(|i| {
@@ -227,11 +235,7 @@ fn observables_figure(run: &RunFile, path: &Path) -> Result<(), CliError> {
                 x: "time (h)",
                 y: "stress (kN/m)",
             },
-            vec![
-                component(0, "xx"),
-                component(1, "xy"),
-                component(3, "yy"),
-            ],
+            vec![component(0, "xx"), component(1, "xy"), component(3, "yy")],
         ),
         (
             Axes {

@@ -100,7 +100,10 @@ mod tests {
         );
         assert!((p[1].unwrap() - 2.5).abs() < 1e-12);
         assert!((p[0].unwrap() - 1.25).abs() < 1e-12);
-        assert_eq!(mean_theta(4, &view), vec![Some(0.1), Some(0.2), Some(0.3), None]);
+        assert_eq!(
+            mean_theta(4, &view),
+            vec![Some(0.1), Some(0.2), Some(0.3), None]
+        );
         // Across a periodic boundary of period 10: floe 2 stored at x = 12.
         let p = pressure(
             &[[-2.0, 0.0], [0.0, 0.0], [12.0, 0.0]],

@@ -96,14 +96,14 @@ fn write_due<F: ExternalForces, O: RunObserver<F>>(
     force_all: bool,
 ) -> Result<(), O::Error> {
     let step = world.steps;
-    if force_all || step % cadence.observables == 0 {
+    if force_all || step.is_multiple_of(cadence.observables) {
         observer.observables(step, &world.observables(domain_area_m2))?;
     }
-    if force_all || step % cadence.snapshot == 0 {
+    if force_all || step.is_multiple_of(cadence.snapshot) {
         observer.snapshot(world)?;
     }
     // The checkpoint comes last: whatever it records as written is written.
-    if force_all || step % cadence.checkpoint == 0 {
+    if force_all || step.is_multiple_of(cadence.checkpoint) {
         observer.checkpoint(&world.state())?;
     }
     Ok(())
@@ -176,13 +176,13 @@ fn finish_interrupted<F: ExternalForces, O: RunObserver<F>>(
     domain_area_m2: f64,
 ) -> Result<(), O::Error> {
     let step = world.steps;
-    if step % cadence.checkpoint != 0 {
+    if !step.is_multiple_of(cadence.checkpoint) {
         observer.checkpoint(&world.state())?;
     }
-    if step % cadence.observables != 0 {
+    if !step.is_multiple_of(cadence.observables) {
         observer.observables(step, &world.observables(domain_area_m2))?;
     }
-    if step % cadence.snapshot != 0 {
+    if !step.is_multiple_of(cadence.snapshot) {
         observer.snapshot(world)?;
     }
     Ok(())

@@ -24,7 +24,9 @@ pub fn flag() -> &'static AtomicBool {
             );
         });
         if let Err(e) = installed {
-            eprintln!("warning: no interrupt handler ({e}); Ctrl-C will stop without a final snapshot");
+            eprintln!(
+                "warning: no interrupt handler ({e}); Ctrl-C will stop without a final snapshot"
+            );
         }
     });
     &INTERRUPTED

@@ -82,7 +82,10 @@ impl RunSummary {
         let state = if self.final_step >= self.total_steps {
             "completed".to_string()
         } else {
-            format!("paused; continue with `floe run --resume {}`", output.display())
+            format!(
+                "paused; continue with `floe run --resume {}`",
+                output.display()
+            )
         };
         format!(
             "{}: {state} at step {}/{} (t = {}), {} steps in {:.1} s ({:.1} steps/s, {} threads)",

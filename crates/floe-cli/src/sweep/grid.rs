@@ -31,7 +31,11 @@ pub fn parse_setting(spec: &str) -> Result<Setting, CliError> {
     let (key, values) = spec
         .split_once('=')
         .ok_or_else(|| bad("expected KEY=VALUE[,VALUE...]"))?;
-    let key: Vec<String> = key.trim().split('.').map(|k| k.trim().to_string()).collect();
+    let key: Vec<String> = key
+        .trim()
+        .split('.')
+        .map(|k| k.trim().to_string())
+        .collect();
     if key.iter().any(|k| k.is_empty()) {
         return Err(bad("empty part in the key"));
     }
@@ -54,8 +58,12 @@ pub fn parse_setting(spec: &str) -> Result<Setting, CliError> {
         return Err(bad("empty value"));
     }
     for v in &out {
-        v.parse::<Value>()
-            .map_err(|e| bad(&format!("`{v}` is not a TOML value ({})", e.to_string().trim())))?;
+        v.parse::<Value>().map_err(|e| {
+            bad(&format!(
+                "`{v}` is not a TOML value ({})",
+                e.to_string().trim()
+            ))
+        })?;
     }
     Ok(Setting { key, values: out })
 }

@@ -89,8 +89,7 @@ pub fn sweep(args: &SweepArgs) -> Result<PathBuf, CliError> {
     write_manifest(&manifest, &args.settings, &rows)?;
     if args.emit_only {
         let script = args.out_dir.join("array.slurm");
-        std::fs::write(&script, slurm_array(rows.len()))
-            .map_err(|e| CliError::io(&script, e))?;
+        std::fs::write(&script, slurm_array(rows.len())).map_err(|e| CliError::io(&script, e))?;
         return Ok(manifest);
     }
     let budget = match args.threads {
@@ -205,9 +204,15 @@ fn metric_cells(m: &RunMetrics) -> Vec<String> {
         m.sliding_fraction.iter().sum::<f64>() / m.sliding_fraction.len().max(1) as f64;
     vec![
         opt(m.peak_to_steady.map(|p| p.ratio), &|x| format!("{x:.4}")),
-        opt(m.peak_to_steady.map(|p| p.steady * 1e-3), &|x| format!("{x:.4}")),
-        opt(m.band.map(|b| b.equivalent_width_m * 1e-3), &|x| format!("{x:.3}")),
-        opt(m.band.map(|b| b.width_10_90_m * 1e-3), &|x| format!("{x:.3}")),
+        opt(m.peak_to_steady.map(|p| p.steady * 1e-3), &|x| {
+            format!("{x:.4}")
+        }),
+        opt(m.band.map(|b| b.equivalent_width_m * 1e-3), &|x| {
+            format!("{x:.3}")
+        }),
+        opt(m.band.map(|b| b.width_10_90_m * 1e-3), &|x| {
+            format!("{x:.3}")
+        }),
         m.slip_events.len().to_string(),
         format!("{mean_sliding:.4}"),
         opt(m.friction_dissipation_j.last().map(|x| x * 1e-6), &|x| {
@@ -258,7 +263,11 @@ pub fn gather(dir: &Path, options: &MetricOptions) -> Result<PathBuf, CliError> 
         w.write_record(row).map_err(|e| csv_error(&csv_path, e))?;
     }
     w.flush().map_err(|e| CliError::io(&csv_path, e))?;
-    let mut md = format!("| {} |\n|{}\n", full_header.join(" | "), "---|".repeat(full_header.len()));
+    let mut md = format!(
+        "| {} |\n|{}\n",
+        full_header.join(" | "),
+        "---|".repeat(full_header.len())
+    );
     for row in &table {
         md.push_str(&format!("| {} |\n", row.join(" | ")));
     }
