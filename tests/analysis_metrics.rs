@@ -288,3 +288,30 @@ proptest! {
         prop_assert!((a.max_shear_n_per_m - b.max_shear_n_per_m).abs() < tol);
     }
 }
+
+#[test]
+fn restart_response_of_a_constructed_overshoot() {
+    // Steady at -2 kN/m, nothing during the pause [3600, 7200), then
+    // s = -2 (1 + a (u/τ) exp(1 - u/τ)) with u = t - 7200: peak -2 (1 + a) at u = τ.
+    let (a, tau) = (0.6, 600.0);
+    let t: Vec<f64> = (0..=14400).step_by(10).map(f64::from).collect();
+    let s: Vec<f64> = t
+        .iter()
+        .map(|&t| {
+            if t < 3600.0 {
+                -2e3
+            } else if t < 7200.0 {
+                0.0
+            } else {
+                let u = (t - 7200.0) / tau;
+                -2e3 * (1.0 + a * u * (1.0 - u).exp())
+            }
+        })
+        .collect();
+    let r = floe_analysis::stress::restart_response(&t, &s, 3600.0, 7200.0, 3600.0).unwrap();
+    assert!((r.before - 2e3).abs() < 1e-9);
+    assert!((r.ratio - (1.0 + a)).abs() < 1e-9, "{r:?}");
+    assert_eq!(r.peak_delay_s, tau);
+    assert!(floe_analysis::stress::restart_response(&t, &s, 3600.0, 7200.0, 0.0).is_err());
+    assert!(floe_analysis::stress::restart_response(&t, &s, 7200.0, 3600.0, 10.0).is_err());
+}

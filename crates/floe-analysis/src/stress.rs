@@ -109,3 +109,70 @@ pub fn peak_to_steady(
         ratio: value[k] / steady,
     })
 }
+
+/// How a loading curve answers a restart of the forcing after a pause.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RestartResponse {
+    /// Mean |value| over the window before the pause began.
+    pub before: f64,
+    /// Largest |value| within the window after the restart.
+    pub peak: f64,
+    /// From the restart to that peak, s.
+    pub peak_delay_s: f64,
+    /// `peak / before`: above 1, the restart overshoots the earlier level.
+    pub ratio: f64,
+}
+
+/// The response of `value(time_s)` to forcing that pauses at `pause_s` and
+/// restarts at `restart_s`: the level over `window_s` before the pause
+/// against the peak within `window_s` after the restart.
+pub fn restart_response(
+    time_s: &[f64],
+    value: &[f64],
+    pause_s: f64,
+    restart_s: f64,
+    window_s: f64,
+) -> Result<RestartResponse, AnalysisError> {
+    if time_s.len() != value.len() {
+        return Err(AnalysisError::LengthMismatch {
+            what: "times and values",
+            left: time_s.len(),
+            right: value.len(),
+        });
+    }
+    if window_s.is_nan() || window_s <= 0.0 || restart_s < pause_s {
+        return Err(AnalysisError::InvalidParameter {
+            name: "window_s",
+            value: window_s,
+            reason: "needs a positive window and a restart after the pause",
+        });
+    }
+    let (mut sum, mut n) = (0.0, 0usize);
+    let mut peak: Option<(f64, f64)> = None;
+    for (&t, &v) in time_s.iter().zip(value) {
+        if t >= pause_s - window_s && t < pause_s {
+            sum += v.abs();
+            n += 1;
+        }
+        if t >= restart_s && t <= restart_s + window_s && peak.is_none_or(|(_, p)| v.abs() > p) {
+            peak = Some((t, v.abs()));
+        }
+    }
+    if n == 0 {
+        return Err(AnalysisError::NotEnoughData(
+            "no samples in the window before the pause",
+        ));
+    }
+    let Some((peak_at, peak)) = peak else {
+        return Err(AnalysisError::NotEnoughData(
+            "no samples in the window after the restart",
+        ));
+    };
+    let before = sum / n as f64;
+    Ok(RestartResponse {
+        before,
+        peak,
+        peak_delay_s: peak_at - restart_s,
+        ratio: peak / before,
+    })
+}
