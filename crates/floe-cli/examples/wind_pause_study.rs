@@ -49,7 +49,7 @@ fn study() -> Result<(), CliError> {
     let base = std::fs::read_to_string(base_path).map_err(|e| CliError::io(base_path, e))?;
     let laws = [LawChoice::Amontons, LawChoice::RateState];
     let mut table = String::from(
-        "| calm | law | shear stress before (kN/m) | peak after restart (kN/m) | peak / before | peak after restart (min) |\n|---|---|---|---|---|---|\n",
+        "| calm | law | shear stress before the calm (kN/m) | at the end of the calm (kN/m) | peak after restart (kN/m) | peak / before | peak after restart (min) |\n|---|---|---|---|---|---|---|\n",
     );
     let mut panels: Vec<Vec<Line>> = vec![Vec::new(); laws.len()];
     for pause in PAUSES_S {
@@ -69,28 +69,50 @@ fn study() -> Result<(), CliError> {
         let scenario = out.join(format!("{name}.toml"));
         std::fs::write(&scenario, text).map_err(|e| CliError::io(&scenario, e))?;
         let dir = out.join(&name);
-        compare(&CompareArgs {
-            scenario,
-            laws: laws.to_vec(),
-            out_dir: dir.clone(),
-            threads: None,
-            force: true,
-            matching: Matching {
-                reference_slip_m_per_s: 1e-2,
-                amontons_mu: None,
-            },
-            metrics: MetricOptions::default(),
-            progress: false,
-        })?;
+        // Runs already made are measured again, not rerun (delete to rerun).
+        if !dir.join("report.md").exists() {
+            compare(&CompareArgs {
+                scenario,
+                laws: laws.to_vec(),
+                out_dir: dir.clone(),
+                threads: None,
+                force: true,
+                matching: Matching {
+                    reference_slip_m_per_s: 1e-2,
+                    amontons_mu: None,
+                },
+                metrics: MetricOptions::default(),
+                progress: false,
+            })?;
+        }
         for (k, law) in laws.iter().enumerate() {
-            let m = measure(&dir.join(format!("{}.h5", law.name())), &MetricOptions::default())?;
-            let r = restart_response(&m.time_s, &m.shear_stress_n_per_m, BLOW_S, restart, WINDOW_S)?;
+            let m = measure(
+                &dir.join(format!("{}.h5", law.name())),
+                &MetricOptions::default(),
+            )?;
+            let r = restart_response(
+                &m.time_s,
+                &m.shear_stress_n_per_m,
+                BLOW_S,
+                restart,
+                WINDOW_S,
+            )?;
+            // Mean |stress| over the last half of the calm (before the ramp up).
+            let calm: Vec<f64> = m
+                .time_s
+                .iter()
+                .zip(&m.shear_stress_n_per_m)
+                .filter(|(t, _)| **t >= restart - 0.5 * pause && **t < restart)
+                .map(|(_, s)| s.abs())
+                .collect();
+            let calm_mean = calm.iter().sum::<f64>() / calm.len().max(1) as f64;
             let _ = writeln!(
                 table,
-                "| {} h | {} | {:.3} | {:.3} | {:.2} | {:.0} |",
+                "| {} h | {} | {:.3} | {:.3} | {:.3} | {:.2} | {:.0} |",
                 pause / 3600.0,
                 law.name(),
                 r.before * 1e-3,
+                calm_mean * 1e-3,
                 r.peak * 1e-3,
                 r.ratio,
                 r.peak_delay_s / 60.0

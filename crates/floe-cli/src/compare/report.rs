@@ -130,6 +130,32 @@ pub fn figures(dir: &Path, variants: &[Variant]) -> Result<Vec<PathBuf>, CliErro
     Ok(vec![histories, profile, slips])
 }
 
+/// Below this fraction of the mean speed, the velocity change across the
+/// pack is too small for a band width to mean anything.
+const PLUG_FRACTION: f64 = 0.05;
+
+fn is_plug_flow(m: &RunMetrics) -> bool {
+    let p = &m.profile;
+    let total: f64 = p.weight.iter().sum();
+    let mean = p
+        .velocity_m_per_s
+        .iter()
+        .zip(&p.weight)
+        .map(|(u, w)| u.abs() * w)
+        .sum::<f64>()
+        / total.max(f64::MIN_POSITIVE);
+    m.band
+        .is_some_and(|b| b.velocity_jump_m_per_s.abs() < PLUG_FRACTION * mean)
+}
+
+fn width(x: f64, plug: bool) -> String {
+    if plug {
+        format!("{:.2} (plug)", x * 1e-3)
+    } else {
+        format!("{:.2}", x * 1e-3)
+    }
+}
+
 fn or_dash(x: Option<f64>, f: impl Fn(f64) -> String) -> String {
     x.map_or("-".into(), f)
 }
@@ -148,9 +174,10 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
     }
     let _ = writeln!(
         s,
-        "| law | peak / steady shear stress | steady shear stress (kN/m) | final normal stress (kN/m) | shear band, equivalent width (km) | shear band, 10-90 width (km) | slip events | median event slip (m) | mean sliding fraction | frictional dissipation (MJ) |"
+        "| law | peak / steady shear stress | steady shear stress (kN/m) | final normal stress (kN/m) | velocity change across the pack (m/s) | shear band, equivalent width (km) | shear band, 10-90 width (km) | slip events | median event slip (m) | mean sliding fraction | frictional dissipation (MJ) |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
+    let mut any_plug = false;
     for v in variants {
         let m = &v.metrics;
         let mut sizes: Vec<f64> = m.slip_events.iter().map(|e| e.slip_m).collect();
@@ -158,27 +185,25 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
         let median = (!sizes.is_empty()).then(|| sizes[sizes.len() / 2]);
         let mean_sliding =
             m.sliding_fraction.iter().sum::<f64>() / m.sliding_fraction.len().max(1) as f64;
+        let plug = is_plug_flow(m);
+        any_plug |= plug;
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {:.3} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.3} | {} |",
             v.name,
             or_dash(m.peak_to_steady.map(|p| p.ratio), |r| format!("{r:.3}")),
-            or_dash(m.peak_to_steady.map(|p| p.steady), |x| format!(
-                "{:.2}",
-                x * 1e-3
+            or_dash(m.peak_to_steady.map(|p| p.steady * 1e-3), |x| format!(
+                "{x:.2}"
             )),
-            or_dash(m.normal_stress_n_per_m.last().copied(), |x| format!(
-                "{:.2}",
-                x * 1e-3
+            or_dash(
+                m.normal_stress_n_per_m.last().map(|x| x * 1e-3),
+                |x| format!("{x:.2}")
+            ),
+            or_dash(m.band.map(|b| b.velocity_jump_m_per_s), |x| format!(
+                "{x:.2e}"
             )),
-            or_dash(m.band.map(|b| b.equivalent_width_m), |x| format!(
-                "{:.2}",
-                x * 1e-3
-            )),
-            or_dash(m.band.map(|b| b.width_10_90_m), |x| format!(
-                "{:.2}",
-                x * 1e-3
-            )),
+            or_dash(m.band.map(|b| b.equivalent_width_m), |x| width(x, plug)),
+            or_dash(m.band.map(|b| b.width_10_90_m), |x| width(x, plug)),
             m.slip_events.len(),
             or_dash(median, |x| format!("{x:.3e}")),
             mean_sliding,
@@ -186,6 +211,13 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
                 "{:.3}",
                 x * 1e-6
             )),
+        );
+    }
+    if any_plug {
+        let _ = writeln!(
+            s,
+            "\n(plug) The velocity changes across the pack by less than {:.0} % of its mean: the pack moves nearly as one block (shear is at its edges or walls), and a band width measures noise.",
+            PLUG_FRACTION * 100.0
         );
     }
     let _ = writeln!(
