@@ -2,11 +2,12 @@
 //! with calms of several lengths, each run under Amontons and rate-and-state
 //! friction (`floe compare`), then the shear stress's answer to the restart.
 //!
-//!     cargo run --release -p floe-cli --example wind_pause_study [-- OUT_DIR]
+//!     cargo run --release -p floe-cli --example wind_pause_study [-- OUT_DIR [slip|aging]]
 //!
 //! Writes OUT_DIR (default out/studies/wind-pause): one compare directory per
 //! pause, `table.md` (the table of the study) and `restart.png`; copy those
-//! two into docs/studies/ to update the study.
+//! two into docs/studies/ to update the study. The second argument sets the
+//! rate-and-state state law (default: the scenario's, the slip law).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -46,7 +47,11 @@ fn study() -> Result<(), CliError> {
     );
     std::fs::create_dir_all(&out).map_err(|e| CliError::io(&out, e))?;
     let base_path = Path::new("scenarios/wind_pause.toml");
-    let base = std::fs::read_to_string(base_path).map_err(|e| CliError::io(base_path, e))?;
+    let mut base = std::fs::read_to_string(base_path).map_err(|e| CliError::io(base_path, e))?;
+    if let Some(state_law) = std::env::args().nth(2) {
+        let setting = parse_setting(&format!("friction.state_law=\"{state_law}\""))?;
+        base = apply(&base, base_path, &[setting], &[0])?;
+    }
     let laws = [LawChoice::Amontons, LawChoice::RateState];
     let mut table = String::from(
         "| calm | law | shear stress before the calm (kN/m) | at the end of the calm (kN/m) | peak after restart (kN/m) | peak / before | peak after restart (min) |\n|---|---|---|---|---|---|---|\n",
