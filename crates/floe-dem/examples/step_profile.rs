@@ -41,6 +41,9 @@ fn main() {
             per_step * 1e3,
             per_step * 1e9 / w.contacts.len() as f64
         );
+        // Bit pattern of the final state, to check that a speed change left
+        // the numbers unchanged (compare across code versions and thread counts).
+        println!("state fingerprint {:016x}", fingerprint(&w));
         // Cost of one broad-phase rebuild, against the step it would add to.
         let mut bp = floe_dem::broad_phase::BroadPhase::new(w.broad_phase().skin_m);
         let t = std::time::Instant::now();
@@ -58,4 +61,34 @@ fn main() {
             0.5 * bp.skin_m / (0.1 * w.dt_s)
         );
     });
+}
+
+/// FNV-1a over the bits of every floe's position, velocity, angle and
+/// angular velocity, and every contact's forces and friction state.
+fn fingerprint<F: floe_dem::world::ExternalForces>(w: &floe_dem::world::World<F>) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325_u64;
+    let mut mix = |x: f64| {
+        for b in x.to_bits().to_le_bytes() {
+            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    let f = &w.floes;
+    for i in 0..f.len() {
+        mix(f.position[i].x);
+        mix(f.position[i].y);
+        mix(f.velocity[i].x);
+        mix(f.velocity[i].y);
+        mix(f.angle[i]);
+        mix(f.angular_velocity[i]);
+    }
+    for c in &w.contacts {
+        mix(c.normal_force_n);
+        mix(c.friction.tangential_force_n);
+        mix(c.friction.theta);
+        mix(c.friction.solver_guess);
+        mix(c.normal_energy_j);
+        mix(c.tangential_energy_j);
+    }
+    mix(w.energy.friction_dissipation_j);
+    h
 }

@@ -78,24 +78,65 @@ impl<const N: usize> Poly<N> {
     fn as_slice(&self) -> &[Vec2] {
         &self.v[..self.len]
     }
-    #[inline(always)]
-    fn push(&mut self, p: Vec2) {
-        // Sutherland-Hodgman adds at most one vertex per clip edge, and the
-        // output of two convex polygons has at most na + nb vertices.
-        if self.len < N {
-            self.v[self.len] = p;
-            self.len += 1;
-        }
-    }
 }
 
 /// Working buffers of the clipper (on the stack; kept as a type so callers
-/// can hold one per thread).
-#[derive(Debug, Default, Clone)]
+/// can hold one per thread). Every buffer lives here rather than in the
+/// functions that use it: a fresh zeroed array per call was a `memset` per
+/// candidate pair, about 2 % of a step's instructions.
+#[derive(Debug, Clone)]
 pub struct ClipScratch {
     a: Poly<MAX_VERTICES>,
     b: Poly<MAX_VERTICES>,
     bufs: [Poly<{ 2 * MAX_VERTICES }>; 2],
+    /// Side of each vertex of the polygon being clipped, for one clip edge.
+    side: [f64; 2 * MAX_VERTICES],
+    /// Edge vectors of the second polygon, for the boundary crossings.
+    edges: [Vec2; MAX_VERTICES],
+}
+
+impl Default for ClipScratch {
+    fn default() -> Self {
+        Self {
+            a: Poly::default(),
+            b: Poly::default(),
+            bufs: [Poly::default(), Poly::default()],
+            side: [0.0; 2 * MAX_VERTICES],
+            edges: [Vec2::ZERO; MAX_VERTICES],
+        }
+    }
+}
+
+/// The index after `i` in a closed polygon of `n` vertices (a compare
+/// instead of the integer division of `(i + 1) % n`).
+#[inline(always)]
+fn next(i: usize, n: usize) -> usize {
+    if i + 1 == n {
+        0
+    } else {
+        i + 1
+    }
+}
+
+/// `vertices` rotated, then shifted by `shift` if given, into `poly`: at
+/// most [`MAX_VERTICES`] (the floe constructor refuses more).
+#[inline(always)]
+fn place(
+    poly: &mut Poly<MAX_VERTICES>,
+    vertices: &[Vec2],
+    shift: Option<Vec2>,
+    cos: f64,
+    sin: f64,
+) {
+    let n = vertices.len().min(MAX_VERTICES);
+    let slots = poly.v[..n].iter_mut().zip(vertices);
+    // No zero shift for the first floe: `-0.0 + 0.0` is `+0.0`, and the
+    // coordinates must keep their bits.
+    match shift {
+        Some(shift) => slots.for_each(|(slot, &v)| *slot = shift + rotate(v, cos, sin)),
+        None => slots.for_each(|(slot, &v)| *slot = rotate(v, cos, sin)),
+    }
+    poly.len = n;
 }
 
 /// Overlaps below this fraction of the smaller floe's squared radius are
@@ -111,15 +152,9 @@ const PENETRATION_FLOOR_ULPS: f64 = 64.0;
 /// The overlap of `a` and `b`, or `None` if they do not overlap.
 pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overlap> {
     let offset = b.position - a.position;
-    scratch.a.len = 0;
-    for &v in a.vertices {
-        scratch.a.push(rotate(v, a.cos, a.sin));
-    }
-    scratch.b.len = 0;
-    for &v in b.vertices {
-        scratch.b.push(offset + rotate(v, b.cos, b.sin));
-    }
-    let result = clip_convex(&scratch.a, &scratch.b, &mut scratch.bufs);
+    place(&mut scratch.a, a.vertices, None, a.cos, a.sin);
+    place(&mut scratch.b, b.vertices, Some(offset), b.cos, b.sin);
+    let result = clip_convex(&scratch.a, &scratch.b, &mut scratch.bufs, &mut scratch.side);
     let poly = scratch.bufs[result].as_slice();
     if poly.len() < 3 {
         return None;
@@ -141,6 +176,7 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
     let (normal, length) = match boundary_chord(
         scratch.a.as_slice(),
         scratch.b.as_slice(),
+        &mut scratch.edges,
         ra.min(rb).sqrt(),
     ) {
         Some(chord) => (
@@ -178,20 +214,19 @@ fn clip_convex<const N: usize, const M: usize>(
     subject: &Poly<N>,
     clip: &Poly<N>,
     bufs: &mut [Poly<M>; 2],
+    side: &mut [f64; M],
 ) -> usize {
-    bufs[0].len = 0;
-    for &p in subject.as_slice() {
-        bufs[0].push(p);
-    }
+    let subject = subject.as_slice();
+    bufs[0].v[..subject.len()].copy_from_slice(subject);
+    bufs[0].len = subject.len();
     let clip = clip.as_slice();
     let n = clip.len();
     let mut cur = 0;
-    let mut side = [0.0; 2 * MAX_VERTICES];
     for i in 0..n {
         if bufs[cur].len == 0 {
             return cur;
         }
-        let (s, e) = (clip[i], clip[(i + 1) % n]);
+        let (s, e) = (clip[i], clip[next(i, n)]);
         let dir = e - s;
         // Side of every vertex once; an edge that keeps all of them (most
         // of the clip polygon's edges) changes nothing and is skipped.
@@ -210,47 +245,75 @@ fn clip_convex<const N: usize, const M: usize>(
         } else {
             (&second[0], &mut first[0])
         };
-        dst.len = 0;
         if inside == 0 {
+            dst.len = 0;
             return 1 - cur;
         }
+        // The output length in a local: a `push` method stored it back to
+        // memory after every vertex. Sutherland-Hodgman adds at most one
+        // vertex per clip edge, so `M = na + nb` always suffices for convex
+        // input; the guard only matters for inputs made non-convex by
+        // round-off, where vertices beyond `M` are dropped, as before.
+        let mut out = 0;
+        let mut emit = |p: Vec2| {
+            if out < M {
+                dst.v[out] = p;
+                out += 1;
+            }
+        };
         for j in 0..m {
-            let k = if j + 1 == m { 0 } else { j + 1 };
+            let k = next(j, m);
             let (p, q, dp, dq) = (src.v[j], src.v[k], side[j], side[k]);
             if dp >= 0.0 {
-                dst.push(p);
+                emit(p);
                 if dq < 0.0 {
-                    dst.push(p + (q - p) * (dp / (dp - dq)));
+                    emit(p + (q - p) * (dp / (dp - dq)));
                 }
             } else if dq >= 0.0 {
-                dst.push(p + (q - p) * (dp / (dp - dq)));
+                emit(p + (q - p) * (dp / (dp - dq)));
             }
         }
+        dst.len = out;
         cur = 1 - cur;
     }
     cur
 }
 
 /// The chord between the two points where the boundaries of `a` and `b`
-/// properly cross, if there are exactly two distinct such points.
-fn boundary_chord(a: &[Vec2], b: &[Vec2], size: f64) -> Option<Vec2> {
+/// properly cross, if there are exactly two distinct such points. `edges`
+/// receives `b`'s edge vectors, computed once instead of once per edge of `a`.
+fn boundary_chord(
+    a: &[Vec2],
+    b: &[Vec2],
+    edges: &mut [Vec2; MAX_VERTICES],
+    size: f64,
+) -> Option<Vec2> {
     let mut points = [Vec2::ZERO; 2];
     let mut count = 0;
     let tol = 1e-9 * size;
+    let edges = &mut edges[..b.len()];
+    for (j, s) in edges.iter_mut().enumerate() {
+        *s = b[next(j, b.len())] - b[j];
+    }
     for i in 0..a.len() {
-        let (p, r) = (a[i], a[(i + 1) % a.len()] - a[i]);
-        for j in 0..b.len() {
-            let (q, s) = (b[j], b[(j + 1) % b.len()] - b[j]);
+        let (p, r) = (a[i], a[next(i, a.len())] - a[i]);
+        for (&q, &s) in b.iter().zip(edges.iter()) {
             let denom = cross(r, s);
             // Crossing parameters t = tn/denom, u = un/denom in [0, 1],
-            // tested without dividing: most edge pairs do not cross.
-            let (tn, un) = (cross(q - p, s), cross(q - p, r));
-            let (tn, un, d) = if denom < 0.0 {
-                (-tn, -un, -denom)
+            // tested without dividing: most edge pairs do not cross, and
+            // most already fail on t, before un is computed.
+            let tn = cross(q - p, s);
+            let (tn, d) = if denom < 0.0 {
+                (-tn, -denom)
             } else {
-                (tn, un, denom)
+                (tn, denom)
             };
-            if tn < 0.0 || tn > d || un < 0.0 || un > d {
+            if tn < 0.0 || tn > d {
+                continue;
+            }
+            let un = cross(q - p, r);
+            let un = if denom < 0.0 { -un } else { un };
+            if un < 0.0 || un > d {
                 continue;
             }
             if d * d <= 1e-28 * r.length_squared() * s.length_squared() {
@@ -284,7 +347,7 @@ fn snap_to_overlap_edge(chord: Vec2, poly: &[Vec2]) -> Vec2 {
     let mut best = chord;
     let mut best_len = 0.5 * chord.length();
     for i in 0..poly.len() {
-        let e = poly[(i + 1) % poly.len()] - poly[i];
+        let e = poly[next(i, poly.len())] - poly[i];
         let len = e.length();
         if len > best_len && cross(dir, e).abs() <= SNAP_SINE * len {
             best = if e.dot(dir) >= 0.0 { e } else { -e };
@@ -300,7 +363,7 @@ fn principal_normal(poly: &[Vec2], centroid: Vec2) -> (Vec2, f64) {
     let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
     let n = poly.len();
     for i in 0..n {
-        let (u, v) = (poly[i] - centroid, poly[(i + 1) % n] - centroid);
+        let (u, v) = (poly[i] - centroid, poly[next(i, n)] - centroid);
         let w = cross(u, v);
         sxx += w * (u.x * u.x + u.x * v.x + v.x * v.x);
         syy += w * (u.y * u.y + u.y * v.y + v.y * v.y);
