@@ -2,7 +2,7 @@
 //! degenerate edge-to-edge cases of diamond tessellations, at basin-scale
 //! coordinates; and against parry where parry is reliable.
 
-use floe_dem::geometry::{overlap, ClipScratch, FloeShape, Placed};
+use floe_dem::geometry::{overlap, overlap_cached, ClipScratch, FloeShape, Placed, SeparatingEdge};
 use floe_dem::Vec2;
 use proptest::prelude::*;
 
@@ -271,4 +271,55 @@ fn pushed_tessellation_edges_stay_accurate_at_basin_coordinates() {
         }
     }
     eprintln!("parry's worst relative area error on these cases: {worst_parry:.2e}");
+}
+
+#[test]
+fn the_separating_edge_shortcut_gives_bitwise_the_result_of_clipping() {
+    // A floe approaches its neighbours step by step from a few metres away,
+    // through exact touching to overlap, turning slightly, at basin-scale
+    // coordinates; the remembered edge must never reject a pair that
+    // clipping would not.
+    let (s, alpha) = (1000.0, 60f64.to_radians());
+    let (e1, e2) = (
+        Vec2::new(s, 0.0),
+        Vec2::new(s * alpha.cos(), s * alpha.sin()),
+    );
+    let mut scratch = ClipScratch::default();
+    let mut shortcuts = 0;
+    for o in OFFSETS {
+        let a = floe(&rhombus(o, s, alpha));
+        // Edge, vertex and corner neighbours, both ways round.
+        for (b_origin, a_first) in [(e1, true), (e1 + e2, true), (e2 - e1, false), (e1, false)] {
+            let b = floe(&rhombus(o + b_origin, s, alpha));
+            let towards = (a.1 - b.1).normalize();
+            let mut edge = SeparatingEdge::NONE;
+            for step in 0..400 {
+                // From 4 m apart to 4 m into each other, at nanometre steps
+                // near touching.
+                let x = (step as f64 - 200.0) / 50.0;
+                let gap = x.signum() * x.abs().powi(5) * 4.0 / 1024.0;
+                let turn = 1e-6 * step as f64;
+                let pb = Placed {
+                    vertices: &b.0.vertices,
+                    position: b.1 - towards * gap,
+                    cos: turn.cos(),
+                    sin: turn.sin(),
+                };
+                let (first, second) = if a_first {
+                    (placed(&a), pb)
+                } else {
+                    (pb, placed(&a))
+                };
+                let reach = a.0.radius_m + b.0.radius_m;
+                let before = edge;
+                let cached = overlap_cached(first, second, reach, &mut edge, &mut scratch);
+                let clipped = overlap(first, second, &mut scratch);
+                assert_eq!(cached, clipped, "o {o} neighbour {b_origin} gap {gap}");
+                if before != SeparatingEdge::NONE && cached.is_none() {
+                    shortcuts += 1;
+                }
+            }
+        }
+    }
+    assert!(shortcuts > 100, "the shortcut was taken {shortcuts} times");
 }

@@ -23,7 +23,7 @@ use crate::contact_kernel::{contact_forces, force_and_torques, overlap_stiffness
 use crate::contacts::{BrokenContact, ContactModel, ContactRecord};
 use crate::error::DemError;
 use crate::floes::{Floes, Motion};
-use crate::geometry::{overlap, ClipScratch, Placed};
+use crate::geometry::{overlap_cached, ClipScratch, Placed, SeparatingEdge};
 use crate::Vec2;
 
 /// Forces on floes from outside the floe assembly (wind, ocean, Coriolis).
@@ -125,6 +125,10 @@ pub struct World<F: ExternalForces> {
     adjacency: Vec<u32>,
     trig: Vec<(f64, f64)>,
     previous_of_pair: Vec<u32>,
+    /// Per candidate pair, an edge that separated the two floes when last
+    /// clipped (reset whenever the broad phase rebuilds the pair list). Only
+    /// a shortcut: results do not depend on it, so it is not checkpointed.
+    separating: Vec<SeparatingEdge>,
     // Reused every step: fresh multi-megabyte buffers cost a page fault per
     // 4 KiB on first touch, which was 15 % of a 1e4-floe step, all of it
     // sequential (docs/performance.md).
@@ -262,6 +266,7 @@ impl<F: ExternalForces> World<F> {
             adjacency: Vec::new(),
             trig: Vec::new(),
             previous_of_pair: Vec::new(),
+            separating: Vec::new(),
             chunk_contacts: Vec::new(),
             spare_contacts: Vec::new(),
             fill: Vec::new(),
@@ -325,8 +330,14 @@ impl<F: ExternalForces> World<F> {
     /// Broad phase, narrow phase and contact kernel: the new contact list.
     fn update_contacts(&mut self, dt: f64) {
         let f = &self.floes;
-        self.broad_phase
+        let rebuilt = self
+            .broad_phase
             .update(&f.position, &f.radius_m, self.periodicity);
+        if rebuilt || self.separating.len() != self.broad_phase.pairs.len() {
+            self.separating.clear();
+            self.separating
+                .resize(self.broad_phase.pairs.len(), SeparatingEdge::NONE);
+        }
         // Per-floe rotation, once per step rather than once per pair.
         self.trig.clear();
         self.trig
@@ -373,6 +384,7 @@ impl<F: ExternalForces> World<F> {
         };
         let contact_of_pair = |pair: &CandidatePair,
                                prev: u32,
+                               edge: &mut SeparatingEdge,
                                scratch: &mut ClipScratch|
          -> Option<ContactRecord> {
             let (a, b) = (pair.a as usize, pair.b as usize);
@@ -384,7 +396,13 @@ impl<F: ExternalForces> World<F> {
             if (f.position[b] + offset - f.position[a]).length_squared() > reach * reach {
                 return None; // bounding circles apart: no clipping needed
             }
-            let ov = overlap(placed(a, Vec2::ZERO), placed(b, offset), scratch)?;
+            let ov = overlap_cached(
+                placed(a, Vec2::ZERO),
+                placed(b, offset),
+                reach,
+                edge,
+                scratch,
+            )?;
             let old = (prev != u32::MAX).then(|| &previous[prev as usize]);
             let carried = old.map_or_else(
                 || {
@@ -429,11 +447,12 @@ impl<F: ExternalForces> World<F> {
             .par_iter_mut()
             .zip(pairs.par_chunks(PAIR_CHUNK))
             .zip(self.previous_of_pair.par_chunks(PAIR_CHUNK))
-            .for_each(|((out, pairs), prevs)| {
+            .zip(self.separating.par_chunks_mut(PAIR_CHUNK))
+            .for_each(|(((out, pairs), prevs), edges)| {
                 let mut scratch = ClipScratch::default();
                 out.clear();
-                for (pair, &prev) in pairs.iter().zip(prevs) {
-                    if let Some(record) = contact_of_pair(pair, prev, &mut scratch) {
+                for ((pair, &prev), edge) in pairs.iter().zip(prevs).zip(edges) {
+                    if let Some(record) = contact_of_pair(pair, prev, edge, &mut scratch) {
                         out.push(record);
                     }
                 }

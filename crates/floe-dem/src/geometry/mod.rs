@@ -4,7 +4,7 @@
 pub mod clip;
 pub mod shape;
 
-pub use clip::{overlap, ClipScratch, Overlap, Placed};
+pub use clip::{overlap, overlap_cached, ClipScratch, Overlap, Placed, SeparatingEdge};
 pub use shape::FloeShape;
 
 use crate::Vec2;
