@@ -88,9 +88,12 @@ impl<const N: usize> Poly<N> {
 pub struct ClipScratch {
     a: Poly<MAX_VERTICES>,
     b: Poly<MAX_VERTICES>,
-    bufs: [Poly<{ 2 * MAX_VERTICES }>; 2],
-    /// Side of each vertex of the polygon being clipped, for one clip edge.
-    side: [f64; 2 * MAX_VERTICES],
+    /// Clipped polygons, with one slot beyond the `na + nb` vertices an
+    /// overlap can have, for a copy of the first vertex.
+    bufs: [Poly<{ 2 * MAX_VERTICES + 1 }>; 2],
+    /// Side of each vertex of the polygon being clipped, for one clip edge,
+    /// with the same extra slot.
+    side: [f64; 2 * MAX_VERTICES + 1],
     /// Edge vectors of the second polygon, for the boundary crossings.
     edges: [Vec2; MAX_VERTICES],
 }
@@ -101,7 +104,7 @@ impl Default for ClipScratch {
             a: Poly::default(),
             b: Poly::default(),
             bufs: [Poly::default(), Poly::default()],
-            side: [0.0; 2 * MAX_VERTICES],
+            side: [0.0; 2 * MAX_VERTICES + 1],
             edges: [Vec2::ZERO; MAX_VERTICES],
         }
     }
@@ -353,6 +356,10 @@ fn clip_convex<const N: usize, const M: usize>(
         if inside == m {
             continue;
         }
+        // The first vertex again after the last, so that the closing edge
+        // needs no wrap-around index in the loop below.
+        side[m] = side[0];
+        bufs[cur].v[m] = bufs[cur].v[0];
         let (first, second) = bufs.split_at_mut(1);
         let (src, dst) = if cur == 0 {
             (&first[0], &mut second[0])
@@ -365,19 +372,18 @@ fn clip_convex<const N: usize, const M: usize>(
         }
         // The output length in a local: a `push` method stored it back to
         // memory after every vertex. Sutherland-Hodgman adds at most one
-        // vertex per clip edge, so `M = na + nb` always suffices for convex
-        // input; the guard only matters for inputs made non-convex by
-        // round-off, where vertices beyond `M` are dropped, as before.
+        // vertex per clip edge, so `M - 1 = na + nb` always suffices for
+        // convex input; the guard only matters for inputs made non-convex by
+        // round-off, where vertices beyond it are dropped, as before.
         let mut out = 0;
         let mut emit = |p: Vec2| {
-            if out < M {
+            if out < M - 1 {
                 dst.v[out] = p;
                 out += 1;
             }
         };
-        for j in 0..m {
-            let k = next(j, m);
-            let (p, q, dp, dq) = (src.v[j], src.v[k], side[j], side[k]);
+        for (v, d) in src.v[..=m].windows(2).zip(side[..=m].windows(2)) {
+            let (p, q, dp, dq) = (v[0], v[1], d[0], d[1]);
             if dp >= 0.0 {
                 emit(p);
                 if dq < 0.0 {
