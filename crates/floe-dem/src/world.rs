@@ -364,6 +364,7 @@ impl<F: ExternalForces> World<F> {
                 }
             });
         let model = &self.model;
+        let damping_ratio = model.damping_ratio();
         let periodicity = self.periodicity;
         let trig = &self.trig;
         let broken = &self.broken;
@@ -424,6 +425,7 @@ impl<F: ExternalForces> World<F> {
             );
             let mut record = contact_forces(
                 model,
+                damping_ratio,
                 &body(a, Vec2::ZERO),
                 &body(b, offset),
                 &ov,
