@@ -78,8 +78,13 @@ pub fn area_and_centroid(p: &[Vec2]) -> (f64, Vec2) {
     }
     let o = p[0];
     let (mut a2, mut c) = (0.0, Vec2::ZERO);
-    for i in 0..n {
-        let (u, v) = (p[i] - o, p[(i + 1) % n] - o);
+    // The first and last edges (from and to `p[0]`) are skipped, and with
+    // them the wrap-around `% n` (this runs for every clipped pair): for
+    // finite vertices one of their ends is `p[0] - o = +0`, so they would add
+    // a signed zero, which leaves the sums' bits unchanged (they start at +0,
+    // and a sum never becomes -0 unless both terms are -0).
+    for edge in p[1..].windows(2) {
+        let (u, v) = (edge[0] - o, edge[1] - o);
         let w = cross(u, v);
         a2 += w;
         c += (u + v) * w;
