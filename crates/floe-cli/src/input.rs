@@ -27,6 +27,21 @@ impl SourceFile {
         })
     }
 
+    /// The file as an editable TOML document (comments and layout kept),
+    /// for tools that rewrite scenarios; a syntax error is located.
+    pub fn parse_document(&self) -> Result<toml_edit::DocumentMut, CliError> {
+        self.text.parse::<toml_edit::DocumentMut>().map_err(|e| {
+            let (line, column) = e.span().map_or((1, 1), |s| self.line_column(s.start));
+            CliError::Input {
+                file: self.path.clone(),
+                line,
+                column,
+                key: None,
+                message: e.message().to_string(),
+            }
+        })
+    }
+
     /// 1-based line and column of byte offset `offset`.
     pub fn line_column(&self, offset: usize) -> (usize, usize) {
         let before = &self.text[..offset.min(self.text.len())];

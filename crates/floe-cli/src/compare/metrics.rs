@@ -67,6 +67,13 @@ pub struct RunMetrics {
     pub snapshots: usize,
 }
 
+impl RunMetrics {
+    /// The sliding fraction averaged over the observable samples.
+    pub fn mean_sliding_fraction(&self) -> f64 {
+        self.sliding_fraction.iter().sum::<f64>() / self.sliding_fraction.len().max(1) as f64
+    }
+}
+
 fn series(run: &RunFile, name: &str) -> Result<(Vec<f64>, Vec<f64>), CliError> {
     let s = run.observable(name)?;
     Ok((s.time_s, s.value))

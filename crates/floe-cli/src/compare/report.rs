@@ -183,8 +183,7 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
         let mut sizes: Vec<f64> = m.slip_events.iter().map(|e| e.slip_m).collect();
         sizes.sort_by(f64::total_cmp);
         let median = (!sizes.is_empty()).then(|| sizes[sizes.len() / 2]);
-        let mean_sliding =
-            m.sliding_fraction.iter().sum::<f64>() / m.sliding_fraction.len().max(1) as f64;
+        let mean_sliding = m.mean_sliding_fraction();
         let plug = is_plug_flow(m);
         any_plug |= plug;
         let _ = writeln!(

@@ -8,6 +8,7 @@ use floe_friction::law::{FrictionLaw, Law};
 use toml_edit::{value, DocumentMut, Item, Table};
 
 use crate::error::CliError;
+use crate::input::SourceFile;
 
 /// A law to compare, as named on the command line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -127,26 +128,11 @@ pub fn variant(
 }
 
 fn parse(text: &str, origin: &Path) -> Result<DocumentMut, CliError> {
-    text.parse::<DocumentMut>().map_err(|e| {
-        let (line, column) = e
-            .span()
-            .map(|s| line_column(text, s.start))
-            .unwrap_or((1, 1));
-        CliError::Input {
-            file: origin.to_path_buf(),
-            line,
-            column,
-            key: None,
-            message: e.message().to_string(),
-        }
-    })
-}
-
-fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, column)
+    SourceFile {
+        path: origin.to_path_buf(),
+        text: text.to_string(),
+    }
+    .parse_document()
 }
 
 /// `text` with its `[friction]` table (created if absent) edited by `edit`.

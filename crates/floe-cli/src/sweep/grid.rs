@@ -4,9 +4,10 @@
 
 use std::path::Path;
 
-use toml_edit::{DocumentMut, Item, Table, Value};
+use toml_edit::{Item, Table, Value};
 
 use crate::error::CliError;
+use crate::input::SourceFile;
 
 /// One `--set` option: a dotted key and the values it takes.
 #[derive(Debug, Clone, PartialEq)]
@@ -95,13 +96,11 @@ pub fn apply(
     settings: &[Setting],
     choice: &[usize],
 ) -> Result<String, CliError> {
-    let mut doc = text.parse::<DocumentMut>().map_err(|e| CliError::Input {
-        file: origin.to_path_buf(),
-        line: 1,
-        column: 1,
-        key: None,
-        message: e.message().to_string(),
-    })?;
+    let mut doc = SourceFile {
+        path: origin.to_path_buf(),
+        text: text.to_string(),
+    }
+    .parse_document()?;
     for (s, &k) in settings.iter().zip(choice) {
         let value: Value = s.values[k].parse().map_err(|_| {
             CliError::Usage(format!("--set {}: bad value `{}`", s.dotted(), s.values[k]))

@@ -200,8 +200,7 @@ const COLUMNS: [&str; 8] = [
 
 fn metric_cells(m: &RunMetrics) -> Vec<String> {
     let opt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or(String::new(), f);
-    let mean_sliding =
-        m.sliding_fraction.iter().sum::<f64>() / m.sliding_fraction.len().max(1) as f64;
+    let mean_sliding = m.mean_sliding_fraction();
     vec![
         opt(m.peak_to_steady.map(|p| p.ratio), &|x| format!("{x:.4}")),
         opt(m.peak_to_steady.map(|p| p.steady * 1e-3), &|x| {
