@@ -48,7 +48,7 @@ pub fn compare(args: &CompareArgs) -> Result<PathBuf, CliError> {
     // Checks the user's file as written first, so its errors point into it.
     Scenario::from_text(&text, origin)?;
     let (reference, reference_text) = reference_law(&text, origin, |t| {
-        Ok(Scenario::from_text(t, origin)?.engine_parts()?.model.law)
+        Ok(Scenario::from_text(t, origin)?.contact_model().law)
     })?;
     let report_path = args.out_dir.join("report.md");
     let mut targets = vec![report_path.clone()];
