@@ -119,3 +119,60 @@ proptest! {
         prop_assert!(last.mu < 0.0 && last.slip_rate_m_per_s < 0.0, "{last:?} dt {dt}");
     }
 }
+
+/// One contact of a batch: its starting state and the load of the step.
+fn batch_contact(law: Law) -> impl Strategy<Value = (ContactState, ContactLoad)> {
+    (
+        normal_load(),
+        log_uniform(1e2, 1e12),
+        signed_log(1e-15, 10.0),
+        signed_log(1e-15, 10.0),
+        -50.0..50.0f64,
+    )
+        .prop_map(move |(n, k, v0, v, guess)| {
+            let mut state = law.steady_state(v0, n);
+            state.solver_guess += guess * 0.1;
+            let load = ContactLoad {
+                load_point_velocity_m_per_s: v,
+                stiffness_n_per_m: k,
+                normal_load_n: n,
+            };
+            (state, load)
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, ..ProptestConfig::default() })]
+
+    /// `Law::step_batch` iterates several contacts' solves side by side, each
+    /// lane taking a new contact when its own converges: every contact must
+    /// come out bitwise as `FrictionLaw::step` leaves it, whatever its
+    /// neighbours in the batch (which need different numbers of iterations,
+    /// or none).
+    #[test]
+    fn a_batch_step_is_bitwise_the_steps_one_by_one(
+        (law, contacts) in law_strategy().prop_flat_map(|law| {
+            (Just(law), prop::collection::vec(batch_contact(law), 0..40))
+        }),
+        dt in log_uniform(1e-6, 10.0),
+    ) {
+        let mut items: Vec<BatchItem> = contacts
+            .iter()
+            .map(|&(state, load)| BatchItem {
+                state,
+                load,
+                outcome: StepOutcome { slip_rate_m_per_s: f64::NAN, mu: f64::NAN, iterations: u32::MAX },
+            })
+            .collect();
+        law.step_batch(&mut items, dt);
+        for (item, &(state, load)) in items.iter().zip(&contacts) {
+            let mut alone = state;
+            let out = law.step(&mut alone, &load, dt);
+            let bits = |s: &ContactState| [s.tangential_force_n.to_bits(), s.theta.to_bits(), s.solver_guess.to_bits()];
+            prop_assert_eq!(bits(&item.state), bits(&alone));
+            prop_assert_eq!(item.outcome.slip_rate_m_per_s.to_bits(), out.slip_rate_m_per_s.to_bits());
+            prop_assert_eq!(item.outcome.mu.to_bits(), out.mu.to_bits());
+            prop_assert_eq!(item.outcome.iterations, out.iterations);
+        }
+    }
+}

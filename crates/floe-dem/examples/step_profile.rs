@@ -1,5 +1,5 @@
 //! Where a DEM step's time goes (docs/performance.md):
-//! `cargo run --release -p floe-dem --example step_profile -- 10000 [amontons|rate-state] [threads]`
+//! `cargo run --release -p floe-dem --example step_profile -- 10000 [amontons|rate-state] [threads] [steps]`
 #[path = "../../../benches/dem_step.rs"]
 #[allow(dead_code)]
 mod bench;
@@ -27,7 +27,10 @@ fn main() {
         let mut w = bench::sheared_channel_with(n, model);
         let r0 = w.broad_phase().rebuilds;
         let t = std::time::Instant::now();
-        let steps = 20;
+        let steps: usize = std::env::args()
+            .nth(4)
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(20);
         for _ in 0..steps {
             w.step();
         }

@@ -17,7 +17,7 @@
 //!   tangential velocity at the contact point as the load-point velocity
 //!   and the normal force as the normal load.
 
-use floe_friction::{ContactLoad, ContactState, FrictionLaw};
+use floe_friction::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 
 use crate::contacts::{ContactModel, ContactRecord};
 use crate::geometry::{cross, perp, Overlap};
@@ -99,6 +99,11 @@ impl Carried {
 /// opposite. `damping_ratio` is `model.damping_ratio()`, which the caller
 /// computes once per step: a logarithm and a square root per contact were
 /// 1 % of a step.
+///
+/// The same as [`contact_before_friction`], the law's step on
+/// [`FrictionPending::item`], then [`finish_friction`]; the world runs the
+/// three apart so that it can step many contacts' friction together
+/// ([`floe_friction::Law::step_batch`]).
 #[inline]
 pub fn contact_forces(
     model: &ContactModel,
@@ -109,7 +114,40 @@ pub fn contact_forces(
     carried: Carried,
     dt: f64,
 ) -> ContactRecord {
-    let friction = carried.friction;
+    let (mut record, mut pending) =
+        contact_before_friction(model, damping_ratio, a, b, ov, carried);
+    if dt > 0.0 {
+        let item = &mut pending.item;
+        item.outcome = model.law.step(&mut item.state, &item.load, dt);
+    }
+    finish_friction(&mut record, &pending, dt);
+    record
+}
+
+/// A contact's friction step, set up by [`contact_before_friction`].
+#[derive(Debug, Clone, Copy)]
+pub struct FrictionPending {
+    /// The state to advance (the contact's carried friction state), the
+    /// load, and the outcome the law's step writes (zero slip until then).
+    pub item: BatchItem,
+    /// Relative tangential velocity at the contact point, m/s.
+    pub tangential_speed_m_per_s: f64,
+    /// Power of the elastic normal force on the approach, W.
+    pub elastic_power_w: f64,
+}
+
+/// Everything of [`contact_forces`] but the friction step: the record with
+/// the normal force, and the friction step to take. The record holds the
+/// carried friction state and tangential energy until [`finish_friction`].
+#[inline]
+pub fn contact_before_friction(
+    model: &ContactModel,
+    damping_ratio: f64,
+    a: &Body,
+    b: &Body,
+    ov: &Overlap,
+    carried: Carried,
+) -> (ContactRecord, FrictionPending) {
     let n = ov.normal;
     let t = perp(n);
     let (ra, rb) = (ov.centroid - a.position, ov.centroid - b.position);
@@ -133,47 +171,68 @@ pub fn contact_forces(
     let damping_power = (elastic - normal) * v_n; // >= 0 whichever way
 
     let k_t = k_n / (2.0 * (1.0 + model.poisson_ratio));
-    let mut state = friction;
-    let (tangential, slip) = if dt > 0.0 {
-        let load = ContactLoad {
-            load_point_velocity_m_per_s: v_t,
-            stiffness_n_per_m: k_t,
-            normal_load_n: normal,
-        };
-        let out = model.law.step(&mut state, &load, dt);
-        (state.tangential_force_n, out.slip_rate_m_per_s)
-    } else {
-        (state.tangential_force_n, 0.0)
-    };
-    // The kicks apply the old spring force over the first half step and the
-    // new one over the second: energy accounting uses their mean. Of the
-    // work it does on the relative tangential motion, the part on the slip is
-    // dissipated and the rest is stored in the spring (integrated, not
-    // F^2/2k: k_t follows the contact length, which changes under the force).
-    let mean_tangential = 0.5 * (friction.tangential_force_n + tangential);
-    let friction_power = mean_tangential * slip;
-    let tangential_energy = carried.tangential_energy_j + mean_tangential * (v_t - slip) * dt;
-    ContactRecord {
+    let record = ContactRecord {
         a: 0,
         b: 0,
         image_offset: Vec2::ZERO,
-        friction: state,
+        friction: carried.friction,
         age_steps: 0,
         overlap_m2: ov.area_m2,
         point: ov.centroid,
         normal: n,
         length_m: ov.length_m,
         normal_force_n: normal,
-        slip_rate_m_per_s: slip,
-        friction_power_w: friction_power,
+        slip_rate_m_per_s: 0.0,
+        friction_power_w: 0.0,
         damping_power_w: damping_power.max(0.0),
         elastic_force_n: elastic,
+        normal_energy_j: carried.normal_energy_j,
+        tangential_energy_j: carried.tangential_energy_j,
+    };
+    let pending = FrictionPending {
+        item: BatchItem {
+            state: carried.friction,
+            load: ContactLoad {
+                load_point_velocity_m_per_s: v_t,
+                stiffness_n_per_m: k_t,
+                normal_load_n: normal,
+            },
+            outcome: StepOutcome {
+                slip_rate_m_per_s: 0.0,
+                mu: 0.0,
+                iterations: 0,
+            },
+        },
+        tangential_speed_m_per_s: v_t,
         // Work of the elastic force over the step (trapezoid in the force,
         // penetration rate -v_n): exact storage for any overlap shape.
-        normal_energy_j: carried.normal_energy_j
-            + 0.5 * (carried.elastic_force_n + elastic) * (-v_n) * dt,
-        tangential_energy_j: tangential_energy,
-    }
+        elastic_power_w: 0.5 * (carried.elastic_force_n + elastic) * (-v_n),
+    };
+    (record, pending)
+}
+
+/// Completes a record from its friction step (taken on `pending.item`, or
+/// not at all when `dt` is zero) and the carried energies.
+#[inline]
+pub fn finish_friction(record: &mut ContactRecord, pending: &FrictionPending, dt: f64) {
+    let old_force = record.friction.tangential_force_n;
+    let (state, slip) = if dt > 0.0 {
+        (pending.item.state, pending.item.outcome.slip_rate_m_per_s)
+    } else {
+        (record.friction, 0.0)
+    };
+    let v_t = pending.tangential_speed_m_per_s;
+    // The kicks apply the old spring force over the first half step and the
+    // new one over the second: energy accounting uses their mean. Of the
+    // work it does on the relative tangential motion, the part on the slip is
+    // dissipated and the rest is stored in the spring (integrated, not
+    // F^2/2k: k_t follows the contact length, which changes under the force).
+    let mean_tangential = 0.5 * (old_force + state.tangential_force_n);
+    record.friction = state;
+    record.slip_rate_m_per_s = slip;
+    record.friction_power_w = mean_tangential * slip;
+    record.tangential_energy_j += mean_tangential * (v_t - slip) * dt;
+    record.normal_energy_j += pending.elastic_power_w * dt;
 }
 
 /// Force on `b` and the torques on `a` and `b` of a contact record.

@@ -15,11 +15,15 @@
 //! scattered with atomics, and energy sums run sequentially. The result is
 //! bitwise identical for any number of threads.
 
+use floe_friction::{BatchItem, ContactLoad, ContactState, StepOutcome};
 use rayon::prelude::*;
 
 use crate::broad_phase::{BroadPhase, CandidatePair, Periodicity};
 use crate::checkpoint::WorldState;
-use crate::contact_kernel::{contact_forces, force_and_torques, overlap_stiffness, Body, Carried};
+use crate::contact_kernel::{
+    contact_before_friction, finish_friction, force_and_torques, overlap_stiffness, Body, Carried,
+    FrictionPending,
+};
 use crate::contacts::{BrokenContact, ContactModel, ContactRecord};
 use crate::error::DemError;
 use crate::floes::{Floes, Motion};
@@ -91,6 +95,34 @@ pub const SKIN_FRACTION: f64 = 0.05;
 
 /// Candidate pairs per parallel task of the narrow phase.
 const PAIR_CHUNK: usize = 1024;
+
+/// Contacts whose friction is stepped together (`Law::step_batch`): found
+/// by the narrow phase, held until this many wait, then advanced side by
+/// side.
+const FRICTION_BATCH: usize = 32;
+
+/// Placeholder for the unused slots of the friction batch.
+const NO_PENDING: FrictionPending = FrictionPending {
+    item: BatchItem {
+        state: ContactState {
+            tangential_force_n: 0.0,
+            theta: 0.0,
+            solver_guess: 0.0,
+        },
+        load: ContactLoad {
+            load_point_velocity_m_per_s: 0.0,
+            stiffness_n_per_m: 0.0,
+            normal_load_n: 0.0,
+        },
+        outcome: StepOutcome {
+            slip_rate_m_per_s: 0.0,
+            mu: 0.0,
+            iterations: 0,
+        },
+    },
+    tangential_speed_m_per_s: 0.0,
+    elastic_power_w: 0.0,
+};
 
 /// The simulation state.
 pub struct World<F: ExternalForces> {
@@ -387,7 +419,7 @@ impl<F: ExternalForces> World<F> {
                                prev: u32,
                                edge: &mut SeparatingEdge,
                                scratch: &mut ClipScratch|
-         -> Option<ContactRecord> {
+         -> Option<(ContactRecord, FrictionPending)> {
             let (a, b) = (pair.a as usize, pair.b as usize);
             if !f.is_free(a) && !f.is_free(b) {
                 return None;
@@ -423,20 +455,39 @@ impl<F: ExternalForces> World<F> {
                     tangential_energy_j: c.tangential_energy_j,
                 },
             );
-            let mut record = contact_forces(
+            let (mut record, pending) = contact_before_friction(
                 model,
                 damping_ratio,
                 &body(a, Vec2::ZERO),
                 &body(b, offset),
                 &ov,
                 carried,
-                dt,
             );
             record.a = pair.a;
             record.b = pair.b;
             record.image_offset = offset;
             record.age_steps = old.map_or(0, |c| c.age_steps + 1);
-            Some(record)
+            Some((record, pending))
+        };
+        // The friction steps of the last `pending.len()` contacts of `out`,
+        // taken together (`Law::step_batch` overlaps their solves), then
+        // written into the records.
+        let step_friction = |out: &mut [ContactRecord],
+                             pending: &mut [FrictionPending],
+                             items: &mut [BatchItem]| {
+            if dt > 0.0 {
+                for (item, p) in items.iter_mut().zip(pending.iter()) {
+                    *item = p.item;
+                }
+                model.law.step_batch(items, dt);
+                for (item, p) in items.iter().zip(pending.iter_mut()) {
+                    p.item = *item;
+                }
+            }
+            let first = out.len() - pending.len();
+            for (record, p) in out[first..].iter_mut().zip(pending.iter()) {
+                finish_friction(record, p, dt);
+            }
         };
         // Fixed chunks of pairs, each producing its contacts in order into
         // its own reused buffer, then copied in chunk order: deterministic
@@ -452,11 +503,23 @@ impl<F: ExternalForces> World<F> {
             .zip(self.separating.par_chunks_mut(PAIR_CHUNK))
             .for_each(|(((out, pairs), prevs), edges)| {
                 let mut scratch = ClipScratch::default();
+                let mut pending = [NO_PENDING; FRICTION_BATCH];
+                let mut items = [NO_PENDING.item; FRICTION_BATCH];
+                let mut waiting = 0;
                 out.clear();
                 for ((pair, &prev), edge) in pairs.iter().zip(prevs).zip(edges) {
-                    if let Some(record) = contact_of_pair(pair, prev, edge, &mut scratch) {
+                    if let Some((record, p)) = contact_of_pair(pair, prev, edge, &mut scratch) {
                         out.push(record);
+                        pending[waiting] = p;
+                        waiting += 1;
+                        if waiting == FRICTION_BATCH {
+                            step_friction(out, &mut pending, &mut items);
+                            waiting = 0;
+                        }
                     }
+                }
+                if waiting > 0 {
+                    step_friction(out, &mut pending[..waiting], &mut items[..waiting]);
                 }
             });
         let per_chunk = &self.chunk_contacts[..n_chunks];

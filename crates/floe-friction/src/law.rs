@@ -53,6 +53,18 @@ pub struct StepOutcome {
     pub iterations: u32,
 }
 
+/// One contact of a batch update ([`Law::step_batch`]): its state, advanced
+/// in place, the load over the step, and what the step produced.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BatchItem {
+    /// Contact state, advanced in place.
+    pub state: ContactState,
+    /// Load over the step.
+    pub load: ContactLoad,
+    /// Written by the step.
+    pub outcome: StepOutcome,
+}
+
 /// A friction law that can advance a contact.
 ///
 /// Every implementation is allocation-free and returns finite numbers for
@@ -117,6 +129,21 @@ impl FrictionLaw for Law {
 }
 
 impl Law {
+    /// Advances every item over `dt_s`: bitwise what [`FrictionLaw::step`]
+    /// gives each item in turn. The rate-and-state law iterates several
+    /// contacts' solves side by side ([`RateState::step_batch`]); the
+    /// others, which need at most a cheap solve, step one by one.
+    pub fn step_batch(&self, items: &mut [BatchItem], dt_s: f64) {
+        match self {
+            Law::RateState(l) => l.step_batch(items, dt_s),
+            _ => {
+                for item in items {
+                    item.outcome = self.step(&mut item.state, &item.load, dt_s);
+                }
+            }
+        }
+    }
+
     /// Short name used on the command line and in file names:
     /// `amontons`, `rate` or `rate-state`.
     pub fn name(&self) -> &'static str {

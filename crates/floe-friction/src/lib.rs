@@ -30,7 +30,7 @@ pub mod state_evolution;
 
 pub use amontons::Amontons;
 pub use error::FrictionError;
-pub use law::{ContactLoad, ContactState, FrictionLaw, Law, StepOutcome};
+pub use law::{BatchItem, ContactLoad, ContactState, FrictionLaw, Law, StepOutcome};
 pub use params::RateStateParams;
 pub use rate_dependent::RateDependent;
 pub use rate_state::{Form, RateState};

@@ -110,6 +110,8 @@ impl FrictionLaw for RateDependent {
                     payload: s,
                 }
             },
+            // s = V* e^z: ds = s dz to first order.
+            |s, dz| s + s * dz,
             (trial_abs / (kdt * vs)).ln(),
             1e-12,
             1e-13 * trial_abs,

@@ -43,55 +43,119 @@ const MAX_EVALUATIONS: u32 = 400;
 ///
 /// Starts from `x0`; takes Newton steps while they stay inside the bracket
 /// found so far, bisects otherwise, and expands geometrically until a sign
-/// change is found. Converges when `|f| <= r_tol`, or when the Newton
-/// correction is below `tol * |x|` (relative: near `x = 0` the unknown of the
-/// regularised law is linear in the slip rate, and an absolute tolerance there
-/// would be a large relative error in slip rate). The returned point is the
-/// last one evaluated, so the payload is consistent with it.
+/// change is found. Converges when `|f| <= r_tol` (the point evaluated is
+/// returned), or when the Newton correction `dx` is small enough that the
+/// corrected point `x + dx` is within `tol * |x|` of the root: Newton's error
+/// after a step is `C dx^2` with `C = |f''/2f'|`, of order one for the laws'
+/// residuals, so `dx^2 <= tol |x|` suffices (relative: near `x = 0` the
+/// unknown of the regularised law is linear in the slip rate, and an absolute
+/// tolerance there would be a large relative error in slip rate). That last
+/// correction is taken without evaluating the residual again, the payload
+/// carried to `x + dx` to first order by `advance(payload, dx)`: error
+/// `O(dx^2)`, the same order as the point's. Waiting for a correction below
+/// `tol |x|` instead cost one more evaluation per update, a quarter of the
+/// friction update in a sheared DEM pack (docs/performance.md).
 #[inline]
 pub(crate) fn solve<T: Copy>(
     mut f: impl FnMut(f64) -> Eval<T>,
+    advance: impl Fn(T, f64) -> T,
     x0: f64,
     tol: f64,
     r_tol: f64,
 ) -> Root<T> {
-    let mut x = x0;
-    let mut lo = f64::NEG_INFINITY; // largest x seen with r < 0
-    let mut hi = f64::INFINITY; // smallest x seen with r > 0
-    let mut expand = MAX_FREE_STEP;
-    let mut evaluations = 0;
-    let (mut last_step, mut step_before) = (f64::INFINITY, f64::INFINITY);
+    let mut solver = Solver::new(x0, tol, r_tol);
     loop {
-        let e = f(x);
-        evaluations += 1;
-        if e.r.abs() <= r_tol || evaluations >= MAX_EVALUATIONS {
-            return Root {
+        if let Some(root) = solver.update(f(solver.x), &advance) {
+            return root;
+        }
+    }
+}
+
+/// The iteration of [`solve`] as a resumable state: the caller evaluates the
+/// residual at [`Solver::x`] and hands it to [`Solver::update`], until that
+/// returns the root. This lets one thread advance several independent solves
+/// in lockstep (`RateState::step_batch`): their residual evaluations, each a
+/// chain of dependent `exp`/`ln` calls, then overlap in the processor instead
+/// of running one after the other. Each solve takes bitwise the same steps as
+/// it would alone.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Solver {
+    /// Where to evaluate the residual next.
+    pub x: f64,
+    /// Largest `x` seen with `r < 0`.
+    lo: f64,
+    /// Smallest `x` seen with `r > 0`.
+    hi: f64,
+    expand: f64,
+    evaluations: u32,
+    last_step: f64,
+    step_before: f64,
+    tol: f64,
+    r_tol: f64,
+    /// The bracket collapsed: the next evaluation is the last.
+    last: bool,
+}
+
+impl Solver {
+    /// A solve starting at `x0` (see [`solve`] for the tolerances).
+    #[inline(always)]
+    pub fn new(x0: f64, tol: f64, r_tol: f64) -> Self {
+        Self {
+            x: x0,
+            lo: f64::NEG_INFINITY,
+            hi: f64::INFINITY,
+            expand: MAX_FREE_STEP,
+            evaluations: 0,
+            last_step: f64::INFINITY,
+            step_before: f64::INFINITY,
+            tol,
+            r_tol,
+            last: false,
+        }
+    }
+
+    /// Takes the residual evaluated at [`Solver::x`]; returns the root, or
+    /// `None` after moving `x` to the next point to evaluate.
+    #[inline(always)]
+    pub fn update<T: Copy>(
+        &mut self,
+        e: Eval<T>,
+        advance: impl Fn(T, f64) -> T,
+    ) -> Option<Root<T>> {
+        let x = self.x;
+        self.evaluations += 1;
+        let evaluations = self.evaluations;
+        if self.last || e.r.abs() <= self.r_tol || evaluations >= MAX_EVALUATIONS {
+            return Some(Root {
                 x,
                 payload: e.payload,
                 evaluations,
-            };
+            });
         }
+        let (mut lo, mut hi) = (self.lo, self.hi);
         if e.r < 0.0 {
             lo = lo.max(x);
         } else {
             hi = hi.min(x);
         }
+        self.lo = lo;
+        self.hi = hi;
         let newton = x - e.r / e.dr;
         let downhill = e.dr > 0.0 && newton.is_finite();
-        if downhill && (newton - x).abs() <= tol * x.abs() {
-            return Root {
-                x,
-                payload: e.payload,
+        let dx = newton - x;
+        if downhill && dx * dx <= self.tol * x.abs() && newton >= lo && newton <= hi {
+            return Some(Root {
+                x: newton,
+                payload: advance(e.payload, dx),
                 evaluations,
-            };
+            });
         }
         let bracketed = lo.is_finite() && hi.is_finite();
         // As in Numerical Recipes' rtsafe: inside a bracket, bisect whenever
         // Newton does not at least halve the step before last (it crawls by
         // one unit per step down the exponential branch of a residual).
-        let slow = bracketed && 2.0 * (newton - x).abs() > step_before.abs();
-        let previous_x = x;
-        x = if downhill
+        let slow = bracketed && 2.0 * (newton - x).abs() > self.step_before.abs();
+        let next = if downhill
             && newton > lo
             && newton < hi
             && (newton - x).abs() <= MAX_FREE_STEP
@@ -101,32 +165,27 @@ pub(crate) fn solve<T: Copy>(
         } else if bracketed {
             0.5 * (lo + hi)
         } else if e.r < 0.0 {
-            expand *= 2.0;
+            self.expand *= 2.0;
             if downhill {
-                newton.min(x + expand)
+                newton.min(x + self.expand)
             } else {
-                x + expand
+                x + self.expand
             }
         } else {
-            expand *= 2.0;
+            self.expand *= 2.0;
             if downhill {
-                newton.max(x - expand)
+                newton.max(x - self.expand)
             } else {
-                x - expand
+                x - self.expand
             }
         };
-        step_before = last_step;
-        last_step = x - previous_x;
-        if bracketed && (hi - lo) <= tol * lo.abs().max(hi.abs()) {
-            // Bracket collapsed (a root where the residual is not smooth, e.g.
-            // the regularised law at V = 0): evaluate the midpoint and stop.
-            let e = f(x);
-            return Root {
-                x,
-                payload: e.payload,
-                evaluations: evaluations + 1,
-            };
-        }
+        self.step_before = self.last_step;
+        self.last_step = next - x;
+        self.x = next;
+        // Bracket collapsed (a root where the residual is not smooth, e.g.
+        // the regularised law at V = 0): evaluate the midpoint and stop.
+        self.last = bracketed && (hi - lo) <= self.tol * lo.abs().max(hi.abs());
+        None
     }
 }
 
@@ -141,12 +200,15 @@ mod tests {
         }
     }
 
+    fn keep(_: (), _: f64) {}
+
     #[test]
     fn finds_root_of_monotone_exponential_far_from_start() {
         // r = x + e^x - 100: root near 4.5538; start far away on both sides.
         for x0 in [-500.0, 0.0, 300.0] {
             let root = solve(
                 plain(|x| (x + x.exp() - 100.0, 1.0 + x.exp())),
+                keep,
                 x0,
                 1e-13,
                 1e-14,
@@ -161,7 +223,7 @@ mod tests {
         // r = x - 3 sin(x) - 0.5 has a local max/min; Newton alone can cycle.
         let g = |x: f64| (x - 3.0 * x.sin() - 0.5, 1.0 - 3.0 * x.cos());
         for x0 in [-10.0, -1.0, 0.0, 1.0, 2.0, 10.0] {
-            let root = solve(plain(g), x0, 1e-13, 1e-14);
+            let root = solve(plain(g), keep, x0, 1e-13, 1e-14);
             assert!(
                 g(root.x).0.abs() < 1e-10,
                 "x0 {x0}: x {} r {}",
@@ -176,6 +238,7 @@ mod tests {
         // Step at 0.25: no root, but the bracket must collapse onto the jump.
         let root = solve(
             plain(|x| (if x < 0.25 { -1.0 } else { 1.0 }, 0.0)),
+            keep,
             7.0,
             1e-12,
             0.0,
