@@ -4,11 +4,13 @@
 #[allow(dead_code)]
 mod bench;
 
-fn rss_mb() -> f64 {
+/// A `/proc/self/status` memory line in MB: `VmRSS` (resident now) or
+/// `VmHWM` (the peak).
+fn status_mb(key: &str) -> f64 {
     let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
     let kb: f64 = status
         .lines()
-        .find(|l| l.starts_with("VmRSS:"))
+        .find(|l| l.starts_with(key))
         .and_then(|l| l.split_whitespace().nth(1))
         .and_then(|v| v.parse().ok())
         .unwrap_or(0.0);
@@ -30,11 +32,12 @@ fn main() {
         w.step();
     }
     let step_s = t1.elapsed().as_secs_f64() / steps as f64;
-    let rss = rss_mb();
+    let (rss, peak) = (status_mb("VmRSS:"), status_mb("VmHWM:"));
     let record = std::mem::size_of::<floe_dem::contacts::ContactRecord>();
     let per_floe = |bytes: f64| bytes / w.floes.len() as f64;
     println!(
-        "{} floes, {} contacts: build + 20 steps {:.2} s, {:.2} s/step, RSS {:.0} MB = {:.0} B/floe \
+        "{} floes, {} contacts: build + 20 steps {:.2} s, {:.2} s/step, RSS {:.0} MB = {:.0} B/floe, \
+         peak RSS {:.0} MB = {:.0} B/floe \
          (floe arrays {:.0} B/floe, contact records {:.0} B/floe at {} B each)",
         w.floes.len(),
         w.contacts.len(),
@@ -42,6 +45,8 @@ fn main() {
         step_s,
         rss,
         per_floe(rss * 1048576.0),
+        peak,
+        per_floe(peak * 1048576.0),
         per_floe(w.floes.heap_bytes() as f64),
         per_floe((w.contacts.capacity() * record) as f64),
         record
