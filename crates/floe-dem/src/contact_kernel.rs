@@ -13,11 +13,11 @@
 //! * Tangential force: a spring `k_t = k_n / (2 (1 + nu))` (the shear-to-
 //!   Young's modulus ratio, as Subzero.jl's `G = E / (2 (1 + nu))`) whose
 //!   force the friction law limits, advanced by the same
-//!   [`FrictionLaw::step`] as the spring-slider, with the relative
+//!   [`floe_friction::FrictionLaw::step`] as the spring-slider, with the relative
 //!   tangential velocity at the contact point as the load-point velocity
 //!   and the normal force as the normal load.
 
-use floe_friction::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
+use floe_friction::{BatchItem, ContactLoad, ContactState, StepOutcome};
 
 use crate::contacts::{ContactModel, ContactRecord};
 use crate::geometry::{cross, perp, Overlap};
@@ -93,37 +93,6 @@ impl Carried {
     }
 }
 
-/// Forces of one contact over a step of `dt` (advancing the friction state
-/// unless `dt` is zero), written into a record. The force on `b` is
-/// `normal_force n + tangential_force t` applied at `point`; `a` gets the
-/// opposite. `damping_ratio` is `model.damping_ratio()`, which the caller
-/// computes once per step: a logarithm and a square root per contact were
-/// 1 % of a step.
-///
-/// The same as [`contact_before_friction`], the law's step on
-/// [`FrictionPending::item`], then [`finish_friction`]; the world runs the
-/// three apart so that it can step many contacts' friction together
-/// ([`floe_friction::Law::step_batch`]).
-#[inline]
-pub fn contact_forces(
-    model: &ContactModel,
-    damping_ratio: f64,
-    a: &Body,
-    b: &Body,
-    ov: &Overlap,
-    carried: Carried,
-    dt: f64,
-) -> ContactRecord {
-    let (mut record, mut pending) =
-        contact_before_friction(model, damping_ratio, a, b, ov, carried);
-    if dt > 0.0 {
-        let item = &mut pending.item;
-        item.outcome = model.law.step(&mut item.state, &item.load, dt);
-    }
-    finish_friction(&mut record, &pending, dt);
-    record
-}
-
 /// A contact's friction step, set up by [`contact_before_friction`].
 #[derive(Debug, Clone, Copy)]
 pub struct FrictionPending {
@@ -136,9 +105,17 @@ pub struct FrictionPending {
     pub elastic_power_w: f64,
 }
 
-/// Everything of [`contact_forces`] but the friction step: the record with
-/// the normal force, and the friction step to take. The record holds the
-/// carried friction state and tangential energy until [`finish_friction`].
+/// The forces of one contact over a step, but for the friction step: the
+/// record with the normal force, and the friction step to take. The force on
+/// `b` is `normal_force n + tangential_force t` applied at `point`; `a` gets
+/// the opposite. `damping_ratio` is `model.damping_ratio()`, which the caller
+/// computes once per step: a logarithm and a square root per contact were
+/// 1 % of a step.
+///
+/// A contact is advanced by three calls: this one, the law's step on
+/// [`FrictionPending::item`] (`FrictionLaw::step`, or `Law::step_batch` for
+/// many contacts at once, as the world does), then [`finish_friction`]. The
+/// record holds the carried friction state and tangential energy until then.
 #[inline]
 pub fn contact_before_friction(
     model: &ContactModel,

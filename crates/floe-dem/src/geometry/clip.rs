@@ -263,7 +263,7 @@ fn all_beyond(s: Vec2, e: Vec2, points: impl Iterator<Item = Vec2>, margin: f64)
 /// [`overlap`], with a shortcut for pairs that stay apart: `edge` is the
 /// pair's remembered separating edge, updated here. `reach_m` is the sum of
 /// the two floes' bounding radii. The result is bitwise that of [`overlap`]
-/// whatever `edge` holds (see [`SEPARATION_MARGIN`]).
+/// whatever `edge` holds (see `SEPARATION_MARGIN` in the source).
 pub fn overlap_cached(
     a: Placed,
     b: Placed,
