@@ -156,16 +156,17 @@ pub struct World<F: ExternalForces> {
     adjacency_start: Vec<u32>,
     adjacency: Vec<u32>,
     trig: Vec<(f64, f64)>,
-    previous_of_pair: Vec<u32>,
+    /// Per chunk of candidate pairs, where its run of previous contacts starts.
+    chunk_start: Vec<usize>,
     /// Per candidate pair, an edge that separated the two floes when last
     /// clipped (reset whenever the broad phase rebuilds the pair list). Only
     /// a shortcut: results do not depend on it, so it is not checkpointed.
     separating: Vec<SeparatingEdge>,
-    // Reused every step: fresh multi-megabyte buffers cost a page fault per
-    // 4 KiB on first touch, which was 15 % of a 1e4-floe step, all of it
-    // sequential (docs/performance.md).
-    chunk_contacts: Vec<Vec<ContactRecord>>,
-    spare_contacts: Vec<ContactRecord>,
+    /// Per chunk of candidate pairs, the contacts that formed this step
+    /// (few: most contacts continue in place). Reused every step.
+    born: Vec<Vec<ContactRecord>>,
+    /// Per chunk of candidate pairs, what the contacts that ended released.
+    ended: Vec<ChunkEnded>,
     fill: Vec<u32>,
 }
 
@@ -297,10 +298,10 @@ impl<F: ExternalForces> World<F> {
             adjacency_start: Vec::new(),
             adjacency: Vec::new(),
             trig: Vec::new(),
-            previous_of_pair: Vec::new(),
+            chunk_start: Vec::new(),
             separating: Vec::new(),
-            chunk_contacts: Vec::new(),
-            spare_contacts: Vec::new(),
+            born: Vec::new(),
+            ended: Vec::new(),
             fill: Vec::new(),
         }
     }
@@ -374,27 +375,27 @@ impl<F: ExternalForces> World<F> {
         self.trig.clear();
         self.trig
             .par_extend(f.angle.par_iter().map(|a| a.sin_cos()));
-        // The previous contact of each candidate pair, by a merge: pairs and
-        // contacts are both sorted by (a, b) (contacts are made in pair
-        // order). Each chunk finds its start by bisection and merges from there.
-        let previous = &self.contacts;
+        // The contact list is updated in place: a step holds one list, not
+        // the previous one, per-task outputs and a new one (three 160 B
+        // records per contact, 960 B per floe at 1e6 floes: the 1 KB per
+        // floe budget, docs/performance.md). Pairs and contacts are both
+        // sorted by (a, b), so each fixed chunk of pairs owns the contiguous
+        // run of previous contacts from its first pair up to the next
+        // chunk's (the first chunk from the start, the last to the end):
+        // every previous contact belongs to exactly one chunk.
         let pairs = &self.broad_phase.pairs;
-        self.previous_of_pair.resize(pairs.len(), u32::MAX);
-        self.previous_of_pair
-            .par_chunks_mut(PAIR_CHUNK)
-            .zip(pairs.par_chunks(PAIR_CHUNK))
-            .for_each(|(out, pairs)| {
-                let first = (pairs[0].a, pairs[0].b);
-                let mut k = previous.partition_point(|c| (c.a, c.b) < first);
-                for (slot, pair) in out.iter_mut().zip(pairs) {
-                    while k < previous.len() && (previous[k].a, previous[k].b) < (pair.a, pair.b) {
-                        k += 1;
-                    }
-                    let hit =
-                        k < previous.len() && (previous[k].a, previous[k].b) == (pair.a, pair.b);
-                    *slot = if hit { k as u32 } else { u32::MAX };
-                }
-            });
+        let n_chunks = pairs.len().div_ceil(PAIR_CHUNK);
+        {
+            let previous = &self.contacts;
+            self.chunk_start.clear();
+            self.chunk_start.push(0);
+            for chunk in pairs.chunks(PAIR_CHUNK).skip(1) {
+                let first = (chunk[0].a, chunk[0].b);
+                self.chunk_start
+                    .push(previous.partition_point(|c| (c.a, c.b) < first));
+            }
+            self.chunk_start.push(previous.len());
+        }
         let model = &self.model;
         let damping_ratio = model.damping_ratio();
         let periodicity = self.periodicity;
@@ -416,7 +417,7 @@ impl<F: ExternalForces> World<F> {
             sin: trig[i].0,
         };
         let contact_of_pair = |pair: &CandidatePair,
-                               prev: u32,
+                               old: Option<&ContactRecord>,
                                edge: &mut SeparatingEdge,
                                scratch: &mut ClipScratch|
          -> Option<(ContactRecord, FrictionPending)> {
@@ -436,7 +437,6 @@ impl<F: ExternalForces> World<F> {
                 edge,
                 scratch,
             )?;
-            let old = (prev != u32::MAX).then(|| &previous[prev as usize]);
             let carried = old.map_or_else(
                 || {
                     let mut fresh =
@@ -469,114 +469,132 @@ impl<F: ExternalForces> World<F> {
             record.age_steps = old.map_or(0, |c| c.age_steps + 1);
             Some((record, pending))
         };
-        // The friction steps of the last `pending.len()` contacts of `out`,
-        // taken together (`Law::step_batch` overlaps their solves), then
-        // written into the records.
-        let step_friction = |out: &mut [ContactRecord],
-                             pending: &mut [FrictionPending],
-                             items: &mut [BatchItem]| {
-            if dt > 0.0 {
-                for (item, p) in items.iter_mut().zip(pending.iter()) {
-                    *item = p.item;
-                }
-                model.law.step_batch(items, dt);
-                for (item, p) in items.iter().zip(pending.iter_mut()) {
-                    p.item = *item;
-                }
+        let remember = model.memory_s > 0.0;
+        let time_s = self.time_s;
+        // A contact that did not survive the step releases what it held, is
+        // remembered if the model asks for memory, and is marked dead until
+        // the list is compacted below.
+        let end_contact = |old: &mut ContactRecord, ended: &mut ChunkEnded| {
+            ended.released_j += old.elastic_energy_j();
+            if remember {
+                ended.broken.push(BrokenContact {
+                    a: old.a,
+                    b: old.b,
+                    friction: old.friction,
+                    broke_at_s: time_s,
+                });
             }
-            let first = out.len() - pending.len();
-            for (record, p) in out[first..].iter_mut().zip(pending.iter()) {
-                finish_friction(record, p, dt);
-            }
+            old.a = DEAD;
         };
-        // Fixed chunks of pairs, each producing its contacts in order into
-        // its own reused buffer, then copied in chunk order: deterministic
-        // for any thread count. Collecting a flattened parallel iterator cost
-        // a quarter of the step (linked chunks, copies); one result slot per
-        // pair instead cost 184 B per candidate pair, about 1.1 KB per floe.
-        let n_chunks = pairs.len().div_ceil(PAIR_CHUNK);
-        self.chunk_contacts.resize_with(n_chunks, Vec::new);
-        self.chunk_contacts
-            .par_iter_mut()
+        // Each chunk's runs of previous contacts, as disjoint mutable slices.
+        let mut runs: Vec<&mut [ContactRecord]> = Vec::with_capacity(n_chunks.max(1));
+        {
+            let mut rest = self.contacts.as_mut_slice();
+            for w in self.chunk_start.windows(2) {
+                let (head, tail) = rest.split_at_mut(w[1] - w[0]);
+                runs.push(head);
+                rest = tail;
+            }
+        }
+        if n_chunks == 0 {
+            // No candidate pairs: every previous contact ends.
+            let mut ended = ChunkEnded::default();
+            for old in runs.pop().into_iter().flatten() {
+                end_contact(old, &mut ended);
+            }
+            self.ended.clear();
+            self.ended.push(ended);
+        }
+        self.born.resize_with(n_chunks, Vec::new);
+        self.ended
+            .resize_with(n_chunks.max(self.ended.len()), ChunkEnded::default);
+        runs.into_par_iter()
             .zip(pairs.par_chunks(PAIR_CHUNK))
-            .zip(self.previous_of_pair.par_chunks(PAIR_CHUNK))
             .zip(self.separating.par_chunks_mut(PAIR_CHUNK))
-            .for_each(|(((out, pairs), prevs), edges)| {
+            .zip(self.born.par_iter_mut())
+            .zip(self.ended.par_iter_mut())
+            .for_each(|((((run, pairs), edges), born), ended)| {
                 let mut scratch = ClipScratch::default();
-                let mut pending = [NO_PENDING; FRICTION_BATCH];
+                born.clear();
+                ended.released_j = 0.0;
+                ended.broken.clear();
+                // Friction steps wait here, 32 at a time, with where their
+                // record is: in place in the run, or among the born.
+                let mut pending = [(Slot::Run(0), NO_PENDING); FRICTION_BATCH];
                 let mut items = [NO_PENDING.item; FRICTION_BATCH];
                 let mut waiting = 0;
-                out.clear();
-                for ((pair, &prev), edge) in pairs.iter().zip(prevs).zip(edges) {
-                    if let Some((record, p)) = contact_of_pair(pair, prev, edge, &mut scratch) {
-                        out.push(record);
-                        pending[waiting] = p;
-                        waiting += 1;
-                        if waiting == FRICTION_BATCH {
-                            step_friction(out, &mut pending, &mut items);
-                            waiting = 0;
+                let mut flush = |pending: &mut [(Slot, FrictionPending)],
+                                 run: &mut [ContactRecord],
+                                 born: &mut Vec<ContactRecord>| {
+                    let items = &mut items[..pending.len()];
+                    if dt > 0.0 {
+                        for (item, (_, p)) in items.iter_mut().zip(pending.iter()) {
+                            *item = p.item;
+                        }
+                        model.law.step_batch(items, dt);
+                        for (item, (_, p)) in items.iter().zip(pending.iter_mut()) {
+                            p.item = *item;
+                        }
+                    }
+                    for (slot, p) in pending.iter() {
+                        let record = match *slot {
+                            Slot::Run(k) => &mut run[k],
+                            Slot::Born(k) => &mut born[k],
+                        };
+                        finish_friction(record, p, dt);
+                    }
+                };
+                let mut k = 0;
+                for (pair, edge) in pairs.iter().zip(edges) {
+                    let key = (pair.a, pair.b);
+                    // Previous contacts whose pair is no longer a candidate.
+                    while k < run.len() && (run[k].a, run[k].b) < key {
+                        end_contact(&mut run[k], ended);
+                        k += 1;
+                    }
+                    let old = (k < run.len() && (run[k].a, run[k].b) == key).then(|| {
+                        k += 1;
+                        k - 1
+                    });
+                    let old_record = old.map(|i| run[i]);
+                    match contact_of_pair(pair, old_record.as_ref(), edge, &mut scratch) {
+                        Some((record, p)) => {
+                            let slot = match old {
+                                Some(i) => {
+                                    run[i] = record;
+                                    Slot::Run(i)
+                                }
+                                None => {
+                                    born.push(record);
+                                    Slot::Born(born.len() - 1)
+                                }
+                            };
+                            pending[waiting] = (slot, p);
+                            waiting += 1;
+                            if waiting == FRICTION_BATCH {
+                                flush(&mut pending, run, born);
+                                waiting = 0;
+                            }
+                        }
+                        None => {
+                            if let Some(i) = old {
+                                end_contact(&mut run[i], ended);
+                            }
                         }
                     }
                 }
                 if waiting > 0 {
-                    step_friction(out, &mut pending[..waiting], &mut items[..waiting]);
+                    flush(&mut pending[..waiting], run, born);
+                }
+                while k < run.len() {
+                    end_contact(&mut run[k], ended);
+                    k += 1;
                 }
             });
-        let per_chunk = &self.chunk_contacts[..n_chunks];
-        let total: usize = per_chunk.iter().map(Vec::len).sum();
-        let mut contacts = std::mem::take(&mut self.spare_contacts);
-        match per_chunk.iter().find_map(|c| c.first()) {
-            // Every element is overwritten below; resizing only writes the
-            // entries beyond the buffer's previous length.
-            Some(&fill) => contacts.resize(total, fill),
-            None => contacts.clear(),
-        }
-        let mut rest = contacts.as_mut_slice();
-        let mut targets = Vec::with_capacity(n_chunks);
-        for chunk in per_chunk {
-            let (head, tail) = rest.split_at_mut(chunk.len());
-            targets.push(head);
-            rest = tail;
-        }
-        targets
-            .into_par_iter()
-            .zip(per_chunk.par_iter())
-            .for_each(|(target, chunk)| target.copy_from_slice(chunk));
-        // Contacts that did not survive the step release what they held, and
-        // are remembered if the model asks for memory. Fixed chunks of the
-        // old list, each merged against the new list from a bisection; the
-        // released energy is summed per chunk, then over chunks in order.
-        let remember = model.memory_s > 0.0;
-        let time_s = self.time_s;
-        let ended: Vec<(f64, Vec<BrokenContact>)> = previous
-            .par_chunks(PAIR_CHUNK)
-            .map(|olds| {
-                let first = (olds[0].a, olds[0].b);
-                let mut k = contacts.partition_point(|c| (c.a, c.b) < first);
-                let (mut released, mut broken) = (0.0, Vec::new());
-                for old in olds {
-                    while k < contacts.len() && (contacts[k].a, contacts[k].b) < (old.a, old.b) {
-                        k += 1;
-                    }
-                    let survived =
-                        k < contacts.len() && (contacts[k].a, contacts[k].b) == (old.a, old.b);
-                    if !survived {
-                        released += old.elastic_energy_j();
-                        if remember {
-                            broken.push(BrokenContact {
-                                a: old.a,
-                                b: old.b,
-                                friction: old.friction,
-                                broke_at_s: time_s,
-                            });
-                        }
-                    }
-                }
-                (released, broken)
-            })
-            .collect();
-        let released: f64 = ended.iter().map(|(r, _)| r).sum();
-        let newly_broken: Vec<BrokenContact> = ended.into_iter().flat_map(|(_, b)| b).collect();
+        let n_ended = n_chunks.max(usize::from(n_chunks == 0));
+        let released: f64 = self.ended[..n_ended].iter().map(|e| e.released_j).sum();
+        merge_in_place(&mut self.contacts, &mut self.born[..n_chunks]);
+        let contacts = &self.contacts;
         if model.memory_s > 0.0 || !self.broken.is_empty() {
             let (now, memory) = (self.time_s, model.memory_s);
             let touching = |c: &BrokenContact| {
@@ -584,10 +602,11 @@ impl<F: ExternalForces> World<F> {
                     .binary_search_by(|r| (r.a, r.b).cmp(&(c.a, c.b)))
                     .is_ok()
             };
+            let newly_broken = self.ended[..n_ended].iter().flat_map(|e| &e.broken);
             let mut merged: Vec<BrokenContact> = self
                 .broken
                 .iter()
-                .chain(&newly_broken)
+                .chain(newly_broken)
                 .filter(|c| now - c.broke_at_s <= memory && !touching(c))
                 .copied()
                 .collect();
@@ -603,7 +622,6 @@ impl<F: ExternalForces> World<F> {
             self.broken = merged;
         }
         self.energy.released_at_break_j += released;
-        self.spare_contacts = std::mem::replace(&mut self.contacts, contacts);
     }
 
     /// External forces and the contact forces, gathered per floe in contact order.
@@ -703,6 +721,90 @@ impl<F: ExternalForces> World<F> {
     }
 }
 
+/// Marks a contact record that ended this step, until the list is compacted
+/// (floe handles are below `u32::MAX`: checkpoints and floe sets check it).
+const DEAD: u32 = u32::MAX;
+
+/// Where a contact's record is while its friction step waits.
+#[derive(Debug, Clone, Copy)]
+enum Slot {
+    /// Updated in place, at this index of the chunk's run of previous contacts.
+    Run(usize),
+    /// New this step, at this index of the chunk's born list.
+    Born(usize),
+}
+
+/// What the contacts that ended in one chunk released.
+#[derive(Debug, Default)]
+struct ChunkEnded {
+    /// Elastic energy they held, J.
+    released_j: f64,
+    /// Their states, for contact memory (empty without it).
+    broken: Vec<BrokenContact>,
+}
+
+/// Removes the dead records of `contacts` and merges in the new contacts of
+/// every chunk (each sorted, the chunks in order), keeping the list sorted
+/// by `(a, b)`. In place: the dead are squeezed out front to back, then the
+/// list grows by the number born and is merged back to front, so that no
+/// second list is needed. Sequential, one or two moves per record after the
+/// first change; it replaced a parallel copy of every record per step.
+fn merge_in_place(contacts: &mut Vec<ContactRecord>, born: &mut [Vec<ContactRecord>]) {
+    let mut live = 0;
+    for r in 0..contacts.len() {
+        if contacts[r].a != DEAD {
+            if live != r {
+                contacts[live] = contacts[r];
+            }
+            live += 1;
+        }
+    }
+    contacts.truncate(live);
+    let total_born: usize = born.iter().map(Vec::len).sum();
+    if total_born == 0 {
+        return;
+    }
+    if live == 0 {
+        // The first step, or a pack that had come apart: copy the chunks in
+        // order and free each as it is copied, so that the list and the
+        // born lists are not both resident in full.
+        contacts.reserve_exact(total_born);
+        for b in born.iter_mut() {
+            contacts.extend_from_slice(b);
+            release_if_large(b);
+        }
+        return;
+    }
+    let Some(&fill) = born.iter().find_map(|b| b.first()) else {
+        return;
+    };
+    contacts.resize(live + total_born, fill);
+    let key = |c: &ContactRecord| (c.a, c.b);
+    let (mut old, mut write) = (live, live + total_born);
+    for chunk in born.iter().rev() {
+        for record in chunk.iter().rev() {
+            while old > 0 && key(&contacts[old - 1]) > key(record) {
+                write -= 1;
+                old -= 1;
+                contacts[write] = contacts[old];
+            }
+            write -= 1;
+            contacts[write] = *record;
+        }
+    }
+    debug_assert_eq!(write, old);
+    born.iter_mut().for_each(release_if_large);
+}
+
+/// Frees a born list that grew beyond what a step usually creates (a few
+/// contacts per chunk), so that a burst of new contacts does not stay
+/// resident for the rest of the run.
+fn release_if_large(born: &mut Vec<ContactRecord>) {
+    if born.capacity() > 64 {
+        *born = Vec::new();
+    }
+}
+
 /// The largest stable time step and the floe that sets it: `0.3 x 2/omega`
 /// with `omega^2 = k / m_eff` for the stiffest contact the floe can have
 /// with a like neighbour: contact length a diameter, `k = kappa 2 r`,
@@ -731,4 +833,66 @@ pub fn stable_time_step(floes: &Floes, model: &ContactModel) -> (f64, usize) {
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn record(a: u32, b: u32, tag: f64) -> ContactRecord {
+        ContactRecord {
+            a,
+            b,
+            image_offset: Vec2::ZERO,
+            friction: ContactState::default(),
+            age_steps: 0,
+            overlap_m2: tag,
+            point: Vec2::ZERO,
+            normal: Vec2::X,
+            length_m: 0.0,
+            normal_force_n: 0.0,
+            slip_rate_m_per_s: 0.0,
+            friction_power_w: 0.0,
+            damping_power_w: 0.0,
+            elastic_force_n: 0.0,
+            normal_energy_j: 0.0,
+            tangential_energy_j: 0.0,
+        }
+    }
+
+    proptest! {
+        /// The in-place compaction and merge against the obvious way: keep the
+        /// live records, add the born ones, sort.
+        #[test]
+        fn merging_in_place_equals_filtering_and_sorting(
+            keys in prop::collection::btree_set((0u32..60, 0u32..60), 0..200),
+            fate in prop::collection::vec(0u8..3, 200),
+            chunks in 1usize..6,
+        ) {
+            // Each key is a surviving old contact, a dead one, or born this step.
+            let keys: Vec<(u32, u32)> = keys.into_iter().collect();
+            let mut contacts = Vec::new();
+            let mut born_all = Vec::new();
+            for (i, &(a, b)) in keys.iter().enumerate() {
+                match fate[i] {
+                    0 => contacts.push(record(a, b, i as f64)),
+                    1 => contacts.push(record(DEAD, b, i as f64)),
+                    _ => born_all.push(record(a, b, i as f64)),
+                }
+            }
+            let mut expected: Vec<ContactRecord> = contacts
+                .iter()
+                .filter(|c| c.a != DEAD)
+                .chain(&born_all)
+                .copied()
+                .collect();
+            expected.sort_by_key(|c| (c.a, c.b));
+            // Born contacts split into consecutive chunks, as the narrow phase makes them.
+            let per = born_all.len().div_ceil(chunks).max(1);
+            let mut born: Vec<Vec<ContactRecord>> = born_all.chunks(per).map(<[_]>::to_vec).collect();
+            merge_in_place(&mut contacts, &mut born);
+            prop_assert_eq!(contacts, expected);
+        }
+    }
 }
