@@ -106,18 +106,35 @@ impl BroadPhase {
     /// since the last build (then no pair can have come within touching
     /// distance unnoticed). Returns whether it rebuilt.
     pub fn update(&mut self, position: &[Vec2], radius: &[f64], periodic: Periodicity) -> bool {
-        let half_skin_sq = (0.5 * self.skin_m).powi(2);
-        let stale = self.positions_at_build.len() != position.len()
+        let stale = self.built_for() != position.len()
             || position
                 .par_iter()
-                .zip(&self.positions_at_build)
-                .any(|(&p, &q)| {
-                    (p + periodic.nearest_image(q, p) - q).length_squared() > half_skin_sq
-                });
+                .enumerate()
+                .any(|(i, &p)| self.displaced_far(i, p, periodic));
         if stale {
             self.rebuild(position, radius, periodic);
         }
         stale
+    }
+
+    /// Number of floes the candidate list was built for.
+    pub fn built_for(&self) -> usize {
+        self.positions_at_build.len()
+    }
+
+    /// `true` if floe `i`, now at `position`, has moved more than half the
+    /// skin since the list was built (or was not there): the list must be
+    /// rebuilt. Callers that visit every floe anyway (the world's drift)
+    /// ask this per floe instead of calling [`BroadPhase::update`].
+    #[inline]
+    pub fn displaced_far(&self, i: usize, position: Vec2, periodic: Periodicity) -> bool {
+        let half_skin_sq = (0.5 * self.skin_m).powi(2);
+        match self.positions_at_build.get(i) {
+            Some(&q) => {
+                (position + periodic.nearest_image(q, position) - q).length_squared() > half_skin_sq
+            }
+            None => true,
+        }
     }
 
     /// Builds the candidate list from scratch.

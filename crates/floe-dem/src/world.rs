@@ -180,7 +180,8 @@ impl<F: ExternalForces> World<F> {
         dt_s: f64,
     ) -> Result<Self, DemError> {
         let mut world = Self::new_checked(floes, model, forcing, periodicity, dt_s)?;
-        world.update_contacts(0.0);
+        let moved_far = world.prepare_contacts();
+        world.update_contacts(0.0, moved_far);
         world.gather_forces();
         Ok(world)
     }
@@ -318,22 +319,40 @@ impl<F: ExternalForces> World<F> {
         let f = &mut self.floes;
         let owned = f.owned;
         let (force, torque) = (&self.force, &self.torque);
-        // Kick and drift.
-        (
+        // Kick and drift, and in the same pass what the contact update needs
+        // per floe: its rotation, and whether it moved far enough for a new
+        // candidate list. One parallel region instead of three: at 1e3 floes
+        // waking the pool's threads for each region was a visible part of a
+        // 1.4 ms step on two threads (docs/performance.md).
+        let n = f.len();
+        self.trig.resize(n, (0.0, 1.0));
+        let bp = &self.broad_phase;
+        let moved_far = (
             &mut f.position[..owned],
             &mut f.velocity[..owned],
             (&mut f.angle[..owned], &mut f.angular_velocity[..owned]),
+            &mut self.trig[..owned],
         )
             .into_par_iter()
             .enumerate()
-            .for_each(|(i, (x, v, (theta, omega)))| {
+            .map(|(i, (x, v, (theta, omega), trig))| {
                 if let Motion::Free = f.motion[i] {
                     *v += force[i] / f.mass_kg[i] * (0.5 * dt);
                     *omega += torque[i] / f.inertia_kg_m2[i] * (0.5 * dt);
                 }
                 *x = periodicity.wrap(*x + *v * dt);
                 *theta += *omega * dt;
-            });
+                *trig = theta.sin_cos();
+                bp.displaced_far(i, *x, periodicity)
+            })
+            .reduce(|| false, |a, b| a || b);
+        // Ghost floes (a subdomain's copies of its neighbours' floes) are
+        // moved by their owner, not here.
+        let mut moved_far = moved_far || bp.built_for() != n;
+        for i in owned..n {
+            self.trig[i] = f.angle[i].sin_cos();
+            moved_far |= bp.displaced_far(i, f.position[i], periodicity);
+        }
         self.time_s += dt;
         self.steps += 1;
         // Keep this step's starting external forces for the work integral;
@@ -343,7 +362,7 @@ impl<F: ExternalForces> World<F> {
             &mut self.external_torque,
             &mut self.previous_external_torque,
         );
-        self.update_contacts(dt);
+        self.update_contacts(dt, moved_far);
         self.gather_forces();
         // Kick.
         let f = &mut self.floes;
@@ -360,21 +379,37 @@ impl<F: ExternalForces> World<F> {
         self.account_energy(dt);
     }
 
-    /// Broad phase, narrow phase and contact kernel: the new contact list.
-    fn update_contacts(&mut self, dt: f64) {
+    /// Per-floe rotation and broad-phase staleness, when [`World::step`] has
+    /// not computed them in its drift (at the start of a run).
+    fn prepare_contacts(&mut self) -> bool {
         let f = &self.floes;
-        let rebuilt = self
-            .broad_phase
-            .update(&f.position, &f.radius_m, self.periodicity);
+        self.trig.clear();
+        self.trig
+            .par_extend(f.angle.par_iter().map(|a| a.sin_cos()));
+        let bp = &self.broad_phase;
+        bp.built_for() != f.len()
+            || f.position
+                .par_iter()
+                .enumerate()
+                .any(|(i, &p)| bp.displaced_far(i, p, self.periodicity))
+    }
+
+    /// Broad phase, narrow phase and contact kernel: the new contact list.
+    /// `self.trig` must hold every floe's `(sin, cos)`, and `moved_far` say
+    /// whether any floe moved beyond half the skin since the candidate list
+    /// was built.
+    fn update_contacts(&mut self, dt: f64, moved_far: bool) {
+        let f = &self.floes;
+        let rebuilt = moved_far;
+        if rebuilt {
+            self.broad_phase
+                .rebuild(&f.position, &f.radius_m, self.periodicity);
+        }
         if rebuilt || self.separating.len() != self.broad_phase.pairs.len() {
             self.separating.clear();
             self.separating
                 .resize(self.broad_phase.pairs.len(), SeparatingEdge::NONE);
         }
-        // Per-floe rotation, once per step rather than once per pair.
-        self.trig.clear();
-        self.trig
-            .par_extend(f.angle.par_iter().map(|a| a.sin_cos()));
         // The contact list is updated in place: a step holds one list, not
         // the previous one, per-task outputs and a new one (three 160 B
         // records per contact, 960 B per floe at 1e6 floes: the 1 KB per
