@@ -55,7 +55,7 @@ pub enum Ending {
     /// The last step was reached; everything was written.
     Completed,
     /// The interrupt flag was raised; the step in progress was finished and
-    /// a checkpoint and final snapshot written (see [`finish_interrupted`]).
+    /// a checkpoint and final snapshot written (see `finish_interrupted`).
     Interrupted {
         /// The step the run stopped at.
         step: u64,

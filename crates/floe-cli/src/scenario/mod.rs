@@ -3,12 +3,12 @@
 //! time step and the output cadence. Every key is documented in
 //! docs/scenarios.md; shipped examples are in `scenarios/`.
 //!
-//! * [`spec`]: the file as written (serde, unknown keys refused, every value
+//! * `spec`: the file as written (serde, unknown keys refused, every value
 //!   with its location);
-//! * [`resolve`]: defaults and single-value checks, with file:line:column;
-//! * [`checks`]: consistency of several values together (walls, overlaps,
+//! * `resolve`: defaults and single-value checks, with file:line:column;
+//! * `checks`: consistency of several values together (walls, overlaps,
 //!   the double-shear geometry);
-//! * [`build`]: floe-dem objects (floes, walls as prescribed floes, the
+//! * `build`: floe-dem objects (floes, walls as prescribed floes, the
 //!   contact model, the forcing) and the time step.
 //!
 //! Every problem with a file is one [`CliError::Input`] (exit code 2) that
