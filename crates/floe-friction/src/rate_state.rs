@@ -282,7 +282,7 @@ impl RateState {
     /// Advances every item over `dt`: bitwise what [`FrictionLaw::step`]
     /// gives each in turn, faster. A step's Newton iteration is a chain of
     /// dependent `exp`/`ln` calls whose latency, not their number, bounds a
-    /// contact-by-contact loop; here up to [`LANES`] contacts iterate side
+    /// contact-by-contact loop; here up to four (`LANES`) contacts iterate side
     /// by side, and a lane whose contact has converged takes the next one.
     pub fn step_batch(&self, items: &mut [BatchItem], dt: f64) {
         let mut lanes: [Option<(usize, SolveSetup, Solver)>; LANES] = [None; LANES];

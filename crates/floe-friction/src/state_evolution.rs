@@ -13,7 +13,7 @@
 //!   `phi_new = phi exp(-x) + (V* dt/L) (1 - exp(-x))/x`, `x = |V| dt / L`,
 //!   evaluated in log space so long holds cannot overflow.
 //!
-//! `theta_ss = -B ln(|V|/V*)` in both. [`evolve`] also returns the
+//! `theta_ss = -B ln(|V|/V*)` in both. `evolve` also returns the
 //! derivative of `theta_new` with respect to the solver's unknown
 //! `q = ln(|V|/V*)` (note `dx/dq = x`).
 
