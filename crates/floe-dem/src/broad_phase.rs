@@ -106,15 +106,21 @@ impl BroadPhase {
     /// since the last build (then no pair can have come within touching
     /// distance unnoticed). Returns whether it rebuilt.
     pub fn update(&mut self, position: &[Vec2], radius: &[f64], periodic: Periodicity) -> bool {
-        let stale = self.built_for() != position.len()
-            || position
-                .par_iter()
-                .enumerate()
-                .any(|(i, &p)| self.displaced_far(i, p, periodic));
+        let stale = self.is_stale(position, periodic);
         if stale {
             self.rebuild(position, radius, periodic);
         }
         stale
+    }
+
+    /// `true` if the list must be rebuilt for floes at `position`: their
+    /// number changed, or one moved beyond half the skin.
+    pub fn is_stale(&self, position: &[Vec2], periodic: Periodicity) -> bool {
+        self.built_for() != position.len()
+            || position
+                .par_iter()
+                .enumerate()
+                .any(|(i, &p)| self.displaced_far(i, p, periodic))
     }
 
     /// Number of floes the candidate list was built for.

@@ -386,12 +386,7 @@ impl<F: ExternalForces> World<F> {
         self.trig.clear();
         self.trig
             .par_extend(f.angle.par_iter().map(|a| a.sin_cos()));
-        let bp = &self.broad_phase;
-        bp.built_for() != f.len()
-            || f.position
-                .par_iter()
-                .enumerate()
-                .any(|(i, &p)| bp.displaced_far(i, p, self.periodicity))
+        self.broad_phase.is_stale(&f.position, self.periodicity)
     }
 
     /// Broad phase, narrow phase and contact kernel: the new contact list.
@@ -400,12 +395,11 @@ impl<F: ExternalForces> World<F> {
     /// was built.
     fn update_contacts(&mut self, dt: f64, moved_far: bool) {
         let f = &self.floes;
-        let rebuilt = moved_far;
-        if rebuilt {
+        if moved_far {
             self.broad_phase
                 .rebuild(&f.position, &f.radius_m, self.periodicity);
         }
-        if rebuilt || self.separating.len() != self.broad_phase.pairs.len() {
+        if moved_far || self.separating.len() != self.broad_phase.pairs.len() {
             self.separating.clear();
             self.separating
                 .resize(self.broad_phase.pairs.len(), SeparatingEdge::NONE);
@@ -539,10 +533,10 @@ impl<F: ExternalForces> World<F> {
             }
             self.ended.clear();
             self.ended.push(ended);
+        } else {
+            self.ended.resize_with(n_chunks, ChunkEnded::default);
         }
         self.born.resize_with(n_chunks, Vec::new);
-        self.ended
-            .resize_with(n_chunks.max(self.ended.len()), ChunkEnded::default);
         runs.into_par_iter()
             .zip(pairs.par_chunks(PAIR_CHUNK))
             .zip(self.separating.par_chunks_mut(PAIR_CHUNK))
@@ -626,8 +620,7 @@ impl<F: ExternalForces> World<F> {
                     k += 1;
                 }
             });
-        let n_ended = n_chunks.max(usize::from(n_chunks == 0));
-        let released: f64 = self.ended[..n_ended].iter().map(|e| e.released_j).sum();
+        let released: f64 = self.ended.iter().map(|e| e.released_j).sum();
         merge_in_place(&mut self.contacts, &mut self.born[..n_chunks]);
         let contacts = &self.contacts;
         if model.memory_s > 0.0 || !self.broken.is_empty() {
@@ -637,7 +630,7 @@ impl<F: ExternalForces> World<F> {
                     .binary_search_by(|r| (r.a, r.b).cmp(&(c.a, c.b)))
                     .is_ok()
             };
-            let newly_broken = self.ended[..n_ended].iter().flat_map(|e| &e.broken);
+            let newly_broken = self.ended.iter().flat_map(|e| &e.broken);
             let mut merged: Vec<BrokenContact> = self
                 .broken
                 .iter()
