@@ -99,8 +99,6 @@ pub struct FrictionPending {
     /// The state to advance (the contact's carried friction state), the
     /// load, and the outcome the law's step writes (zero slip until then).
     pub item: BatchItem,
-    /// Relative tangential velocity at the contact point, m/s.
-    pub tangential_speed_m_per_s: f64,
     /// Power of the elastic normal force on the approach, W.
     pub elastic_power_w: f64,
 }
@@ -180,7 +178,6 @@ pub fn contact_before_friction(
                 iterations: 0,
             },
         },
-        tangential_speed_m_per_s: v_t,
         // Work of the elastic force over the step (trapezoid in the force,
         // penetration rate -v_n): exact storage for any overlap shape.
         elastic_power_w: 0.5 * (carried.elastic_force_n + elastic) * (-v_n),
@@ -198,7 +195,8 @@ pub fn finish_friction(record: &mut ContactRecord, pending: &FrictionPending, dt
     } else {
         (record.friction, 0.0)
     };
-    let v_t = pending.tangential_speed_m_per_s;
+    // The load point's velocity is the relative tangential velocity.
+    let v_t = pending.item.load.load_point_velocity_m_per_s;
     // The kicks apply the old spring force over the first half step and the
     // new one over the second: energy accounting uses their mean. Of the
     // work it does on the relative tangential motion, the part on the slip is

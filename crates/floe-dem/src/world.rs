@@ -120,7 +120,6 @@ const NO_PENDING: FrictionPending = FrictionPending {
             iterations: 0,
         },
     },
-    tangential_speed_m_per_s: 0.0,
     elastic_power_w: 0.0,
 };
 
