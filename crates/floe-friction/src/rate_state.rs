@@ -138,38 +138,8 @@ impl RateState {
     /// `A asinh(|V|/2V* exp((mu0 + theta_new)/A)) - |F_trial|/N + kappa |V|`.
     #[inline(always)]
     fn residual(&self, q: f64, c: &StepConstants) -> Eval<EndOfStep> {
-        let p = &self.params;
-        let speed = p.v_star_m_per_s * q.exp();
-        let slip = SlipMeasure {
-            q,
-            x: speed * c.dt_over_l,
-        };
-        let (theta, dtheta) = evolve(self.state_law, p.b, c.theta, slip, c.ln_vstar_dt_over_l);
-        let spring = c.kappa * speed;
-        let (r, dr) = match self.form {
-            Form::Published => (
-                p.mu0 + theta + p.a * q - c.trial_mu + spring,
-                p.a + dtheta + spring,
-            ),
-            Form::Regularized => {
-                let z = q - std::f64::consts::LN_2 + (p.mu0 + theta) / p.a;
-                let (m, dm_dz) = asinh_of_exp(z);
-                // dz/dq = 1 + dtheta/A, so d(A m)/dq = (A + dtheta) dm/dz.
-                (
-                    p.a * m - c.trial_mu.abs() + spring,
-                    (p.a + dtheta) * dm_dz + spring,
-                )
-            }
-        };
-        Eval {
-            r,
-            dr,
-            payload: EndOfStep {
-                theta,
-                speed,
-                dtheta,
-            },
-        }
+        let [e] = self.residual_lanes([q], &[*c]);
+        e
     }
 
     /// `theta` after `dt` of slip at the imposed rate `v` (no spring involved).
@@ -278,6 +248,22 @@ enum Prepared {
 /// sheared 1e4-floe DEM pack (docs/performance.md).
 const LANES: usize = 4;
 
+/// What an idle lane holds: finite values, evaluated and discarded.
+const IDLE_SETUP: SolveSetup = SolveSetup {
+    constants: StepConstants {
+        dt_over_l: 1.0,
+        ln_vstar_dt_over_l: 0.0,
+        trial_mu: 1.0,
+        kappa: 1.0,
+        theta: 0.0,
+    },
+    residual_tolerance: 0.0,
+    trial_force: 0.0,
+    kdt: 0.0,
+    inv_n: 0.0,
+    direction: 0.0,
+};
+
 impl RateState {
     /// Advances every item over `dt`: bitwise what [`FrictionLaw::step`]
     /// gives each in turn, faster. A step's Newton iteration is a chain of
@@ -285,48 +271,115 @@ impl RateState {
     /// contact-by-contact loop; here up to four (`LANES`) contacts iterate side
     /// by side, and a lane whose contact has converged takes the next one.
     pub fn step_batch(&self, items: &mut [BatchItem], dt: f64) {
-        let mut lanes: [Option<(usize, SolveSetup, Solver)>; LANES] = [None; LANES];
+        // Lanes as arrays, so that the residual is evaluated stage by stage
+        // across all of them (`residual_lanes`). An idle lane keeps its last
+        // contents and is evaluated too, its result unused.
+        let mut active = [false; LANES];
+        let mut index = [0usize; LANES];
+        let mut setup = [IDLE_SETUP; LANES];
+        let mut solver = [Solver::new(0.0, TOLERANCE, 0.0); LANES];
         let mut next = 0;
         loop {
             // Refill idle lanes (contacts that need no solve finish here).
-            let mut active = 0;
-            for lane in lanes.iter_mut() {
-                while lane.is_none() && next < items.len() {
+            for l in 0..LANES {
+                while !active[l] && next < items.len() {
                     let item = &mut items[next];
                     match self.prepare(&mut item.state, &item.load, dt) {
                         Prepared::Done(outcome) => item.outcome = outcome,
-                        Prepared::Solve(setup) => {
-                            let solver = Solver::new(
+                        Prepared::Solve(s) => {
+                            solver[l] = Solver::new(
                                 item.state.solver_guess,
                                 TOLERANCE,
-                                setup.residual_tolerance,
+                                s.residual_tolerance,
                             );
-                            *lane = Some((next, setup, solver));
+                            setup[l] = s;
+                            index[l] = next;
+                            active[l] = true;
                         }
                     }
                     next += 1;
                 }
-                active += usize::from(lane.is_some());
             }
-            if active == 0 {
+            if !active.contains(&true) {
                 return;
             }
-            let mut evals = [None; LANES];
-            for (eval, lane) in evals.iter_mut().zip(&lanes) {
-                if let Some((_, setup, solver)) = lane {
-                    *eval = Some(self.residual(solver.x, &setup.constants));
-                }
-            }
-            for (eval, lane) in evals.into_iter().zip(lanes.iter_mut()) {
-                if let (Some(e), Some((i, setup, solver))) = (eval, lane.as_mut()) {
-                    if let Some(root) = solver.update(e, EndOfStep::advanced) {
-                        let item = &mut items[*i];
-                        item.outcome = setup.finish(&mut item.state, root);
-                        *lane = None;
+            let evals = self.residual_lanes::<LANES>(
+                std::array::from_fn(|l| solver[l].x),
+                &std::array::from_fn(|l| setup[l].constants),
+            );
+            for l in 0..LANES {
+                if active[l] {
+                    if let Some(root) = solver[l].update(evals[l], EndOfStep::advanced) {
+                        let item = &mut items[index[l]];
+                        item.outcome = setup[l].finish(&mut item.state, root);
+                        active[l] = false;
                     }
                 }
             }
         }
+    }
+
+    /// The residual of [`RateState::residual`] at `N` points, computed stage
+    /// by stage across them (all the `exp`s, then all the state updates,
+    /// then all the `asinh`s) rather than point by point: each stage's calls
+    /// are independent, so the processor overlaps them, where one lane's
+    /// chain of dependent calls was longer than it can look ahead (about
+    /// 8 % of a sheared 1e4-floe step, docs/performance.md). One formula
+    /// serves both: `residual` is this with `N = 1`, so every lane of
+    /// `step_batch` gives bitwise what `step` gives.
+    #[inline(always)]
+    fn residual_lanes<const N: usize>(
+        &self,
+        q: [f64; N],
+        c: &[StepConstants; N],
+    ) -> [Eval<EndOfStep>; N] {
+        let p = &self.params;
+        let speed: [f64; N] = std::array::from_fn(|l| p.v_star_m_per_s * q[l].exp());
+        let state: [(f64, f64); N] = std::array::from_fn(|l| {
+            let slip = SlipMeasure {
+                q: q[l],
+                x: speed[l] * c[l].dt_over_l,
+            };
+            evolve(
+                self.state_law,
+                p.b,
+                c[l].theta,
+                slip,
+                c[l].ln_vstar_dt_over_l,
+            )
+        });
+        let spring: [f64; N] = std::array::from_fn(|l| c[l].kappa * speed[l]);
+        let rdr: [(f64, f64); N] = match self.form {
+            Form::Published => std::array::from_fn(|l| {
+                let (theta, dtheta) = state[l];
+                (
+                    p.mu0 + theta + p.a * q[l] - c[l].trial_mu + spring[l],
+                    p.a + dtheta + spring[l],
+                )
+            }),
+            Form::Regularized => {
+                let m: [(f64, f64); N] = std::array::from_fn(|l| {
+                    asinh_of_exp(q[l] - std::f64::consts::LN_2 + (p.mu0 + state[l].0) / p.a)
+                });
+                // dz/dq = 1 + dtheta/A, so d(A m)/dq = (A + dtheta) dm/dz.
+                std::array::from_fn(|l| {
+                    let (m, dm_dz) = m[l];
+                    (
+                        p.a * m - c[l].trial_mu.abs() + spring[l],
+                        (p.a + state[l].1) * dm_dz + spring[l],
+                    )
+                })
+            }
+        };
+        std::array::from_fn(|l| Eval {
+            r: rdr[l].0,
+            dr: rdr[l].1,
+            payload: EndOfStep {
+                theta: state[l].0,
+                speed: speed[l],
+                dtheta: state[l].1,
+            },
+        })
     }
 
     /// The part of a step before the solve.
