@@ -117,6 +117,22 @@ impl Default for ClipScratch {
     }
 }
 
+impl ClipScratch {
+    /// The placed first floe clipped by the placed second, in these buffers:
+    /// which of `bufs` holds the overlap, and whether a vertex fell exactly
+    /// on a clip line (see [`clip_convex`]).
+    #[inline(always)]
+    fn clip(&mut self) -> (usize, bool) {
+        clip_convex(
+            &self.a,
+            &self.b,
+            &mut self.bufs,
+            &mut self.side,
+            &mut self.tags,
+        )
+    }
+}
+
 /// The index after `i` in a closed polygon of `n` vertices (a compare
 /// instead of the integer division of `(i + 1) % n`).
 #[inline(always)]
@@ -180,13 +196,7 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
     let offset = b.position - a.position;
     place(&mut scratch.a, a.vertices, None, a.cos, a.sin);
     place(&mut scratch.b, b.vertices, Some(offset), b.cos, b.sin);
-    let (result, exact_zero) = clip_convex(
-        &scratch.a,
-        &scratch.b,
-        &mut scratch.bufs,
-        &mut scratch.side,
-        &mut scratch.tags,
-    );
+    let (result, exact_zero) = scratch.clip();
     let poly = scratch.bufs[result].as_slice();
     if poly.len() < 3 {
         return None;
@@ -633,13 +643,7 @@ mod tests {
             let mut scratch = ClipScratch::default();
             place(&mut scratch.a, &va, None, 1.0, 0.0);
             place(&mut scratch.b, &vb, Some(Vec2::new(dx, dy) * scale), turn.cos(), turn.sin());
-            let (result, exact_zero) = clip_convex(
-                &scratch.a,
-                &scratch.b,
-                &mut scratch.bufs,
-                &mut scratch.side,
-                &mut scratch.tags,
-            );
+            let (result, exact_zero) = scratch.clip();
             prop_assume!(!exact_zero);
             let poly = scratch.bufs[result].as_slice().to_vec();
             prop_assume!(poly.len() >= 3);
