@@ -381,6 +381,8 @@ const CROSSING: u8 = 2;
 /// vertex of the clip polygon instead. So the contact chord comes with the
 /// clipping, where searching every pair of edges for crossings was 13 % of a
 /// step's instructions (docs/performance.md).
+// Indexed loops on purpose: see the first comment in the body.
+#[allow(clippy::needless_range_loop)]
 fn clip_convex<const N: usize, const M: usize>(
     subject: &Poly<N>,
     clip: &Poly<N>,
@@ -388,31 +390,47 @@ fn clip_convex<const N: usize, const M: usize>(
     side: &mut [f64; M],
     tags: &mut [[u8; M]; 2],
 ) -> (usize, bool) {
-    let subject = subject.as_slice();
-    bufs[0].v[..subject.len()].copy_from_slice(subject);
-    bufs[0].len = subject.len();
-    tags[0][..subject.len()].fill(ON_FIRST);
-    let clip = clip.as_slice();
-    let n = clip.len();
+    // Indexed loops over the fixed buffers, with their lengths bounded
+    // first so that no index is checked, and element-wise copies: for the
+    // few vertices of a floe, `copy_from_slice`, `fill` and the iterator
+    // adaptors were library calls and overhead, a quarter of the clipper's
+    // instructions (docs/performance.md).
+    let ns = subject.len.min(N).min(M - 1);
+    for k in 0..ns {
+        bufs[0].v[k] = subject.v[k];
+    }
+    // All `N` slots, a fixed length the compiler writes inline (a
+    // variable one was a `memset` call per pair).
+    tags[0][..N.min(M)].fill(ON_FIRST);
+    bufs[0].len = ns;
+    let n = clip.len.min(N);
     let mut cur = 0;
     let mut exact_zero = false;
     for i in 0..n {
-        if bufs[cur].len == 0 {
+        let m = bufs[cur].len.min(M - 1);
+        if m == 0 {
             return (cur, exact_zero);
         }
-        let (s, e) = (clip[i], clip[next(i, n)]);
+        let (s, e) = (clip.v[i], clip.v[next(i, n)]);
         let dir = e - s;
         // Side of every vertex once; an edge that keeps all of them (most
-        // of the clip polygon's edges) changes nothing and is skipped.
-        let m = bufs[cur].len;
-        let mut inside = 0;
-        for (d, &p) in side.iter_mut().zip(&bufs[cur].v[..m]) {
-            *d = cross(dir, p - s);
-            inside += usize::from(*d >= 0.0);
-            exact_zero |= *d == 0.0;
+        // of the clip polygon's edges) changes nothing and is skipped. A
+        // vertex is on the line if it counts as inside but not as strictly
+        // inside: two counts, cheaper than a flag updated per vertex.
+        let (mut inside, mut strictly) = (0, 0);
+        for k in 0..m {
+            let d = cross(dir, bufs[cur].v[k] - s);
+            side[k] = d;
+            inside += usize::from(d >= 0.0);
+            strictly += usize::from(d > 0.0);
         }
+        exact_zero |= inside != strictly;
         if inside == m {
             continue;
+        }
+        if inside == 0 {
+            bufs[1 - cur].len = 0;
+            return (1 - cur, exact_zero);
         }
         // The first vertex again after the last, so that the closing edge
         // needs no wrap-around index in the loop below.
@@ -430,10 +448,6 @@ fn clip_convex<const N: usize, const M: usize>(
         } else {
             (&tags_second[0], &mut tags_first[0])
         };
-        if inside == 0 {
-            dst.len = 0;
-            return (1 - cur, exact_zero);
-        }
         // The output length in a local: a `push` method stored it back to
         // memory after every vertex. Sutherland-Hodgman adds at most one
         // vertex per clip edge, so `M - 1 = na + nb` always suffices for
@@ -447,12 +461,9 @@ fn clip_convex<const N: usize, const M: usize>(
                 out += 1;
             }
         };
-        for ((v, d), &tag) in src.v[..=m]
-            .windows(2)
-            .zip(side[..=m].windows(2))
-            .zip(&src_tags[..m])
-        {
-            let (p, q, dp, dq) = (v[0], v[1], d[0], d[1]);
+        for k in 0..m {
+            let (p, q, dp, dq) = (src.v[k], src.v[k + 1], side[k], side[k + 1]);
+            let tag = src_tags[k];
             // A cut of this edge is a boundary crossing if the edge lies on
             // the subject's boundary.
             let cut = if tag & ON_FIRST != 0 { CROSSING } else { 0 };
