@@ -107,6 +107,7 @@ impl FrictionLaw for RateDependent {
                 Eval {
                     r: mu * n + kdt * s - trial_abs,
                     dr: dmu * n + kdt * s,
+                    d2r: f64::NAN,
                     payload: s,
                 }
             },

@@ -39,8 +39,10 @@ pub(crate) struct SlipMeasure {
     pub x: f64,
 }
 
-/// `theta` at the end of the step and its derivative with respect to `q`.
-/// `ln_vstar_dt_over_l` is `ln(V* dt / L)` (used by the aging law only).
+/// `theta` at the end of the step and its first and second derivatives with
+/// respect to `q` (the second for the slip law only, NaN for the aging law,
+/// whose solve takes Newton steps). `ln_vstar_dt_over_l` is `ln(V* dt / L)`
+/// (used by the aging law only).
 #[inline(always)]
 pub(crate) fn evolve(
     law: StateLaw,
@@ -48,23 +50,26 @@ pub(crate) fn evolve(
     theta: f64,
     slip: SlipMeasure,
     ln_vstar_dt_over_l: f64,
-) -> (f64, f64) {
+) -> (f64, f64, f64) {
     let SlipMeasure { q, x } = slip;
     match law {
         StateLaw::Slip => {
             if x == 0.0 {
-                return (theta, 0.0);
+                return (theta, 0.0, 0.0);
             }
             let one_minus_e = -(-x).exp_m1();
             let e = 1.0 - one_minus_e;
             let theta_ss = -b * q;
             let theta_new = theta + (theta_ss - theta) * one_minus_e;
             let d = -(b * one_minus_e + (theta - theta_ss) * e * x);
-            (theta_new, d)
+            // With dx/dq = x and de/dq = -e x.
+            let ex = e * x;
+            let d2 = -(2.0 * b * ex + (theta - theta_ss) * ex * (1.0 - x));
+            (theta_new, d, d2)
         }
         StateLaw::Aging => {
             if b == 0.0 {
-                return (theta, 0.0);
+                return (theta, 0.0, f64::NAN);
             }
             // ln of the two terms of phi_new, and x h'(x)/h(x) with h = (1-e^-x)/x.
             let (ln_h, x_dlnh) = if x < 1e-8 {
@@ -92,7 +97,7 @@ pub(crate) fn evolve(
                 (e_small, 1.0)
             };
             let d = b * (w2 * x_dlnh - w1 * x) / (1.0 + e_small);
-            (theta_new, d)
+            (theta_new, d, f64::NAN)
         }
     }
 }
@@ -129,7 +134,7 @@ mod tests {
                     q: (v / vstar).ln(),
                     x: v * dt / l,
                 };
-                let (exact, _) = evolve(law, b, theta, slip, (vstar * dt / l).ln());
+                let (exact, _, _) = evolve(law, b, theta, slip, (vstar * dt / l).ln());
                 let reference = rk4(law, b, l, vstar, v, theta, dt);
                 assert!(
                     (exact - reference).abs() < 1e-9,
@@ -159,6 +164,14 @@ mod tests {
                     (fd - d).abs() <= 1e-6 * (1.0 + d.abs()),
                     "{law:?} w {w}: {d} vs {fd}"
                 );
+                if law == StateLaw::Slip {
+                    let fd2 = (at(w + h).1 - at(w - h).1) / (2.0 * h);
+                    let d2 = at(w).2;
+                    assert!(
+                        (fd2 - d2).abs() <= 1e-6 * (1.0 + d2.abs()),
+                        "{law:?} w {w}: second derivative {d2} vs {fd2}"
+                    );
+                }
             }
         }
     }
@@ -170,11 +183,11 @@ mod tests {
             q: f64::NEG_INFINITY,
             x: 0.0,
         };
-        let (slip_theta, _) = evolve(StateLaw::Slip, b, 0.1, at_rest, 0.0);
+        let (slip_theta, _, _) = evolve(StateLaw::Slip, b, 0.1, at_rest, 0.0);
         assert_eq!(slip_theta, 0.1);
         // phi = e^{theta/B} grows by V* t / L: theta -> B ln(e^{theta/B} + V* t/L).
         let t = 1000.0;
-        let (aged, _) = evolve(StateLaw::Aging, b, 0.1, at_rest, f64::ln(vstar * t / l));
+        let (aged, _, _) = evolve(StateLaw::Aging, b, 0.1, at_rest, f64::ln(vstar * t / l));
         let expected = b * ((0.1 / b).exp() + vstar * t / l).ln();
         assert!((aged - expected).abs() < 1e-12);
     }
