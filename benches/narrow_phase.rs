@@ -41,6 +41,7 @@ fn narrow_phase(c: &mut Criterion) {
         position: f.position[i] + offset,
         cos: trig[i].1,
         sin: trig[i].0,
+        radius_m: f.radius_m[i],
     };
     let mut g = c.benchmark_group("narrow_phase");
     g.throughput(Throughput::Elements(pairs.len() as u64));

@@ -17,6 +17,7 @@ fn placed<'a>(f: &'a (FloeShape, Vec2)) -> Placed<'a> {
         position: f.1,
         cos: 1.0,
         sin: 0.0,
+        radius_m: f.0.radius_m,
     }
 }
 
@@ -185,6 +186,7 @@ fn rotation_is_applied_to_the_local_vertices() {
         position: Vec2::new(10.0, half_diag - depth),
         cos: (0.25 * std::f64::consts::PI).cos(),
         sin: (0.25 * std::f64::consts::PI).sin(),
+        radius_m: sq.0.radius_m,
     };
     let ov = overlap(placed(&a), b, &mut scratch).unwrap();
     assert!((ov.area_m2 - depth * depth).abs() < 1e-9, "{}", ov.area_m2);
@@ -304,15 +306,15 @@ fn the_separating_edge_shortcut_gives_bitwise_the_result_of_clipping() {
                     position: b.1 - towards * gap,
                     cos: turn.cos(),
                     sin: turn.sin(),
+                    radius_m: b.0.radius_m,
                 };
                 let (first, second) = if a_first {
                     (placed(&a), pb)
                 } else {
                     (pb, placed(&a))
                 };
-                let reach = a.0.radius_m + b.0.radius_m;
                 let before = edge;
-                let cached = overlap_cached(first, second, reach, &mut edge, &mut scratch);
+                let cached = overlap_cached(first, second, &mut edge, &mut scratch);
                 let clipped = overlap(first, second, &mut scratch);
                 assert_eq!(cached, clipped, "o {o} neighbour {b_origin} gap {gap}");
                 if before != SeparatingEdge::NONE && cached.is_none() {

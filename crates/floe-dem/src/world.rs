@@ -443,6 +443,7 @@ impl<F: ExternalForces> World<F> {
             position: f.position[i] + offset,
             cos: trig[i].1,
             sin: trig[i].0,
+            radius_m: f.radius_m[i],
         };
         let contact_of_pair = |pair: &CandidatePair,
                                old: Option<&ContactRecord>,
@@ -458,13 +459,7 @@ impl<F: ExternalForces> World<F> {
             if (f.position[b] + offset - f.position[a]).length_squared() > reach * reach {
                 return None; // bounding circles apart: no clipping needed
             }
-            let ov = overlap_cached(
-                placed(a, Vec2::ZERO),
-                placed(b, offset),
-                reach,
-                edge,
-                scratch,
-            )?;
+            let ov = overlap_cached(placed(a, Vec2::ZERO), placed(b, offset), edge, scratch)?;
             let carried = old.map_or_else(
                 || {
                     let mut fresh =

@@ -140,6 +140,7 @@ pub(crate) fn no_initial_overlap(
         position: fl.position[i] + offset,
         cos: fl.angle[i].cos(),
         sin: fl.angle[i].sin(),
+        radius_m: fl.radius_m[i],
     };
     let name = |i: usize| {
         built.labels[i]

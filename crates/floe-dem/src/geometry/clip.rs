@@ -42,6 +42,11 @@ pub struct Placed<'a> {
     pub cos: f64,
     /// Sine of the orientation angle.
     pub sin: f64,
+    /// Bounding radius: the largest distance of a vertex from the centroid
+    /// (`Floes::radius_m`, `FloeShape::radius_m`), m. The overlap's
+    /// round-off floors scale with it, and the separating-edge shortcut
+    /// bounds an overlap's area with it.
+    pub radius_m: f64,
 }
 
 /// The overlap of two floes.
@@ -144,22 +149,6 @@ fn next(i: usize, n: usize) -> usize {
     }
 }
 
-/// The largest squared distance of a vertex from the centroid. A compare
-/// rather than `f64::max`, whose NaN handling costs a few instructions per
-/// vertex; same result, as squares are never NaN for finite vertices, and a
-/// NaN is skipped by both.
-#[inline(always)]
-fn largest_square(vertices: &[Vec2]) -> f64 {
-    vertices.iter().fold(0.0, |m, v| {
-        let l = v.length_squared();
-        if l > m {
-            l
-        } else {
-            m
-        }
-    })
-}
-
 /// `vertices` rotated, then shifted by `shift` if given, into `poly`: at
 /// most [`MAX_VERTICES`] (the floe constructor refuses more).
 #[inline(always)]
@@ -202,11 +191,10 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
         return None;
     }
     let (area, centroid) = crate::geometry::shape::area_and_centroid(poly);
-    let (ra, rb) = (largest_square(a.vertices), largest_square(b.vertices));
-    if area <= AREA_FLOOR * ra.min(rb) {
+    let size = a.radius_m.min(b.radius_m);
+    if area <= AREA_FLOOR * size * size {
         return None;
     }
-    let size = ra.min(rb).sqrt();
     // The boundary crossings are the clipper's own crossing vertices, unless
     // a vertex fell exactly on a clip line: then a crossing may sit on a
     // vertex, which the clipper does not mark, and the edges are searched.
@@ -252,6 +240,10 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
 /// candidate pair so that a pair that stays apart is rejected by testing
 /// that one edge instead of clipping. Most candidate pairs never touch: a
 /// rhombus's bounding circle overlaps those of its vertex neighbours.
+/// "Separated" includes touching: the other floe may reach past the edge's
+/// line by a depth too small for an overlap above the area floor (see
+/// [`TOUCH_DEPTH`]), so that edge-to-edge neighbours that exactly touch,
+/// every pair of an unpressed lattice, are not clipped at every step either.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SeparatingEdge(u8);
 
@@ -259,10 +251,9 @@ impl SeparatingEdge {
     /// No edge known: the pair is clipped, and searched for a separating
     /// edge if it does not overlap.
     pub const NONE: Self = Self(0);
-    /// Searched without success (the floes touch, or nearly): the pair is
-    /// clipped and not searched again until it overlaps. Without this,
-    /// edge-to-edge neighbours that exactly touch (every pair of a regular
-    /// lattice) paid for a vain search at every step.
+    /// Searched without success, and the floes do not overlap (an overlap
+    /// below the round-off floors): the pair is clipped and not searched
+    /// again until it overlaps.
     const TOUCHING: Self = Self(u8::MAX);
     /// Codes `1..=MAX_VERTICES`: edge `code - 1` of the second floe; above:
     /// edge `code - 1 - MAX_VERTICES` of the first.
@@ -270,40 +261,57 @@ impl SeparatingEdge {
     const FIRST_BASE: u8 = 1 + MAX_VERTICES as u8;
 }
 
-/// Clearance, as a fraction of `(r_a + r_b)^2`, by which every vertex must
-/// lie beyond a remembered edge's line (in units of the side function
-/// `cross(edge, p - start)`, that is distance times edge length) for the
-/// pair to be rejected without clipping. It keeps the shortcut exact: a
-/// pair this far apart is certainly rejected by [`overlap`] too, whose
-/// round-off is of order 1e-16 of the same scale, so results are bitwise
-/// those of clipping every pair. For 1 km floes it is a gap of about 4 um.
-const SEPARATION_MARGIN: f64 = 1e-9;
+/// How far the other floe may reach past a remembered edge's line for the
+/// pair to be rejected without clipping, as a fraction of the area floor.
+/// If every vertex of floe `Q` lies within depth `w` of the inner side of an
+/// edge of floe `P`, the overlap lies in a strip of width `w` across `Q`,
+/// whose area is at most `2 r_Q w`. With `w = TOUCH_DEPTH * AREA_FLOOR *
+/// r_min^2 / (2 r_Q)` that is half the floor below which [`overlap`] reports
+/// no contact, so the shortcut rejects only pairs that clipping rejects too:
+/// results are bitwise those of clipping every pair. (The round-off of the
+/// side function, ~1e-16 of `r^2`, is a thousandth of this depth.)
+const TOUCH_DEPTH: f64 = 0.5;
 
-/// `true` if every vertex of `points` lies beyond the line of the edge
-/// `s -> e` of a counter-clockwise polygon by more than `margin`.
+/// `true` if every one of `points` lies beyond the line of the edge
+/// `s -> e` of a counter-clockwise polygon, or inside it by less than
+/// `depth` (m).
 #[inline(always)]
-fn all_beyond(s: Vec2, e: Vec2, points: impl Iterator<Item = Vec2>, margin: f64) -> bool {
+fn all_beyond(s: Vec2, e: Vec2, points: impl Iterator<Item = Vec2>, depth: f64) -> bool {
     let dir = e - s;
+    // In units of the side function `cross(dir, p - s)`, distance times
+    // edge length.
+    let limit = depth * dir.length();
     let mut beyond = true;
     for p in points {
         // No early exit: the loop is a few vertices, and branch-free it vectorises.
-        beyond &= cross(dir, p - s) < -margin;
+        beyond &= cross(dir, p - s) < limit;
     }
     beyond
 }
 
-/// [`overlap`], with a shortcut for pairs that stay apart: `edge` is the
-/// pair's remembered separating edge, updated here. `reach_m` is the sum of
-/// the two floes' bounding radii. The result is bitwise that of [`overlap`]
-/// whatever `edge` holds (see `SEPARATION_MARGIN` in the source).
+/// The depth by which floe `q` (bounding radius `r_q`) may reach past an
+/// edge of the other floe without an overlap above the area floor
+/// (`r_min`: the smaller bounding radius), m.
+#[inline(always)]
+fn touch_depth(r_min: f64, r_q: f64) -> f64 {
+    TOUCH_DEPTH * AREA_FLOOR * r_min * r_min / (2.0 * r_q)
+}
+
+/// [`overlap`], with a shortcut for pairs that stay apart or merely touch:
+/// `edge` is the pair's remembered separating edge, updated here. The
+/// result is bitwise that of [`overlap`] whatever `edge` holds (see
+/// `TOUCH_DEPTH` in the source).
 pub fn overlap_cached(
     a: Placed,
     b: Placed,
-    reach_m: f64,
     edge: &mut SeparatingEdge,
     scratch: &mut ClipScratch,
 ) -> Option<Overlap> {
-    let margin = SEPARATION_MARGIN * reach_m * reach_m;
+    let r_min = a.radius_m.min(b.radius_m);
+    let (depth_of_a, depth_of_b) = (
+        touch_depth(r_min, a.radius_m),
+        touch_depth(r_min, b.radius_m),
+    );
     let offset = b.position - a.position;
     let code = edge.0;
     if *edge != SeparatingEdge::NONE && *edge != SeparatingEdge::TOUCHING {
@@ -317,7 +325,7 @@ pub fn overlap_cached(
                 s,
                 e,
                 b.vertices.iter().map(|&v| offset + rotate(v, b.cos, b.sin)),
-                margin,
+                depth_of_b,
             )
         } else {
             let k = usize::from(code - SeparatingEdge::SECOND_BASE);
@@ -327,7 +335,7 @@ pub fn overlap_cached(
                 s,
                 e,
                 a.vertices.iter().map(|&v| rotate(v, a.cos, a.sin)),
-                margin,
+                depth_of_a,
             )
         };
         if apart {
@@ -340,22 +348,32 @@ pub fn overlap_cached(
         (false, SeparatingEdge::TOUCHING) => SeparatingEdge::TOUCHING,
         // Look for a separating edge among both floes' (already placed)
         // vertices: once per pair while it stays apart, not every step.
-        (false, _) => find_separating_edge(scratch.a.as_slice(), scratch.b.as_slice(), margin),
+        (false, _) => find_separating_edge(
+            scratch.a.as_slice(),
+            scratch.b.as_slice(),
+            depth_of_a,
+            depth_of_b,
+        ),
     };
     result
 }
 
 /// An edge of `b`, then of `a` (both counter-clockwise, same frame), beyond
-/// whose line the other polygon lies by more than `margin`, or
-/// [`SeparatingEdge::TOUCHING`].
-fn find_separating_edge(a: &[Vec2], b: &[Vec2], margin: f64) -> SeparatingEdge {
+/// whose line the other polygon lies, or reaches in by less than its depth
+/// (`depth_of_a`, `depth_of_b`), or [`SeparatingEdge::TOUCHING`].
+fn find_separating_edge(
+    a: &[Vec2],
+    b: &[Vec2],
+    depth_of_a: f64,
+    depth_of_b: f64,
+) -> SeparatingEdge {
     for k in 0..b.len() {
-        if all_beyond(b[k], b[next(k, b.len())], a.iter().copied(), margin) {
+        if all_beyond(b[k], b[next(k, b.len())], a.iter().copied(), depth_of_a) {
             return SeparatingEdge(SeparatingEdge::SECOND_BASE + k as u8);
         }
     }
     for k in 0..a.len() {
-        if all_beyond(a[k], a[next(k, a.len())], b.iter().copied(), margin) {
+        if all_beyond(a[k], a[next(k, a.len())], b.iter().copied(), depth_of_b) {
             return SeparatingEdge(SeparatingEdge::FIRST_BASE + k as u8);
         }
     }
@@ -630,6 +648,68 @@ mod tests {
         a.iter()
             .map(|&t| Vec2::new(t.cos() * sx, t.sin() * sy) * scale)
             .collect()
+    }
+
+    /// Radius of a polygon about its origin (the test polygons are built
+    /// about their centre, not their centroid: the bound needs only that
+    /// every vertex is within the radius of the placed position).
+    fn radius(v: &[Vec2]) -> f64 {
+        v.iter().map(|p| p.length()).fold(0.0, f64::max)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 400, max_global_rejects: 20_000, ..ProptestConfig::default() })]
+
+        /// The shortcut is exact: at every depth from clearly apart through
+        /// touching to 1e-15 of the size into each other, no remembered
+        /// edge of either floe rejects a pair that clipping keeps, and the
+        /// shortcut's result is bitwise the clipper's.
+        #[test]
+        fn no_remembered_edge_rejects_a_pair_that_clipping_keeps(
+            angles_a in prop::collection::vec(0.0..std::f64::consts::TAU, 4..7),
+            axes_a in (0.3..1.0f64, 0.3..1.0f64),
+            angles_b in prop::collection::vec(0.0..std::f64::consts::TAU, 4..7),
+            axes_b in (0.3..1.0f64, 0.3..1.0f64),
+            scale in 1.0..2000.0f64,
+            base in (-1e6..1e6f64, -1e6..1e6f64),
+            turn in 0.0..std::f64::consts::TAU,
+            heading in 0.0..std::f64::consts::TAU,
+            exponent in -15.0..-1.0f64,
+            inward in any::<bool>(),
+        ) {
+            let va = convex(scale, &angles_a, axes_a);
+            let vb = convex(scale, &angles_b, axes_b);
+            prop_assume!(va.len() >= 3 && vb.len() >= 3);
+            let base = Vec2::new(base.0, base.1);
+            let a = Placed { vertices: &va, position: base, cos: 1.0, sin: 0.0, radius_m: radius(&va) };
+            let along = Vec2::new(heading.cos(), heading.sin());
+            let b_at = |t: f64| Placed {
+                vertices: &vb,
+                position: base + along * t,
+                cos: turn.cos(),
+                sin: turn.sin(),
+                radius_m: radius(&vb),
+            };
+            let mut scratch = ClipScratch::default();
+            // The distance along `heading` at which the floes stop overlapping.
+            let (mut lo, mut hi) = (0.0, a.radius_m + b_at(0.0).radius_m);
+            prop_assume!(overlap(a, b_at(lo), &mut scratch).is_some());
+            for _ in 0..80 {
+                let mid = 0.5 * (lo + hi);
+                if overlap(a, b_at(mid), &mut scratch).is_some() { lo = mid } else { hi = mid }
+            }
+            let shift = 10f64.powf(exponent) * scale;
+            let t = if inward { lo - shift } else { hi + shift };
+            for t in [t, lo, hi] {
+                let b = b_at(t);
+                let clipped = overlap(a, b, &mut scratch);
+                for code in (1..=vb.len()).chain(SeparatingEdge::FIRST_BASE as usize..SeparatingEdge::FIRST_BASE as usize + va.len()) {
+                    let mut edge = SeparatingEdge(code as u8);
+                    let cached = overlap_cached(a, b, &mut edge, &mut scratch);
+                    prop_assert_eq!(cached, clipped, "edge code {}, t {}", code, t);
+                }
+            }
+        }
     }
 
     proptest! {
