@@ -1,5 +1,6 @@
 //! One full DEM step (broad phase, narrow phase, contact forces with
-//! rate-and-state friction, integration) on sheared diamond tessellations.
+//! rate-and-state friction, integration) on sheared diamond tessellations,
+//! and at 1e4 floes the same step with Amontons friction.
 //!
 //! Run: `cargo bench -p floe-dem --bench dem_step`
 //! Targets (issue 3): >= 5 M contact updates/s on one core, >= 1.8x that on
@@ -12,6 +13,7 @@ use floe_dem::floes::Floes;
 use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
 use floe_dem::world::{stable_time_step, NoForcing, World};
 use floe_dem::Vec2;
+use floe_friction::{Amontons, Law};
 
 /// A channel of ~n diamonds of 1 km side, periodic along x, with a linear
 /// shear velocity profile (0.1 m/s across the channel) and 20 warm-up steps
@@ -72,13 +74,22 @@ const SETTLE: usize = 30;
 fn full_step(c: &mut Criterion) {
     let mut g = c.benchmark_group("dem_step");
     g.sample_size(10);
-    for n in [1_000usize, 10_000, 100_000] {
+    // Rate-and-state friction (the default contact model) at every size,
+    // and Amontons at 1e4 floes: the same step without the friction solve.
+    let amontons = ContactModel::default().with_law(Law::Amontons(Amontons { mu: 0.5 }));
+    let runs = [
+        ("rate_state", 1_000usize, ContactModel::default()),
+        ("rate_state", 10_000, ContactModel::default()),
+        ("rate_state", 100_000, ContactModel::default()),
+        ("amontons", 10_000, amontons),
+    ];
+    for (law, n, model) in runs {
         for threads in [1usize, 2] {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let mut w = pool.install(|| sheared_channel(n));
+            let mut w = pool.install(|| sheared_channel_with(n, model));
             // The contact count still climbs over the first steps (20,035 to
             // 29,891 at 1e4 floes between steps 20 and 40); from here on it
             // holds within a few per cent over a cycle (printed below).
@@ -106,13 +117,13 @@ fn full_step(c: &mut Criterion) {
             let mean_contacts = contact_steps / CYCLE;
             g.throughput(Throughput::Elements(mean_contacts));
             eprintln!(
-                "n = {} floes, {} contacts on average over a cycle of {CYCLE} steps ({fewest}-{most}), {} threads",
+                "{law}: n = {} floes, {} contacts on average over a cycle of {CYCLE} steps ({fewest}-{most}), {} threads",
                 w.floes.len(),
                 mean_contacts,
                 threads
             );
             g.bench_with_input(
-                BenchmarkId::new(format!("{threads}_threads"), n),
+                BenchmarkId::new(format!("{law}/{threads}_threads"), n),
                 &n,
                 |b, _| {
                     b.iter_custom(|iters| {
