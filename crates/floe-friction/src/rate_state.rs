@@ -7,8 +7,9 @@
 //! exact constant-`V` solution of the evolution law, see
 //! [`crate::state_evolution`]), and the law must hold at the end of the step:
 //! `F_new / N = mu(V, theta_new)`. That is one scalar equation for the slip
-//! rate, solved by safeguarded Newton in `q = ln(|V|/V*)`, so that slip rates
-//! from 1e-300 to 1e3 m/s are equally well resolved. In the regularised form
+//! rate, solved by safeguarded Halley iteration (Newton for the aging law)
+//! in `q = ln(|V|/V*)`, so that slip rates from 1e-300 to 1e3 m/s are
+//! equally well resolved. In the regularised form
 //! the sign of `V` is known before solving: friction and slip share their
 //! sign and `F_new = F_trial - k dt V`, so `sign V = sign F_trial` (the force
 //! the spring would carry if the slider stood still). The residual tends to
@@ -43,7 +44,7 @@ pub enum Form {
     Regularized,
 }
 
-/// Relative Newton tolerance on the solver unknown `ln(|V|/V*)`.
+/// Relative solver tolerance on the solver unknown `ln(|V|/V*)`.
 const TOLERANCE: f64 = 1e-12;
 /// Residual tolerance in units of `mu` (relative to the trial friction).
 const RESIDUAL_TOLERANCE: f64 = 1e-13;
@@ -91,7 +92,7 @@ impl EndOfStep {
     }
 }
 
-/// Quantities fixed over one step, hoisted out of the Newton iteration.
+/// Quantities fixed over one step, hoisted out of the iteration.
 #[derive(Debug, Clone, Copy)]
 struct StepConstants {
     /// `dt / L`.
@@ -273,7 +274,7 @@ const IDLE_SETUP: SolveSetup = SolveSetup {
 
 impl RateState {
     /// Advances every item over `dt`: bitwise what [`FrictionLaw::step`]
-    /// gives each in turn, faster. A step's Newton iteration is a chain of
+    /// gives each in turn, faster. A step's iteration is a chain of
     /// dependent `exp`/`ln` calls whose latency, not their number, bounds a
     /// contact-by-contact loop; here up to four (`LANES`) contacts iterate side
     /// by side, and a lane whose contact has converged takes the next one.

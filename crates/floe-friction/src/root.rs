@@ -1,4 +1,5 @@
-//! Safeguarded Newton iteration for the scalar equations of the contact laws.
+//! Safeguarded Halley/Newton iteration for the scalar equations of the
+//! contact laws (Halley where the residual gives its second derivative).
 //!
 //! Hand-rolled rather than taken from a root-finding crate: the per-contact
 //! update must not allocate, must carry a payload computed alongside the
