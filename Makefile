@@ -88,6 +88,7 @@ validation: deps
 bench: deps
 	$(CARGO) bench -p floe-friction --bench contact_update
 	$(CARGO) bench -p floe-dem --bench dem_step
+	$(CARGO) bench -p floe-dem --bench narrow_phase
 
 clean:
 	$(CARGO) clean
