@@ -419,13 +419,24 @@ impl<F: ExternalForces> World<F> {
         let pairs = &self.broad_phase.pairs;
         let n_chunks = pairs.len().div_ceil(PAIR_CHUNK);
         {
+            // One binary search per chunk, in parallel: each probes records
+            // spread over the whole list, a cache miss apiece (about 1 ms
+            // per step at 1e5 floes done one after the other).
             let previous = &self.contacts;
-            self.chunk_start.clear();
-            self.chunk_start.push(0);
-            for chunk in pairs.chunks(PAIR_CHUNK).skip(1) {
-                let first = (chunk[0].a, chunk[0].b);
-                self.chunk_start
-                    .push(previous.partition_point(|c| (c.a, c.b) < first));
+            pairs
+                .par_chunks(PAIR_CHUNK)
+                .enumerate()
+                .map(|(j, chunk)| {
+                    let first = (chunk[0].a, chunk[0].b);
+                    if j == 0 {
+                        0
+                    } else {
+                        previous.partition_point(|c| (c.a, c.b) < first)
+                    }
+                })
+                .collect_into_vec(&mut self.chunk_start);
+            if self.chunk_start.is_empty() {
+                self.chunk_start.push(0);
             }
             self.chunk_start.push(previous.len());
         }
