@@ -601,8 +601,7 @@ impl<F: ExternalForces> World<F> {
                         k += 1;
                         k - 1
                     });
-                    let old_record = old.map(|i| run[i]);
-                    match contact_of_pair(pair, old_record.as_ref(), edge, &mut scratch) {
+                    match contact_of_pair(pair, old.map(|i| &run[i]), edge, &mut scratch) {
                         Some((record, p)) => {
                             let slot = match old {
                                 Some(i) => {
