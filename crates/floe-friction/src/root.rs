@@ -155,17 +155,18 @@ impl Solver {
         let halley_denominator = 2.0 * e.dr * e.dr - e.r * e.d2r;
         let halley = x - 2.0 * e.r * e.dr / halley_denominator;
         let cubic = halley_denominator > 0.0 && halley.is_finite();
-        let (newton, converged) = if downhill && cubic {
+        // The step to take: Halley's where it exists, else Newton's.
+        let (step_to, converged) = if downhill && cubic {
             let dx = halley - x;
             (halley, dx.abs() * dx * dx <= self.tol * x.abs())
         } else {
             let dx = newton - x;
             (newton, dx * dx <= self.tol * x.abs())
         };
-        let dx = newton - x;
-        if downhill && converged && newton >= lo && newton <= hi {
+        let dx = step_to - x;
+        if downhill && converged && step_to >= lo && step_to <= hi {
             return Some(Root {
-                x: newton,
+                x: step_to,
                 payload: advance(e.payload, dx),
                 evaluations,
             });
@@ -174,27 +175,27 @@ impl Solver {
         // As in Numerical Recipes' rtsafe: inside a bracket, bisect whenever
         // Newton does not at least halve the step before last (it crawls by
         // one unit per step down the exponential branch of a residual).
-        let slow = bracketed && 2.0 * (newton - x).abs() > self.step_before.abs();
+        let slow = bracketed && 2.0 * (step_to - x).abs() > self.step_before.abs();
         let next = if downhill
-            && newton > lo
-            && newton < hi
-            && (newton - x).abs() <= MAX_FREE_STEP
+            && step_to > lo
+            && step_to < hi
+            && (step_to - x).abs() <= MAX_FREE_STEP
             && !slow
         {
-            newton
+            step_to
         } else if bracketed {
             0.5 * (lo + hi)
         } else if e.r < 0.0 {
             self.expand *= 2.0;
             if downhill {
-                newton.min(x + self.expand)
+                step_to.min(x + self.expand)
             } else {
                 x + self.expand
             }
         } else {
             self.expand *= 2.0;
             if downhill {
-                newton.max(x - self.expand)
+                step_to.max(x - self.expand)
             } else {
                 x - self.expand
             }
@@ -240,6 +241,54 @@ mod tests {
             );
             let x = root.x;
             assert!((x + x.exp() - 100.0).abs() < 1e-9, "x0 {x0}: x {x}");
+        }
+    }
+
+    #[test]
+    fn halley_steps_reach_the_root_in_fewer_evaluations_than_newton() {
+        // r = x + e^x - 100 (r'' = e^x): the same root with and without the
+        // second derivative, from near and far starts; with it, never more
+        // evaluations, and from a start 1e-4 from the root, one (the
+        // correction is then below (1e-12 |x|)^(1/3) = 1.7e-4), where Newton
+        // needs two (its correction is not below (1e-12 |x|)^(1/2)).
+        let root_x = solve(
+            plain(|x| (x + x.exp() - 100.0, 1.0 + x.exp())),
+            keep,
+            4.0,
+            1e-14,
+            0.0,
+        )
+        .x;
+        let with_second = |x: f64| Eval {
+            r: x + x.exp() - 100.0,
+            dr: 1.0 + x.exp(),
+            d2r: x.exp(),
+            payload: (),
+        };
+        for x0 in [root_x + 1e-4, root_x - 1e-4, 3.0, 10.0, -30.0] {
+            let newton = solve(
+                plain(|x| (x + x.exp() - 100.0, 1.0 + x.exp())),
+                keep,
+                x0,
+                1e-12,
+                0.0,
+            );
+            let halley = solve(with_second, keep, x0, 1e-12, 0.0);
+            assert!(
+                (halley.x - root_x).abs() <= 1e-11 * root_x,
+                "x0 {x0}: {} vs {root_x}",
+                halley.x
+            );
+            assert!(
+                halley.evaluations <= newton.evaluations,
+                "x0 {x0}: Halley {} evaluations, Newton {}",
+                halley.evaluations,
+                newton.evaluations
+            );
+            if (x0 - root_x).abs() < 2e-4 {
+                assert_eq!(halley.evaluations, 1, "x0 {x0}");
+                assert_eq!(newton.evaluations, 2, "x0 {x0}");
+            }
         }
     }
 
