@@ -171,6 +171,8 @@ pub struct World<F: ExternalForces> {
     /// Per chunk of candidate pairs, what the contacts that ended released.
     ended: Vec<ChunkEnded>,
     fill: Vec<u32>,
+    /// Per block of contacts, the sums of their powers (reused every step).
+    energy_partials: Vec<ContactPower>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -308,6 +310,7 @@ impl<F: ExternalForces> World<F> {
             born: Vec::new(),
             ended: Vec::new(),
             fill: Vec::new(),
+            energy_partials: Vec::new(),
         }
     }
 
@@ -562,11 +565,6 @@ impl<F: ExternalForces> World<F> {
                 let mut pending = [(Slot::Run(0), NO_PENDING); FRICTION_BATCH];
                 let mut items = [NO_PENDING.item; FRICTION_BATCH];
                 let mut waiting = 0;
-                // The power the chunk's contacts dissipate and walls put in,
-                // summed here while the records are in cache rather than in
-                // a pass over the whole list after the step (a pass over 32 MB
-                // of records at 1e5 floes, 2-4 ms, docs/performance.md).
-                let mut power = ContactPower::default();
                 let mut flush = |pending: &mut [(Slot, FrictionPending)],
                                  run: &mut [ContactRecord],
                                  born: &mut Vec<ContactRecord>| {
@@ -586,7 +584,6 @@ impl<F: ExternalForces> World<F> {
                             Slot::Born(k) => &mut born[k],
                         };
                         finish_friction(record, p, dt);
-                        power.add(record, f);
                     }
                 };
                 let mut k = 0;
@@ -634,7 +631,6 @@ impl<F: ExternalForces> World<F> {
                     end_contact(&mut run[k], ended);
                     k += 1;
                 }
-                ended.power = power;
             });
         let released: f64 = self.ended.iter().map(|e| e.released_j).sum();
         merge_in_place(&mut self.contacts, &mut self.born[..n_chunks]);
@@ -755,20 +751,38 @@ impl<F: ExternalForces> World<F> {
                     dt * (mean_f.dot(f.velocity[i]) + mean_t * f.angular_velocity[i]);
             }
         }
-        // The contacts' powers, summed per chunk of candidate pairs by the
-        // contact update, added in chunk order (the same for any thread
-        // count).
+        // The contacts' powers, summed over fixed blocks of the contact list
+        // in parallel and added in block order: the same sums for any thread
+        // count, and, as they depend on the contact list alone, after a
+        // resume from a checkpoint too. (Summed instead per chunk of
+        // candidate pairs inside the contact update, they depended on the
+        // broad phase's pair list, which a resume rebuilds differently, and
+        // a resumed run drifted from the uninterrupted one by an ulp.)
+        self.contacts
+            .par_chunks(ENERGY_CHUNK)
+            .map(|block| {
+                let mut power = ContactPower::default();
+                for c in block {
+                    power.add(c, f);
+                }
+                power
+            })
+            .collect_into_vec(&mut self.energy_partials);
         let mut power = ContactPower::default();
-        for e in &self.ended {
-            power.friction_w += e.power.friction_w;
-            power.damping_w += e.power.damping_w;
-            power.boundary_w += e.power.boundary_w;
+        for p in &self.energy_partials {
+            power.friction_w += p.friction_w;
+            power.damping_w += p.damping_w;
+            power.boundary_w += p.boundary_w;
         }
         self.energy.friction_dissipation_j += dt * power.friction_w;
         self.energy.damping_dissipation_j += dt * power.damping_w;
         self.energy.boundary_work_j += dt * power.boundary_w;
     }
 }
+
+/// Contacts per block of the energy sums: fixed, so that the sums do not
+/// depend on the thread count.
+const ENERGY_CHUNK: usize = 4096;
 
 /// Power of a set of contacts over a step.
 #[derive(Debug, Default, Clone, Copy)]
@@ -817,14 +831,11 @@ enum Slot {
     Born(usize),
 }
 
-/// What the contacts that ended in one chunk released, and the power of
-/// those that continue or formed.
+/// What the contacts that ended in one chunk released.
 #[derive(Debug, Default)]
 struct ChunkEnded {
     /// Elastic energy they held, J.
     released_j: f64,
-    /// Power of the chunk's contacts this step.
-    power: ContactPower,
     /// Their states, for contact memory (empty without it).
     broken: Vec<BrokenContact>,
 }
