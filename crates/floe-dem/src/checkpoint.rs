@@ -62,7 +62,9 @@ impl WorldState {
         let sorted_valid = |pairs: &mut dyn Iterator<Item = (u32, u32)>| {
             let mut last = None;
             for (a, b) in pairs {
-                if a as usize >= n || b as usize >= n || a == b || last >= Some((a, b)) {
+                // a < b: the force gathering relies on it (a floe's
+                // contacts as `a` come after its contacts as `b`).
+                if a as usize >= n || b as usize >= n || a >= b || last >= Some((a, b)) {
                     return false;
                 }
                 last = Some((a, b));
@@ -70,10 +72,12 @@ impl WorldState {
             true
         };
         if !sorted_valid(&mut self.contacts.iter().map(|c| (c.a, c.b))) {
-            return bad("contacts are not sorted distinct pairs of existing floes".into());
+            return bad("contacts are not sorted pairs (a, b) of existing floes with a < b".into());
         }
         if !sorted_valid(&mut self.broken.iter().map(|c| (c.a, c.b))) {
-            return bad("broken contacts are not sorted distinct pairs of existing floes".into());
+            return bad(
+                "broken contacts are not sorted pairs (a, b) of existing floes with a < b".into(),
+            );
         }
         if !(self.time_s.is_finite()) {
             return bad(format!("time {} is not finite", self.time_s));

@@ -672,7 +672,7 @@ impl<F: ExternalForces> World<F> {
         // it, and come after all its contacts as `b` (whose `a` is smaller).
         // So only the contacts as `b` need a list of their own (CSR, in
         // contact order); the block is found in the same pass. At 1e5 floes
-        // building a list of both sides took 4.4-7.5 ms of a step, with the
+        // building a list of both sides took 4.4-5.9 ms of a step, with the
         // sides' random increments and writes (docs/performance.md).
         self.adjacency_start.clear();
         self.adjacency_start.resize(n + 1, 0);

@@ -49,7 +49,7 @@ pub struct StepOutcome {
     /// Friction coefficient at the end of the step, `F / N`; at zero normal load,
     /// the coefficient the law gives for the slip rate and state.
     pub mu: f64,
-    /// Newton iterations the solve took (0 for closed-form updates).
+    /// Residual evaluations the solve took (0 for closed-form updates).
     pub iterations: u32,
 }
 

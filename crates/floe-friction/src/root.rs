@@ -60,9 +60,9 @@ const MAX_EVALUATIONS: u32 = 400;
 /// `advance(payload, dx)`, which must be accurate to the same order.
 /// Waiting for a correction below `tol |x|` instead cost one more evaluation
 /// per update, a quarter of the friction update in a sheared DEM pack; with
-/// Halley's cubic convergence a contact whose slip rate changed by less than
-/// about 1e-4 in relative terms over the step is solved by one evaluation
-/// (docs/performance.md).
+/// Halley's cubic convergence a contact whose `q` moved by less than
+/// `(tol |q|)^(1/3)` over the step (1e-4 `|q|^(1/3)` at the laws' `tol`) is
+/// solved by one evaluation (docs/performance.md).
 #[inline]
 pub(crate) fn solve<T: Copy>(
     mut f: impl FnMut(f64) -> Eval<T>,
@@ -173,7 +173,7 @@ impl Solver {
         }
         let bracketed = lo.is_finite() && hi.is_finite();
         // As in Numerical Recipes' rtsafe: inside a bracket, bisect whenever
-        // Newton does not at least halve the step before last (it crawls by
+        // the step does not at least halve the step before last (it crawls by
         // one unit per step down the exponential branch of a residual).
         let slow = bracketed && 2.0 * (step_to - x).abs() > self.step_before.abs();
         let next = if downhill
