@@ -10,7 +10,7 @@
 mod dem_step;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use floe_dem::geometry::{overlap, ClipScratch, Placed};
+use floe_dem::geometry::{overlap, ClipScratch};
 use floe_dem::Vec2;
 
 /// One pair as the contact update places it.
@@ -36,13 +36,7 @@ fn narrow_phase(c: &mut Criterion) {
         })
         .collect();
     let trig: Vec<(f64, f64)> = f.angle.iter().map(|a| a.sin_cos()).collect();
-    let placed = |i: usize, offset: Vec2| Placed {
-        vertices: f.local_vertices(i),
-        position: f.position[i] + offset,
-        cos: trig[i].1,
-        sin: trig[i].0,
-        radius_m: f.radius_m[i],
-    };
+    let placed = |i: usize, offset: Vec2| f.placed(i, offset, trig[i]);
     let mut g = c.benchmark_group("narrow_phase");
     g.throughput(Throughput::Elements(pairs.len() as u64));
     g.bench_function(

@@ -8,6 +8,7 @@
 
 use crate::error::DemError;
 use crate::geometry::shape::FloeShape;
+use crate::geometry::Placed;
 use crate::Vec2;
 
 /// How a floe moves.
@@ -170,6 +171,21 @@ impl Floes {
     #[inline]
     pub fn is_free(&self, i: usize) -> bool {
         matches!(self.motion[i], Motion::Free)
+    }
+
+    /// Floe `i` as the narrow phase takes it: its vertices, its position
+    /// shifted by `offset` (a periodic image, or zero), and its rotation as
+    /// `(sin, cos)` of its angle, which a caller clipping many pairs
+    /// computes once per floe.
+    #[inline]
+    pub fn placed(&self, i: usize, offset: Vec2, (sin, cos): (f64, f64)) -> Placed<'_> {
+        Placed {
+            vertices: self.local_vertices(i),
+            position: self.position[i] + offset,
+            cos,
+            sin,
+            radius_m: self.radius_m[i],
+        }
     }
 
     /// Bytes held by the floe arrays (capacity, not length).

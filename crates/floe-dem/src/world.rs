@@ -27,7 +27,7 @@ use crate::contact_kernel::{
 use crate::contacts::{BrokenContact, ContactModel, ContactRecord};
 use crate::error::DemError;
 use crate::floes::{Floes, Motion};
-use crate::geometry::{overlap_cached, ClipScratch, Placed, SeparatingEdge};
+use crate::geometry::{overlap_cached, ClipScratch, SeparatingEdge};
 use crate::Vec2;
 
 /// Forces on floes from outside the floe assembly (wind, ocean, Coriolis).
@@ -457,13 +457,7 @@ impl<F: ExternalForces> World<F> {
             area_m2: f.area_m2[i],
             free: f.is_free(i),
         };
-        let placed = |i: usize, offset: Vec2| Placed {
-            vertices: f.local_vertices(i),
-            position: f.position[i] + offset,
-            cos: trig[i].1,
-            sin: trig[i].0,
-            radius_m: f.radius_m[i],
-        };
+        let placed = |i: usize, offset: Vec2| f.placed(i, offset, trig[i]);
         let contact_of_pair = |pair: &CandidatePair,
                                old: Option<&ContactRecord>,
                                edge: &mut SeparatingEdge,

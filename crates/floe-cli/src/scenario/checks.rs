@@ -3,7 +3,7 @@
 //! against each other), and the contact geometry of the double-shear set-up.
 
 use floe_dem::contacts::ContactModel;
-use floe_dem::geometry::{overlap, ClipScratch, Placed};
+use floe_dem::geometry::{overlap, ClipScratch};
 
 use super::build::{sig, BuiltFloes};
 use super::resolve::{Resolved, Side};
@@ -135,13 +135,7 @@ pub(crate) fn no_initial_overlap(
     let fl = &built.floes;
     let periodicity = r.domain.periodicity();
     let mut scratch = ClipScratch::default();
-    let placed = |i: usize, offset| Placed {
-        vertices: fl.local_vertices(i),
-        position: fl.position[i] + offset,
-        cos: fl.angle[i].cos(),
-        sin: fl.angle[i].sin(),
-        radius_m: fl.radius_m[i],
-    };
+    let placed = |i: usize, offset| fl.placed(i, offset, fl.angle[i].sin_cos());
     let name = |i: usize| {
         built.labels[i]
             .clone()
