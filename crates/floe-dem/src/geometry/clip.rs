@@ -254,7 +254,7 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
 /// rhombus's bounding circle overlaps those of its vertex neighbours.
 /// "Separated" includes touching: the other floe may reach past the edge's
 /// line by a depth too small for an overlap above the area floor (see
-/// [`TOUCH_DEPTH`]), so that edge-to-edge neighbours that exactly touch,
+/// `TOUCH_DEPTH` in the source), so that edge-to-edge neighbours that exactly touch,
 /// every pair of an unpressed lattice, are not clipped at every step either.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SeparatingEdge(u8);
