@@ -339,16 +339,10 @@ pub fn overlap_cached(
     edge: &mut SeparatingEdge,
     scratch: &mut ClipScratch,
 ) -> Option<Overlap> {
-    let r_min = a.radius_m.min(b.radius_m);
     let offset = b.position - a.position;
-    let extent = offset.length() + a.radius_m + 2.0 * b.radius_m;
-    let slack = SIDE_ROUND_OFF * f64::EPSILON * extent * extent;
-    let (depth_of_a, depth_of_b) = (
-        touch_depth(r_min, a.radius_m),
-        touch_depth(r_min, b.radius_m),
-    );
     let code = edge.0;
     if *edge != SeparatingEdge::NONE && *edge != SeparatingEdge::TOUCHING {
+        let allowed = Allowance::new(&a, &b, offset);
         let (na, nb) = (a.vertices.len(), b.vertices.len());
         let first = code >= SeparatingEdge::FIRST_BASE;
         let apart = if first {
@@ -359,8 +353,8 @@ pub fn overlap_cached(
                 s,
                 e,
                 b.vertices.iter().map(|&v| offset + rotate(v, b.cos, b.sin)),
-                depth_of_b,
-                slack,
+                allowed.depth_of_b,
+                allowed.slack,
             )
         } else {
             let k = usize::from(code - SeparatingEdge::SECOND_BASE);
@@ -370,8 +364,8 @@ pub fn overlap_cached(
                 s,
                 e,
                 a.vertices.iter().map(|&v| rotate(v, a.cos, a.sin)),
-                depth_of_a,
-                slack,
+                allowed.depth_of_a,
+                allowed.slack,
             )
         };
         if apart {
@@ -387,32 +381,49 @@ pub fn overlap_cached(
         (false, _) => find_separating_edge(
             scratch.a.as_slice(),
             scratch.b.as_slice(),
-            depth_of_a,
-            depth_of_b,
-            slack,
+            &Allowance::new(&a, &b, offset),
         ),
     };
     result
 }
 
-/// An edge of `b`, then of `a` (both counter-clockwise, same frame), beyond
-/// whose line the other polygon lies, or reaches in by less than its depth
-/// (`depth_of_a`, `depth_of_b`, with the round-off `slack`), or
-/// [`SeparatingEdge::TOUCHING`].
-fn find_separating_edge(
-    a: &[Vec2],
-    b: &[Vec2],
+/// How far each floe may reach past an edge of the other for the pair to
+/// count as apart, and the side function's round-off. Computed only where a
+/// remembered edge is tested or searched for, not for the pairs that
+/// overlap (most of those clipped).
+struct Allowance {
+    /// Depth allowed to the first floe past an edge of the second, m.
     depth_of_a: f64,
+    /// Depth allowed to the second floe past an edge of the first, m.
     depth_of_b: f64,
+    /// Round-off of the side function, in its units.
     slack: f64,
-) -> SeparatingEdge {
+}
+
+impl Allowance {
+    #[inline(always)]
+    fn new(a: &Placed, b: &Placed, offset: Vec2) -> Self {
+        let r_min = a.radius_m.min(b.radius_m);
+        let extent = offset.length() + a.radius_m + 2.0 * b.radius_m;
+        Self {
+            depth_of_a: touch_depth(r_min, a.radius_m),
+            depth_of_b: touch_depth(r_min, b.radius_m),
+            slack: SIDE_ROUND_OFF * f64::EPSILON * extent * extent,
+        }
+    }
+}
+
+/// An edge of `b`, then of `a` (both counter-clockwise, same frame), beyond
+/// whose line the other polygon lies, or reaches in by less than its
+/// allowed depth, or [`SeparatingEdge::TOUCHING`].
+fn find_separating_edge(a: &[Vec2], b: &[Vec2], allowed: &Allowance) -> SeparatingEdge {
     for k in 0..b.len() {
         if all_beyond(
             b[k],
             b[next(k, b.len())],
             a.iter().copied(),
-            depth_of_a,
-            slack,
+            allowed.depth_of_a,
+            allowed.slack,
         ) {
             return SeparatingEdge(SeparatingEdge::SECOND_BASE + k as u8);
         }
@@ -422,8 +433,8 @@ fn find_separating_edge(
             a[k],
             a[next(k, a.len())],
             b.iter().copied(),
-            depth_of_b,
-            slack,
+            allowed.depth_of_b,
+            allowed.slack,
         ) {
             return SeparatingEdge(SeparatingEdge::FIRST_BASE + k as u8);
         }
@@ -803,10 +814,6 @@ mod tests {
                 }
             }
         }
-    }
-
-    proptest! {
-        #![proptest_config(ProptestConfig { cases: 2000, max_global_rejects: 20_000, ..ProptestConfig::default() })]
 
         /// The chord read from the clipper's crossing marks against the
         /// search of every pair of edges for crossings: two independent ways
