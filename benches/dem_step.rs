@@ -61,6 +61,12 @@ pub fn sheared_channel_with(n: usize, model: ContactModel) -> World<NoForcing> {
     w
 }
 
+/// The default contact model with Amontons friction (mu = 0.5) instead of
+/// rate-and-state: the step without the friction solve.
+pub fn amontons_model() -> ContactModel {
+    ContactModel::default().with_law(Law::Amontons(Amontons { mu: 0.5 }))
+}
+
 /// Steps timed from one saved state before the world is put back to it. The
 /// shear keeps changing the pack: left to run for the thousands of steps
 /// criterion asks for, the 1e3-floe channel drifts apart (2,905 contacts
@@ -76,7 +82,7 @@ fn full_step(c: &mut Criterion) {
     g.sample_size(10);
     // Rate-and-state friction (the default contact model) at every size,
     // and Amontons at 1e4 floes: the same step without the friction solve.
-    let amontons = ContactModel::default().with_law(Law::Amontons(Amontons { mu: 0.5 }));
+    let amontons = amontons_model();
     let runs = [
         ("rate_state", 1_000usize, ContactModel::default()),
         ("rate_state", 10_000, ContactModel::default()),

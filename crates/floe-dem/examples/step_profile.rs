@@ -20,7 +20,7 @@ fn main() {
     pool.install(|| {
         let law = std::env::args().nth(2).unwrap_or_default();
         let model = match law.as_str() {
-            "amontons" => floe_dem::contacts::ContactModel::default().with_law(floe_friction::Law::Amontons(floe_friction::Amontons { mu: 0.5 })),
+            "amontons" => bench::amontons_model(),
             _ => floe_dem::contacts::ContactModel::default(),
         };
         eprintln!("rayon threads in use: {}", rayon::current_num_threads());
