@@ -93,8 +93,20 @@ pub const STABILITY_SAFETY: f64 = 0.3;
 /// to cross half the skin, and a rebuild costs 20 % of one step.
 pub const SKIN_FRACTION: f64 = 0.05;
 
-/// Candidate pairs per parallel task of the narrow phase.
+/// Most candidate pairs per parallel task of the narrow phase.
 const PAIR_CHUNK: usize = 1024;
+
+/// Fewest candidate pairs per task, and the number of tasks wanted: small
+/// runs are cut into [`PAIR_TASKS`] tasks, not a few of [`PAIR_CHUNK`]
+/// pairs (at 1e3 floes, six), so that two threads share them evenly.
+/// Results do not depend on the cut (tested), only the balance does.
+const MIN_PAIR_CHUNK: usize = 128;
+const PAIR_TASKS: usize = 32;
+
+/// Candidate pairs per task for a list of `n_pairs`.
+fn pair_chunk(n_pairs: usize) -> usize {
+    (n_pairs / PAIR_TASKS).clamp(MIN_PAIR_CHUNK, PAIR_CHUNK)
+}
 
 /// Contacts whose friction is stepped together (`Law::step_batch`): found
 /// by the narrow phase, held until this many wait, then advanced side by
@@ -168,8 +180,12 @@ pub struct World<F: ExternalForces> {
     /// Per chunk of candidate pairs, the contacts that formed this step
     /// (few: most contacts continue in place). Reused every step.
     born: Vec<Vec<ContactRecord>>,
-    /// Per chunk of candidate pairs, what the contacts that ended released.
-    ended: Vec<ChunkEnded>,
+    /// Per chunk of candidate pairs, the contacts that ended, for contact
+    /// memory (empty without it).
+    ended: Vec<Vec<BrokenContact>>,
+    /// Candidate pairs per task if set, instead of [`pair_chunk`] (tests
+    /// that results do not depend on it).
+    fixed_pair_chunk: Option<usize>,
     fill: Vec<u32>,
     /// Per block of contacts, the sums of their powers (reused every step).
     energy_partials: Vec<ContactPower>,
@@ -309,6 +325,7 @@ impl<F: ExternalForces> World<F> {
             separating: Vec::new(),
             born: Vec::new(),
             ended: Vec::new(),
+            fixed_pair_chunk: None,
             fill: Vec::new(),
             energy_partials: Vec::new(),
         }
@@ -420,14 +437,17 @@ impl<F: ExternalForces> World<F> {
         // chunk's (the first chunk from the start, the last to the end):
         // every previous contact belongs to exactly one chunk.
         let pairs = &self.broad_phase.pairs;
-        let n_chunks = pairs.len().div_ceil(PAIR_CHUNK);
+        let chunk = self
+            .fixed_pair_chunk
+            .unwrap_or_else(|| pair_chunk(pairs.len()));
+        let n_chunks = pairs.len().div_ceil(chunk);
         {
             // One binary search per chunk, in parallel: each probes records
             // spread over the whole list, a cache miss apiece (about 1 ms
             // per step at 1e5 floes done one after the other).
             let previous = &self.contacts;
             pairs
-                .par_chunks(PAIR_CHUNK)
+                .par_chunks(chunk)
                 .enumerate()
                 .map(|(j, chunk)| {
                     let first = (chunk[0].a, chunk[0].b);
@@ -507,13 +527,12 @@ impl<F: ExternalForces> World<F> {
         };
         let remember = model.memory_s > 0.0;
         let time_s = self.time_s;
-        // A contact that did not survive the step releases what it held, is
-        // remembered if the model asks for memory, and is marked dead until
-        // the list is compacted below.
-        let end_contact = |old: &mut ContactRecord, ended: &mut ChunkEnded| {
-            ended.released_j += old.elastic_energy_j();
+        // A contact that did not survive the step is remembered if the model
+        // asks for memory, and is marked dead until the list is compacted
+        // below (which sums what the dead released).
+        let end_contact = |old: &mut ContactRecord, ended: &mut Vec<BrokenContact>| {
             if remember {
-                ended.broken.push(BrokenContact {
+                ended.push(BrokenContact {
                     a: old.a,
                     b: old.b,
                     friction: old.friction,
@@ -534,26 +553,25 @@ impl<F: ExternalForces> World<F> {
         }
         if n_chunks == 0 {
             // No candidate pairs: every previous contact ends.
-            let mut ended = ChunkEnded::default();
+            let mut ended = Vec::new();
             for old in runs.pop().into_iter().flatten() {
                 end_contact(old, &mut ended);
             }
             self.ended.clear();
             self.ended.push(ended);
         } else {
-            self.ended.resize_with(n_chunks, ChunkEnded::default);
+            self.ended.resize_with(n_chunks, Vec::new);
         }
         self.born.resize_with(n_chunks, Vec::new);
         runs.into_par_iter()
-            .zip(pairs.par_chunks(PAIR_CHUNK))
-            .zip(self.separating.par_chunks_mut(PAIR_CHUNK))
+            .zip(pairs.par_chunks(chunk))
+            .zip(self.separating.par_chunks_mut(chunk))
             .zip(self.born.par_iter_mut())
             .zip(self.ended.par_iter_mut())
             .for_each(|((((run, pairs), edges), born), ended)| {
                 let mut scratch = ClipScratch::default();
                 born.clear();
-                ended.released_j = 0.0;
-                ended.broken.clear();
+                ended.clear();
                 // Friction steps wait here, 32 at a time, with where their
                 // record is: in place in the run, or among the born.
                 let mut pending = [(Slot::Run(0), NO_PENDING); FRICTION_BATCH];
@@ -626,8 +644,7 @@ impl<F: ExternalForces> World<F> {
                     k += 1;
                 }
             });
-        let released: f64 = self.ended.iter().map(|e| e.released_j).sum();
-        merge_in_place(&mut self.contacts, &mut self.born[..n_chunks]);
+        let released = merge_in_place(&mut self.contacts, &mut self.born[..n_chunks]);
         let contacts = &self.contacts;
         if model.memory_s > 0.0 || !self.broken.is_empty() {
             let (now, memory) = (self.time_s, model.memory_s);
@@ -636,7 +653,7 @@ impl<F: ExternalForces> World<F> {
                     .binary_search_by(|r| (r.a, r.b).cmp(&(c.a, c.b)))
                     .is_ok()
             };
-            let newly_broken = self.ended.iter().flat_map(|e| &e.broken);
+            let newly_broken = self.ended.iter().flatten();
             let mut merged: Vec<BrokenContact> = self
                 .broken
                 .iter()
@@ -825,35 +842,34 @@ enum Slot {
     Born(usize),
 }
 
-/// What the contacts that ended in one chunk released.
-#[derive(Debug, Default)]
-struct ChunkEnded {
-    /// Elastic energy they held, J.
-    released_j: f64,
-    /// Their states, for contact memory (empty without it).
-    broken: Vec<BrokenContact>,
-}
-
 /// Removes the dead records of `contacts` and merges in the new contacts of
 /// every chunk (each sorted, the chunks in order), keeping the list sorted
 /// by `(a, b)`. In place: the dead are squeezed out front to back, then the
 /// list grows by the number born and is merged back to front, so that no
 /// second list is needed. Sequential, one or two moves per record after the
 /// first change; it replaced a parallel copy of every record per step.
-fn merge_in_place(contacts: &mut Vec<ContactRecord>, born: &mut [Vec<ContactRecord>]) {
+///
+/// Returns the elastic energy the dead records held, J, summed in list
+/// order: the sum depends on the contact list alone, not on how the
+/// candidate pairs were cut into tasks (which a resumed run, rebuilding its
+/// pair list at another step, does differently).
+fn merge_in_place(contacts: &mut Vec<ContactRecord>, born: &mut [Vec<ContactRecord>]) -> f64 {
     let mut live = 0;
+    let mut released_j = 0.0;
     for r in 0..contacts.len() {
         if contacts[r].a != DEAD {
             if live != r {
                 contacts[live] = contacts[r];
             }
             live += 1;
+        } else {
+            released_j += contacts[r].elastic_energy_j();
         }
     }
     contacts.truncate(live);
     let total_born: usize = born.iter().map(Vec::len).sum();
     if total_born == 0 {
-        return;
+        return released_j;
     }
     if live == 0 {
         // The first step, or a pack that had come apart: copy the chunks in
@@ -864,10 +880,10 @@ fn merge_in_place(contacts: &mut Vec<ContactRecord>, born: &mut [Vec<ContactReco
             contacts.extend_from_slice(b);
             release_if_large(b);
         }
-        return;
+        return released_j;
     }
     let Some(&fill) = born.iter().find_map(|b| b.first()) else {
-        return;
+        return released_j;
     };
     contacts.resize(live + total_born, fill);
     let key = |c: &ContactRecord| (c.a, c.b);
@@ -885,6 +901,7 @@ fn merge_in_place(contacts: &mut Vec<ContactRecord>, born: &mut [Vec<ContactReco
     }
     debug_assert_eq!(write, old);
     born.iter_mut().for_each(release_if_large);
+    released_j
 }
 
 /// Frees a born list that grew beyond what a step usually creates (a few
@@ -949,6 +966,67 @@ mod tests {
             elastic_force_n: 0.0,
             normal_energy_j: 0.0,
             tangential_energy_j: 0.0,
+        }
+    }
+
+    /// A 12 x 12 grid of squares pressed 2 % into each other and let go:
+    /// the pack springs apart and most of its contacts break within a few
+    /// steps of each other, spread over every task of the narrow phase.
+    fn released_pack() -> World<NoForcing> {
+        let square = |c: Vec2| {
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .map(|(x, y)| c + 50.0 * Vec2::new(x, y))
+                .to_vec()
+        };
+        let polys: Vec<Vec<Vec2>> = (0..144)
+            .map(|k| {
+                square(Vec2::new(
+                    (k % 12) as f64 * 98.0,
+                    (k / 12) as f64 * 98.0 + 0.7 * (k % 12) as f64,
+                ))
+            })
+            .collect();
+        let thickness: Vec<f64> = (0..144).map(|k| 1.0 + 0.01 * k as f64).collect();
+        let floes = Floes::from_polygons(&polys, &thickness, 917.0).unwrap();
+        let model = ContactModel::default();
+        let dt = 0.5 * stable_time_step(&floes, &model).0;
+        World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap()
+    }
+
+    #[test]
+    fn results_do_not_depend_on_how_the_candidate_pairs_are_cut_into_tasks() {
+        let mut runs: Vec<World<NoForcing>> = [None, Some(7), Some(64)]
+            .into_iter()
+            .map(|cut| {
+                let mut w = released_pack();
+                w.fixed_pair_chunk = cut;
+                w
+            })
+            .collect();
+        let initial = runs[0].contacts.len();
+        let mut most_broken_in_a_step = 0;
+        for _ in 0..400 {
+            let before = runs[0].contacts.len();
+            for w in &mut runs {
+                w.step();
+            }
+            most_broken_in_a_step =
+                most_broken_in_a_step.max(before.saturating_sub(runs[0].contacts.len()));
+        }
+        // The scenario does what it is for: contacts break, many at once.
+        assert!(initial > 200, "{initial} initial contacts");
+        assert!(
+            runs[0].contacts.len() < initial / 2,
+            "{} contacts left",
+            runs[0].contacts.len()
+        );
+        assert!(most_broken_in_a_step >= 10, "{most_broken_in_a_step}");
+        assert!(runs[0].energy.released_at_break_j != 0.0);
+        for w in &runs[1..] {
+            assert_eq!(w.energy, runs[0].energy);
+            assert_eq!(w.floes.position, runs[0].floes.position);
+            assert_eq!(w.floes.velocity, runs[0].floes.velocity);
+            assert_eq!(w.contacts, runs[0].contacts);
         }
     }
 
