@@ -596,7 +596,8 @@ fn marked_chord(poly: &[Vec2], tags: &[u8], size: f64) -> Option<Vec2> {
         }
     }
     let chord = points[1] - points[0];
-    (count == 2 && chord.length() > 1e-9 * size).then_some(chord)
+    let tol = 1e-9 * size;
+    (count == 2 && chord.length_squared() > tol * tol).then_some(chord)
 }
 
 /// The chord between the two points where the boundaries of `a` and `b`
@@ -663,15 +664,18 @@ const SNAP_SINE: f64 = 0.17; // about 10 degrees
 /// pressed edge itself is the right contact line. For a corner pressed into
 /// an edge the chord already is an edge of the overlap and is unchanged.
 fn snap_to_overlap_edge(chord: Vec2, poly: &[Vec2]) -> Vec2 {
-    let dir = chord.normalize();
+    // On squares, against the chord as it is: no square root per edge, and
+    // none to normalise the chord.
+    let chord_len2 = chord.length_squared();
     let mut best = chord;
-    let mut best_len = 0.5 * chord.length();
+    let mut best_len2 = 0.25 * chord_len2;
     for i in 0..poly.len() {
         let e = poly[next(i, poly.len())] - poly[i];
-        let len = e.length();
-        if len > best_len && cross(dir, e).abs() <= SNAP_SINE * len {
-            best = if e.dot(dir) >= 0.0 { e } else { -e };
-            best_len = len;
+        let len2 = e.length_squared();
+        let c = cross(chord, e);
+        if len2 > best_len2 && c * c <= SNAP_SINE * SNAP_SINE * chord_len2 * len2 {
+            best = if e.dot(chord) >= 0.0 { e } else { -e };
+            best_len2 = len2;
         }
     }
     best
