@@ -570,20 +570,18 @@ impl<F: ExternalForces> World<F> {
             .zip(self.separating.par_chunks_mut(chunk))
             .zip(self.born.par_iter_mut())
             .zip(self.ended.par_iter_mut())
-            // One clipper workspace per rayon task, not per chunk: its 4 KB
-            // zeroed per chunk was 1 % of a step's instructions with the
-            // small chunks of small runs. It is only a workspace (every
-            // buffer is written before it is read), so results do not depend
-            // on which chunks share one.
+            // One workspace per rayon task, not per chunk (`TaskWorkspace`:
+            // the clipper's 4 KB zeroed per chunk was another 1 %).
             .for_each_init(
-                ClipScratch::default,
-                |scratch, ((((run, pairs), edges), born), ended)| {
+                TaskWorkspace::default,
+                |workspace, ((((run, pairs), edges), born), ended)| {
                     born.clear();
                     ended.clear();
-                    // Friction steps wait here, 32 at a time, with where their
-                    // record is: in place in the run, or among the born.
-                    let mut pending = [(Slot::Run(0), NO_PENDING); FRICTION_BATCH];
-                    let mut items = [NO_PENDING.item; FRICTION_BATCH];
+                    let TaskWorkspace {
+                        clip: scratch,
+                        pending,
+                        items,
+                    } = workspace;
                     let mut waiting = 0;
                     let mut flush =
                         |pending: &mut [(Slot, FrictionPending)],
@@ -634,7 +632,7 @@ impl<F: ExternalForces> World<F> {
                                 pending[waiting] = (slot, p);
                                 waiting += 1;
                                 if waiting == FRICTION_BATCH {
-                                    flush(&mut pending, run, born);
+                                    flush(&mut pending[..], run, born);
                                     waiting = 0;
                                 }
                             }
@@ -851,6 +849,32 @@ impl ContactPower {
 /// Marks a contact record that ended this step, until the list is compacted
 /// (floe handles are below `u32::MAX`: checkpoints and floe sets check it).
 const DEAD: u32 = u32::MAX;
+
+/// What a task of the contact update works in, made once per rayon task
+/// rather than per chunk of pairs: zeroing the friction batch's arrays for
+/// every chunk was a `memset` of 5 KB apiece, 1.2 % of a step's
+/// instructions with the small chunks of small runs. Only a workspace: every
+/// entry is written before it is read, so results do not depend on which
+/// chunks share one.
+struct TaskWorkspace {
+    /// The clipper's buffers.
+    clip: ClipScratch,
+    /// Friction steps waiting, [`FRICTION_BATCH`] at a time, with where
+    /// their record is: in place in the run, or among the born.
+    pending: [(Slot, FrictionPending); FRICTION_BATCH],
+    /// The waiting steps' items, side by side for `Law::step_batch`.
+    items: [BatchItem; FRICTION_BATCH],
+}
+
+impl Default for TaskWorkspace {
+    fn default() -> Self {
+        Self {
+            clip: ClipScratch::default(),
+            pending: [(Slot::Run(0), NO_PENDING); FRICTION_BATCH],
+            items: [NO_PENDING.item; FRICTION_BATCH],
+        }
+    }
+}
 
 /// Where a contact's record is while its friction step waits.
 #[derive(Debug, Clone, Copy)]
