@@ -256,6 +256,9 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
 /// line by a depth too small for an overlap above the area floor (see
 /// `TOUCH_DEPTH` in the source), so that edge-to-edge neighbours that exactly touch,
 /// every pair of an unpressed lattice, are not clipped at every step either.
+/// Where no edge will do, a corner (two adjacent edges) of either floe may:
+/// vertex neighbours pressed a few micrometres into each other's corner,
+/// whose overlap is far below the floor but reaches past every edge line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SeparatingEdge(u8);
 
@@ -267,10 +270,13 @@ impl SeparatingEdge {
     /// below the round-off floors): the pair is clipped and not searched
     /// again until it overlaps.
     const TOUCHING: Self = Self(u8::MAX);
-    /// Codes `1..=MAX_VERTICES`: edge `code - 1` of the second floe; above:
-    /// edge `code - 1 - MAX_VERTICES` of the first.
+    /// Codes `1..=MAX_VERTICES`: edge `code - 1` of the second floe; then
+    /// the edges of the first, the corners (at vertex `k`, between edges
+    /// `k - 1` and `k`) of the second, and the corners of the first.
     const SECOND_BASE: u8 = 1;
-    const FIRST_BASE: u8 = 1 + MAX_VERTICES as u8;
+    const FIRST_BASE: u8 = Self::SECOND_BASE + MAX_VERTICES as u8;
+    const SECOND_CORNER_BASE: u8 = Self::FIRST_BASE + MAX_VERTICES as u8;
+    const FIRST_CORNER_BASE: u8 = Self::SECOND_CORNER_BASE + MAX_VERTICES as u8;
 }
 
 /// How far the other floe may reach past a remembered edge's line for the
@@ -280,39 +286,47 @@ impl SeparatingEdge {
 /// whose area is at most `2 r_Q w`. With `w = TOUCH_DEPTH * AREA_FLOOR *
 /// r_min^2 / (2 r_Q)` that is half the floor below which [`overlap`] reports
 /// no contact, so the shortcut rejects only pairs that clipping rejects too.
-/// The sides are computed in floating point: `w` is reduced by a bound on
+/// A remembered corner is held to the same half of the floor
+/// (`corner_apart`). The sides are computed in floating point: `w` is reduced by a bound on
 /// their round-off ([`SIDE_ROUND_OFF`]), and the shortcut becomes "beyond
-/// the line by that bound" where the bound exceeds `w` (floes whose sizes
-/// differ by a factor of about 30 or more). The clipper's own round-off on
+/// the line by that bound" where the bound exceeds `w` (touching a floe
+/// about 10 times larger, or 100 times smaller). The clipper's own round-off on
 /// the overlap area, about `eps r_max r_min`, stays far below the floor for
 /// size ratios up to 1e3; so for floes within a factor 1e3 of each other the
 /// results are those of clipping every pair (tested, with sizes a factor 10
 /// apart: `no_remembered_edge_rejects_a_pair_that_clipping_keeps`).
 const TOUCH_DEPTH: f64 = 0.5;
 
-/// Round-off of the side function `cross(e - s, p - s)`, in units of
-/// `eps X^2`, where `X = |offset| + r_a + 2 r_b` bounds the coordinates in
-/// the pair's frame (and so `|e - s|` and `|p - s|` by `2 X`): the two
-/// differences, two products and their difference, each within an ulp of
-/// terms up to `4 X^2`, with room to spare.
-const SIDE_ROUND_OFF: f64 = 16.0;
+/// Round-off of the side function `cross(e - s, p - s)` over the edge's
+/// length, in units of `eps W`, where `W = |offset| + r_a + r_b` bounds the
+/// distance `|p - s|` between any two vertices of the pair. With `u =
+/// eps/2`, the two differences, two products and their difference put the
+/// computed side within `u |d| + 3.01 u (|d_x w_y| + |d_y w_x|) <= 2.005 eps
+/// |d| |w|` of the exact one (`d = e - s`, `w = p - s`, Cauchy-Schwarz),
+/// and `|d|` is the edge's length to within an ulp or two: 4 leaves room to
+/// spare. (A first bound, `16 eps X^2` with `X = |offset| + r_a + 2 r_b`,
+/// ignored that the error scales with the edge's length: for the long thin
+/// floes that clipping leaves along a channel's walls it exceeded the
+/// allowed depth 200 times over, and every touching pair of them was
+/// clipped at every step, a third of all clipping at 2,113 floes.)
+const SIDE_ROUND_OFF: f64 = 4.0;
 
 /// `true` if every one of `points` lies beyond the line of the edge
 /// `s -> e` of a counter-clockwise polygon, or inside it by less than
-/// `depth` (m), after allowing `slack` for the round-off of the side
-/// function (in its units, distance times edge length).
+/// `depth` (m), after allowing `round_off` (m) for the round-off of the
+/// side function.
 #[inline(always)]
 fn all_beyond(
     s: Vec2,
     e: Vec2,
     points: impl Iterator<Item = Vec2>,
     depth: f64,
-    slack: f64,
+    round_off: f64,
 ) -> bool {
     let dir = e - s;
-    // Negative where the slack exceeds the allowed depth: every point must
-    // then lie beyond the line by the slack.
-    let limit = depth * dir.length() - slack;
+    // Negative where the round-off exceeds the allowed depth: every point
+    // must then lie beyond the line by the round-off.
+    let limit = (depth - round_off) * dir.length();
     let mut beyond = true;
     for p in points {
         // No early exit: the loop is a few vertices, and branch-free it vectorises.
@@ -342,32 +356,14 @@ pub fn overlap_cached(
     let offset = b.position - a.position;
     let code = edge.0;
     if *edge != SeparatingEdge::NONE && *edge != SeparatingEdge::TOUCHING {
-        let allowed = Allowance::new(&a, &b, offset);
-        let (na, nb) = (a.vertices.len(), b.vertices.len());
-        let first = code >= SeparatingEdge::FIRST_BASE;
-        let apart = if first {
-            let k = usize::from(code - SeparatingEdge::FIRST_BASE);
-            let s = rotate(a.vertices[k], a.cos, a.sin);
-            let e = rotate(a.vertices[next(k, na)], a.cos, a.sin);
-            all_beyond(
-                s,
-                e,
-                b.vertices.iter().map(|&v| offset + rotate(v, b.cos, b.sin)),
-                allowed.depth_of_b,
-                allowed.slack,
-            )
-        } else {
-            let k = usize::from(code - SeparatingEdge::SECOND_BASE);
-            let s = offset + rotate(b.vertices[k], b.cos, b.sin);
-            let e = offset + rotate(b.vertices[next(k, nb)], b.cos, b.sin);
-            all_beyond(
-                s,
-                e,
-                a.vertices.iter().map(|&v| rotate(v, a.cos, a.sin)),
-                allowed.depth_of_a,
-                allowed.slack,
-            )
-        };
+        let apart = still_apart(
+            code,
+            (a.vertices.len(), |j| rotate(a.vertices[j], a.cos, a.sin)),
+            (b.vertices.len(), |j| {
+                offset + rotate(b.vertices[j], b.cos, b.sin)
+            }),
+            &Allowance::new(&a, &b, offset),
+        );
         if apart {
             return None;
         }
@@ -396,47 +392,120 @@ struct Allowance {
     depth_of_a: f64,
     /// Depth allowed to the second floe past an edge of the first, m.
     depth_of_b: f64,
-    /// Round-off of the side function, in its units.
-    slack: f64,
+    /// Round-off of the side function over the edge's length, m.
+    round_off: f64,
+    /// Largest overlap a corner may bound for the pair to count as apart:
+    /// [`TOUCH_DEPTH`] of the area floor, m^2.
+    corner_m2: f64,
 }
 
 impl Allowance {
     #[inline(always)]
     fn new(a: &Placed, b: &Placed, offset: Vec2) -> Self {
         let r_min = a.radius_m.min(b.radius_m);
-        let extent = offset.length() + a.radius_m + 2.0 * b.radius_m;
+        let extent = offset.length() + a.radius_m + b.radius_m;
         Self {
             depth_of_a: touch_depth(r_min, a.radius_m),
             depth_of_b: touch_depth(r_min, b.radius_m),
-            slack: SIDE_ROUND_OFF * f64::EPSILON * extent * extent,
+            round_off: SIDE_ROUND_OFF * f64::EPSILON * extent,
+            corner_m2: TOUCH_DEPTH * AREA_FLOOR * r_min * r_min,
         }
     }
 }
 
-/// An edge of `b`, then of `a` (both counter-clockwise, same frame), beyond
-/// whose line the other polygon lies, or reaches in by less than its
-/// allowed depth, or [`SeparatingEdge::TOUCHING`].
-fn find_separating_edge(a: &[Vec2], b: &[Vec2], allowed: &Allowance) -> SeparatingEdge {
-    for k in 0..b.len() {
-        if all_beyond(
-            b[k],
-            b[next(k, b.len())],
-            a.iter().copied(),
-            allowed.depth_of_a,
-            allowed.slack,
-        ) {
-            return SeparatingEdge(SeparatingEdge::SECOND_BASE + k as u8);
-        }
+/// Whether the pair is still apart by its remembered edge or corner
+/// `code`: each floe as its vertex count and its placed vertices, the first
+/// then the second (in the same frame). One predicate for the test at each
+/// step and for the search ([`find_separating_edge`]), so that what the
+/// search finds is what the test accepts.
+#[inline(always)]
+fn still_apart(
+    code: u8,
+    (na, a): (usize, impl Fn(usize) -> Vec2),
+    (nb, b): (usize, impl Fn(usize) -> Vec2),
+    allowed: &Allowance,
+) -> bool {
+    let edge = |n: usize, p: &dyn Fn(usize) -> Vec2, k: usize| (p(k), p(next(k, n)));
+    if code < SeparatingEdge::FIRST_BASE {
+        let (s, e) = edge(nb, &b, usize::from(code - SeparatingEdge::SECOND_BASE));
+        all_beyond(s, e, (0..na).map(&a), allowed.depth_of_a, allowed.round_off)
+    } else if code < SeparatingEdge::SECOND_CORNER_BASE {
+        let (s, e) = edge(na, &a, usize::from(code - SeparatingEdge::FIRST_BASE));
+        all_beyond(s, e, (0..nb).map(&b), allowed.depth_of_b, allowed.round_off)
+    } else if code < SeparatingEdge::FIRST_CORNER_BASE {
+        let k = usize::from(code - SeparatingEdge::SECOND_CORNER_BASE);
+        corner_apart(
+            b(prev(k, nb)),
+            b(k),
+            b(next(k, nb)),
+            (0..na).map(&a),
+            allowed,
+        )
+    } else {
+        let k = usize::from(code - SeparatingEdge::FIRST_CORNER_BASE);
+        corner_apart(
+            a(prev(k, na)),
+            a(k),
+            a(next(k, na)),
+            (0..nb).map(&b),
+            allowed,
+        )
     }
-    for k in 0..a.len() {
-        if all_beyond(
-            a[k],
-            a[next(k, a.len())],
-            b.iter().copied(),
-            allowed.depth_of_b,
-            allowed.slack,
-        ) {
-            return SeparatingEdge(SeparatingEdge::FIRST_BASE + k as u8);
+}
+
+/// `true` if the overlap of a convex floe `P` with the polygon of `points`
+/// is too small for a contact, judged from the corner of `P` at `at`
+/// (edges `prev -> at` and `at -> next`). If `points` reach past the two
+/// edge lines by at most `w1` and `w2`, the overlap (inside `P`, so inside
+/// both lines, and inside the points' hull) lies where two strips of those
+/// widths along the lines cross: a parallelogram of area `w1 w2 / sin(angle)`.
+/// Apart if that is at most half the area floor, after the sides' round-off.
+#[inline(always)]
+fn corner_apart(
+    prev: Vec2,
+    at: Vec2,
+    next: Vec2,
+    points: impl Iterator<Item = Vec2>,
+    allowed: &Allowance,
+) -> bool {
+    let (d1, d2) = (at - prev, next - at);
+    let (mut m1, mut m2) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for p in points {
+        m1 = m1.max(cross(d1, p - prev));
+        m2 = m2.max(cross(d2, p - at));
+    }
+    let (l1, l2) = (d1.length(), d2.length());
+    let w1 = (m1 / l1 + allowed.round_off).max(0.0);
+    let w2 = (m2 / l2 + allowed.round_off).max(0.0);
+    // A lower bound on the sine (the cross product is within about 2 eps
+    // of its terms' size).
+    let sine = cross(d1, d2).abs() / (l1 * l2) - 4.0 * f64::EPSILON;
+    sine > 0.0 && w1 * w2 * (1.0 + 1e-9) <= allowed.corner_m2 * sine
+}
+
+/// The index before `i` in a closed polygon of `n` vertices.
+#[inline(always)]
+fn prev(i: usize, n: usize) -> usize {
+    if i == 0 {
+        n - 1
+    } else {
+        i - 1
+    }
+}
+
+/// An edge of `b`, then of `a`, then a corner of `b`, then of `a` (both
+/// counter-clockwise, same frame) by which the floes are apart (see
+/// [`still_apart`]), or [`SeparatingEdge::TOUCHING`].
+fn find_separating_edge(a: &[Vec2], b: &[Vec2], allowed: &Allowance) -> SeparatingEdge {
+    let (na, nb) = (a.len(), b.len());
+    let codes = (0..nb)
+        .map(|k| SeparatingEdge::SECOND_BASE + k as u8)
+        .chain((0..na).map(|k| SeparatingEdge::FIRST_BASE + k as u8))
+        .chain((0..nb).map(|k| SeparatingEdge::SECOND_CORNER_BASE + k as u8))
+        .chain((0..na).map(|k| SeparatingEdge::FIRST_CORNER_BASE + k as u8));
+    for code in codes {
+        if still_apart(code, (na, |j| a[j]), (nb, |j| b[j]), allowed) {
+            return SeparatingEdge(code);
         }
     }
     SeparatingEdge::TOUCHING
@@ -811,7 +880,14 @@ mod tests {
             for t in [t, lo, hi] {
                 let b = b_at(t);
                 let clipped = overlap(a, b, &mut scratch);
-                for code in (1..=vb.len()).chain(SeparatingEdge::FIRST_BASE as usize..SeparatingEdge::FIRST_BASE as usize + va.len()) {
+                // Every edge and every corner of both floes.
+                let bases = [
+                    (SeparatingEdge::SECOND_BASE, vb.len()),
+                    (SeparatingEdge::FIRST_BASE, va.len()),
+                    (SeparatingEdge::SECOND_CORNER_BASE, vb.len()),
+                    (SeparatingEdge::FIRST_CORNER_BASE, va.len()),
+                ];
+                for code in bases.into_iter().flat_map(|(base, n)| base as usize..base as usize + n) {
                     let mut edge = SeparatingEdge(code as u8);
                     let cached = overlap_cached(a, b, &mut edge, &mut scratch);
                     prop_assert_eq!(cached, clipped, "edge code {}, t {}", code, t);
