@@ -96,11 +96,14 @@ pub const SKIN_FRACTION: f64 = 0.05;
 /// Most candidate pairs per parallel task of the narrow phase.
 const PAIR_CHUNK: usize = 1024;
 
-/// Fewest candidate pairs per task, and the number of tasks wanted: small
-/// runs are cut into [`PAIR_TASKS`] tasks, not a few of [`PAIR_CHUNK`]
-/// pairs (at 1e3 floes, six), so that two threads share them evenly.
-/// Results do not depend on the cut (tested), only the balance does.
+/// Fewest candidate pairs per task (but the last, or a run with fewer
+/// pairs in all).
 const MIN_PAIR_CHUNK: usize = 128;
+
+/// Tasks wanted for the narrow phase: small runs are cut into this many,
+/// not into a few of [`PAIR_CHUNK`] pairs (at 1e3 floes, six), so that two
+/// threads share them evenly. Results do not depend on the cut (tested),
+/// only the balance does.
 const PAIR_TASKS: usize = 32;
 
 /// Candidate pairs per task for a list of `n_pairs`.
@@ -442,6 +445,7 @@ impl<F: ExternalForces> World<F> {
         let chunk = self
             .fixed_pair_chunk
             .unwrap_or_else(|| pair_chunk(pairs.len()));
+        debug_assert!(chunk > 0);
         let n_chunks = pairs.len().div_ceil(chunk);
         {
             // One binary search per chunk, in parallel: each probes records
@@ -1007,8 +1011,10 @@ mod tests {
             friction_power_w: 0.0,
             damping_power_w: 0.0,
             elastic_force_n: 0.0,
-            normal_energy_j: 0.0,
-            tangential_energy_j: 0.0,
+            // Energies with round-off in their sums, so that the order of
+            // the released-energy sum shows.
+            normal_energy_j: tag / 3.0,
+            tangential_energy_j: tag.sqrt(),
         }
     }
 
@@ -1093,6 +1099,10 @@ mod tests {
                     _ => born_all.push(record(a, b, i as f64)),
                 }
             }
+            let dead_energy = contacts
+                .iter()
+                .filter(|c| c.a == DEAD)
+                .fold(0.0, |sum, c| sum + c.elastic_energy_j());
             let mut expected: Vec<ContactRecord> = contacts
                 .iter()
                 .filter(|c| c.a != DEAD)
@@ -1103,8 +1113,10 @@ mod tests {
             // Born contacts split into consecutive chunks, as the narrow phase makes them.
             let per = born_all.len().div_ceil(chunks).max(1);
             let mut born: Vec<Vec<ContactRecord>> = born_all.chunks(per).map(<[_]>::to_vec).collect();
-            merge_in_place(&mut contacts, &mut born);
+            let released = merge_in_place(&mut contacts, &mut born);
             prop_assert_eq!(contacts, expected);
+            // What the dead held, summed in list order.
+            prop_assert_eq!(released.to_bits(), dead_energy.to_bits());
         }
     }
 }

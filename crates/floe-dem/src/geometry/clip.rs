@@ -290,19 +290,20 @@ impl SeparatingEdge {
 /// (`corner_apart`). The sides are computed in floating point: `w` is reduced by a bound on
 /// their round-off ([`SIDE_ROUND_OFF`]), and the shortcut becomes "beyond
 /// the line by that bound" where the bound exceeds `w` (touching a floe
-/// about 10 times larger, or 100 times smaller). The clipper's own round-off on
-/// the overlap area, about `eps r_max r_min`, stays far below the floor for
-/// size ratios up to 1e3; so for floes within a factor 1e3 of each other the
+/// roughly 8-16 times larger, or 70-280 times smaller, depending on the
+/// offset). The clipper's own round-off on the overlap area, about `eps
+/// r_max r_min`, stays below the floor for size ratios up to 1e3 (4.5
+/// times below at 1e3); so for floes within a factor 1e3 of each other the
 /// results are those of clipping every pair (tested, with sizes a factor 10
 /// apart: `no_remembered_edge_rejects_a_pair_that_clipping_keeps`).
 const TOUCH_DEPTH: f64 = 0.5;
 
 /// Round-off of the side function `cross(e - s, p - s)` over the edge's
 /// length, in units of `eps W`, where `W = |offset| + r_a + r_b` bounds the
-/// distance `|p - s|` between any two vertices of the pair. With `u =
-/// eps/2`, the two differences, two products and their difference put the
-/// computed side within `u |d| + 3.01 u (|d_x w_y| + |d_y w_x|) <= 2.005 eps
-/// |d| |w|` of the exact one (`d = e - s`, `w = p - s`, Cauchy-Schwarz),
+/// distance `|p - s|` between a vertex of one floe and a vertex of the
+/// other (the only case tested). With `u = eps/2`, the two differences, two
+/// products and their difference put the computed side within `u |d x w| +
+/// 3.01 u (|d_x w_y| + |d_y w_x|) <= 2.005 eps |d| |w|` of the exact one (`d = e - s`, `w = p - s`, Cauchy-Schwarz),
 /// and `|d|` is the edge's length to within an ulp or two: 4 leaves room to
 /// spare. (A first bound, `16 eps X^2` with `X = |offset| + r_a + 2 r_b`,
 /// ignored that the error scales with the edge's length: for the long thin
@@ -477,9 +478,9 @@ fn corner_apart(
     let (l1, l2) = (d1.length(), d2.length());
     let w1 = (m1 / l1 + allowed.round_off).max(0.0);
     let w2 = (m2 / l2 + allowed.round_off).max(0.0);
-    // A lower bound on the sine (the cross product is within about 2 eps
-    // of its terms' size).
-    let sine = cross(d1, d2).abs() / (l1 * l2) - 4.0 * f64::EPSILON;
+    // A lower bound on the sine: the cross product is within about 2 eps
+    // of its terms' size, the lengths and the division add about 2 eps.
+    let sine = cross(d1, d2).abs() / (l1 * l2) - 8.0 * f64::EPSILON;
     sine > 0.0 && w1 * w2 * (1.0 + 1e-9) <= allowed.corner_m2 * sine
 }
 
