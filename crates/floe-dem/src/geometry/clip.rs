@@ -426,30 +426,64 @@ fn still_apart(
     (nb, b): (usize, impl Fn(usize) -> Vec2),
     allowed: &Allowance,
 ) -> bool {
-    let edge = |n: usize, p: &dyn Fn(usize) -> Vec2, k: usize| (p(k), p(next(k, n)));
-    if code < SeparatingEdge::FIRST_BASE {
-        let (s, e) = edge(nb, &b, usize::from(code - SeparatingEdge::SECOND_BASE));
-        all_beyond(s, e, (0..na).map(&a), allowed.depth_of_a, allowed.round_off)
+    let (slot, corner) = if code < SeparatingEdge::FIRST_BASE {
+        (code - SeparatingEdge::SECOND_BASE, false)
     } else if code < SeparatingEdge::SECOND_CORNER_BASE {
-        let (s, e) = edge(na, &a, usize::from(code - SeparatingEdge::FIRST_BASE));
-        all_beyond(s, e, (0..nb).map(&b), allowed.depth_of_b, allowed.round_off)
+        (
+            code - SeparatingEdge::FIRST_BASE + MAX_VERTICES as u8,
+            false,
+        )
     } else if code < SeparatingEdge::FIRST_CORNER_BASE {
-        let k = usize::from(code - SeparatingEdge::SECOND_CORNER_BASE);
+        (code - SeparatingEdge::SECOND_CORNER_BASE, true)
+    } else {
+        (
+            code - SeparatingEdge::FIRST_CORNER_BASE + MAX_VERTICES as u8,
+            true,
+        )
+    };
+    // The remembered edge or corner is of the second floe below
+    // MAX_VERTICES, of the first above.
+    let k = usize::from(slot);
+    if k < MAX_VERTICES {
+        apart_by(corner, k, (nb, b), (na, a), allowed.depth_of_a, allowed)
+    } else {
+        apart_by(
+            corner,
+            k - MAX_VERTICES,
+            (na, a),
+            (nb, b),
+            allowed.depth_of_b,
+            allowed,
+        )
+    }
+}
+
+/// [`still_apart`] for edge or corner `k` of floe `P`, the other floe `Q`
+/// allowed `depth_of_q` past an edge line.
+#[inline(always)]
+fn apart_by(
+    corner: bool,
+    k: usize,
+    (np, p): (usize, impl Fn(usize) -> Vec2),
+    (nq, q): (usize, impl Fn(usize) -> Vec2),
+    depth_of_q: f64,
+    allowed: &Allowance,
+) -> bool {
+    if corner {
         corner_apart(
-            b(prev(k, nb)),
-            b(k),
-            b(next(k, nb)),
-            (0..na).map(&a),
+            p(prev(k, np)),
+            p(k),
+            p(next(k, np)),
+            (0..nq).map(q),
             allowed,
         )
     } else {
-        let k = usize::from(code - SeparatingEdge::FIRST_CORNER_BASE);
-        corner_apart(
-            a(prev(k, na)),
-            a(k),
-            a(next(k, na)),
-            (0..nb).map(&b),
-            allowed,
+        all_beyond(
+            p(k),
+            p(next(k, np)),
+            (0..nq).map(q),
+            depth_of_q,
+            allowed.round_off,
         )
     }
 }
