@@ -287,10 +287,10 @@ impl SeparatingEdge {
 /// r_min^2 / (2 r_Q)` that is half the floor below which [`overlap`] reports
 /// no contact, so the shortcut rejects only pairs that clipping rejects too.
 /// A remembered corner is held to the same half of the floor
-/// (`corner_apart`). The sides are computed in floating point: `w` is reduced by a bound on
-/// their round-off ([`SIDE_ROUND_OFF`]), and the shortcut becomes "beyond
-/// the line by that bound" where the bound exceeds `w` (touching a floe
-/// roughly 8-16 times larger, or 70-280 times smaller, depending on the
+/// (`corner_apart`). The sides are computed in floating point: `w` is
+/// reduced by a bound on their round-off ([`SIDE_ROUND_OFF`]), and the
+/// shortcut becomes "beyond the line by that bound" where the bound exceeds
+/// `w` (touching a floe roughly 8-16 times larger, or 70-280 times smaller, depending on the
 /// offset). The clipper's own round-off on the overlap area, about `eps
 /// r_max r_min`, stays below the floor for size ratios up to 1e3 (4.5
 /// times below at 1e3); so for floes within a factor 1e3 of each other the
@@ -303,9 +303,9 @@ const TOUCH_DEPTH: f64 = 0.5;
 /// distance `|p - s|` between a vertex of one floe and a vertex of the
 /// other (the only case tested). With `u = eps/2`, the two differences, two
 /// products and their difference put the computed side within `u |d x w| +
-/// 3.01 u (|d_x w_y| + |d_y w_x|) <= 2.005 eps |d| |w|` of the exact one (`d = e - s`, `w = p - s`, Cauchy-Schwarz),
-/// and `|d|` is the edge's length to within an ulp or two: 4 leaves room to
-/// spare. (A first bound, `16 eps X^2` with `X = |offset| + r_a + 2 r_b`,
+/// 3.01 u (|d_x w_y| + |d_y w_x|) <= 2.005 eps |d| |w|` of the exact one
+/// (`d = e - s`, `w = p - s`, Cauchy-Schwarz), and `|d|` is the edge's
+/// length to within an ulp or two: 4 leaves room to spare. (A first bound, `16 eps X^2` with `X = |offset| + r_a + 2 r_b`,
 /// ignored that the error scales with the edge's length: for the long thin
 /// floes that clipping leaves along a channel's walls it exceeded the
 /// allowed depth 200 times over, and every touching pair of them was
@@ -426,35 +426,21 @@ fn still_apart(
     (nb, b): (usize, impl Fn(usize) -> Vec2),
     allowed: &Allowance,
 ) -> bool {
-    let (slot, corner) = if code < SeparatingEdge::FIRST_BASE {
-        (code - SeparatingEdge::SECOND_BASE, false)
+    // Which floe the edge or corner is of, which kind, and its index.
+    let (of_first, corner, base) = if code < SeparatingEdge::FIRST_BASE {
+        (false, false, SeparatingEdge::SECOND_BASE)
     } else if code < SeparatingEdge::SECOND_CORNER_BASE {
-        (
-            code - SeparatingEdge::FIRST_BASE + MAX_VERTICES as u8,
-            false,
-        )
+        (true, false, SeparatingEdge::FIRST_BASE)
     } else if code < SeparatingEdge::FIRST_CORNER_BASE {
-        (code - SeparatingEdge::SECOND_CORNER_BASE, true)
+        (false, true, SeparatingEdge::SECOND_CORNER_BASE)
     } else {
-        (
-            code - SeparatingEdge::FIRST_CORNER_BASE + MAX_VERTICES as u8,
-            true,
-        )
+        (true, true, SeparatingEdge::FIRST_CORNER_BASE)
     };
-    // The remembered edge or corner is of the second floe below
-    // MAX_VERTICES, of the first above.
-    let k = usize::from(slot);
-    if k < MAX_VERTICES {
-        apart_by(corner, k, (nb, b), (na, a), allowed.depth_of_a, allowed)
+    let k = usize::from(code - base);
+    if of_first {
+        apart_by(corner, k, (na, a), (nb, b), allowed.depth_of_b, allowed)
     } else {
-        apart_by(
-            corner,
-            k - MAX_VERTICES,
-            (na, a),
-            (nb, b),
-            allowed.depth_of_b,
-            allowed,
-        )
+        apart_by(corner, k, (nb, b), (na, a), allowed.depth_of_a, allowed)
     }
 }
 
