@@ -17,7 +17,7 @@
 //!   tangential velocity at the contact point as the load-point velocity
 //!   and the normal force as the normal load.
 
-use floe_friction::{BatchItem, ContactLoad, ContactState, StepOutcome};
+use floe_friction::{BatchItem, ContactLoad};
 
 use crate::contacts::{ContactModel, ContactRecord};
 use crate::geometry::{cross, perp, Overlap};
@@ -57,31 +57,40 @@ pub fn overlap_stiffness(model: &ContactModel, a: &Body, b: &Body) -> f64 {
     }
 }
 
-/// What a contact carries from the previous step (nothing for a new one).
-#[derive(Debug, Clone, Copy)]
-pub struct Carried {
-    /// Friction state.
-    pub friction: ContactState,
-    /// Elastic normal force at the end of the previous step, N.
-    pub elastic_force_n: f64,
-    /// Energy stored in the overlap, J.
-    pub normal_energy_j: f64,
-    /// Energy stored in the tangential spring, J.
-    pub tangential_energy_j: f64,
-}
-
-impl Carried {
-    /// A contact that has just formed. Its stored energy is estimated as that
-    /// of a strip overlap, `F_el^2 / (2 kappa l)`: exact for edge-to-edge
-    /// overlaps and negligible for any contact that forms during a run (it
-    /// forms at a tiny overlap); it matters only for floes placed
-    /// overlapping at the start.
-    pub fn new_contact(model: &ContactModel, ov: &Overlap, a: &Body, b: &Body) -> Self {
+impl ContactRecord {
+    /// The record of a contact that has just formed between `a` and `b`
+    /// (the second at `image_offset`), holding what
+    /// [`contact_before_friction`] carries into its first step: the new
+    /// contact's friction state ([`ContactModel::new_contact_state`]), and
+    /// as stored energy that of a strip overlap, `F_el^2 / (2 kappa l)`:
+    /// exact for edge-to-edge overlaps and negligible for any contact that
+    /// forms during a run (it forms at a tiny overlap); it matters only for
+    /// floes placed overlapping at the start.
+    pub fn new_contact(
+        model: &ContactModel,
+        ov: &Overlap,
+        a: &Body,
+        b: &Body,
+        (a_handle, b_handle): (u32, u32),
+        image_offset: Vec2,
+    ) -> Self {
         let kappa = overlap_stiffness(model, a, b);
         let elastic = kappa * ov.area_m2;
         let k_n = kappa * ov.length_m.max(f64::MIN_POSITIVE);
         Self {
+            a: a_handle,
+            b: b_handle,
+            image_offset,
             friction: model.new_contact_state(),
+            age_steps: 0,
+            overlap_m2: 0.0,
+            point: Vec2::ZERO,
+            normal: Vec2::ZERO,
+            length_m: 0.0,
+            normal_force_n: 0.0,
+            slip_rate_m_per_s: 0.0,
+            friction_power_w: 0.0,
+            damping_power_w: 0.0,
             elastic_force_n: elastic,
             normal_energy_j: if k_n > 0.0 {
                 0.5 * elastic * elastic / k_n
@@ -93,27 +102,23 @@ impl Carried {
     }
 }
 
-/// A contact's friction step, set up by [`contact_before_friction`].
-#[derive(Debug, Clone, Copy)]
-pub struct FrictionPending {
-    /// The state to advance (the contact's carried friction state), the
-    /// load, and the outcome the law's step writes (zero slip until then).
-    pub item: BatchItem,
-    /// Power of the elastic normal force on the approach, W.
-    pub elastic_power_w: f64,
-}
-
-/// The forces of one contact over a step, but for the friction step: the
-/// record with the normal force, and the friction step to take. The force on
-/// `b` is `normal_force n + tangential_force t` applied at `point`; `a` gets
-/// the opposite. `damping_ratio` is `model.damping_ratio()`, which the caller
-/// computes once per step: a logarithm and a square root per contact were
-/// 1 % of a step.
+/// The first of a contact's three calls in a step: sets the overlap and
+/// the normal force of `record` and returns the friction step's load and
+/// the power of the elastic normal force on the approach (W). `record`
+/// comes in as the previous step left it (or as
+/// [`ContactRecord::new_contact`] made it): its friction state, elastic
+/// force and stored energies are what the contact carries. The force on
+/// `b` is `normal_force n + tangential_force t` applied at `point`; `a`
+/// gets the opposite. `damping_ratio` is `model.damping_ratio()`, which the
+/// caller computes once per step: a logarithm and a square root per
+/// contact were 1 % of a step.
 ///
-/// A contact is advanced by three calls: this one, the law's step on
-/// [`FrictionPending::item`] (`FrictionLaw::step`, or `Law::step_batch` for
-/// many contacts at once, as the world does), then [`finish_friction`]. The
-/// record holds the carried friction state and tangential energy until then.
+/// Then the law's step on the returned load and `record.friction`
+/// (`FrictionLaw::step`, or `Law::step_batch` for many contacts at once, as
+/// the world does), then [`finish_friction`]. The record is updated in
+/// place, not returned: copying the 160 B record and the friction step's
+/// items in and out was about 4 % of a step's instructions
+/// (docs/performance.md).
 #[inline]
 pub fn contact_before_friction(
     model: &ContactModel,
@@ -121,8 +126,8 @@ pub fn contact_before_friction(
     a: &Body,
     b: &Body,
     ov: &Overlap,
-    carried: Carried,
-) -> (ContactRecord, FrictionPending) {
+    record: &mut ContactRecord,
+) -> (ContactLoad, f64) {
     let n = ov.normal;
     let t = perp(n);
     let (ra, rb) = (ov.centroid - a.position, ov.centroid - b.position);
@@ -144,59 +149,46 @@ pub fn contact_before_friction(
     // v_n > 0 is separation: the dashpot resists it, and the contact never pulls.
     let normal = (elastic - damping * v_n).max(0.0);
     let damping_power = (elastic - normal) * v_n; // >= 0 whichever way
+                                                  // Work of the elastic force over the step (trapezoid in the force,
+                                                  // penetration rate -v_n): exact storage for any overlap shape.
+    let elastic_power = 0.5 * (record.elastic_force_n + elastic) * (-v_n);
 
     let k_t = k_n / (2.0 * (1.0 + model.poisson_ratio));
-    let record = ContactRecord {
-        a: 0,
-        b: 0,
-        image_offset: Vec2::ZERO,
-        friction: carried.friction,
-        age_steps: 0,
-        overlap_m2: ov.area_m2,
-        point: ov.centroid,
-        normal: n,
-        length_m: ov.length_m,
-        normal_force_n: normal,
-        slip_rate_m_per_s: 0.0,
-        friction_power_w: 0.0,
-        damping_power_w: damping_power.max(0.0),
-        elastic_force_n: elastic,
-        normal_energy_j: carried.normal_energy_j,
-        tangential_energy_j: carried.tangential_energy_j,
+    record.overlap_m2 = ov.area_m2;
+    record.point = ov.centroid;
+    record.normal = n;
+    record.length_m = ov.length_m;
+    record.normal_force_n = normal;
+    record.slip_rate_m_per_s = 0.0;
+    record.friction_power_w = 0.0;
+    record.damping_power_w = damping_power.max(0.0);
+    record.elastic_force_n = elastic;
+    let load = ContactLoad {
+        load_point_velocity_m_per_s: v_t,
+        stiffness_n_per_m: k_t,
+        normal_load_n: normal,
     };
-    let pending = FrictionPending {
-        item: BatchItem {
-            state: carried.friction,
-            load: ContactLoad {
-                load_point_velocity_m_per_s: v_t,
-                stiffness_n_per_m: k_t,
-                normal_load_n: normal,
-            },
-            outcome: StepOutcome {
-                slip_rate_m_per_s: 0.0,
-                mu: 0.0,
-                iterations: 0,
-            },
-        },
-        // Work of the elastic force over the step (trapezoid in the force,
-        // penetration rate -v_n): exact storage for any overlap shape.
-        elastic_power_w: 0.5 * (carried.elastic_force_n + elastic) * (-v_n),
-    };
-    (record, pending)
+    (load, elastic_power)
 }
 
-/// Completes a record from its friction step (taken on `pending.item`, or
-/// not at all when `dt` is zero) and the carried energies.
+/// Completes a record from its friction step: `item` holds the step's load
+/// and, unless `dt` is zero (no step taken), the state and outcome the
+/// law's step wrote; `elastic_power_w` is [`contact_before_friction`]'s.
 #[inline]
-pub fn finish_friction(record: &mut ContactRecord, pending: &FrictionPending, dt: f64) {
+pub fn finish_friction(
+    record: &mut ContactRecord,
+    item: &BatchItem,
+    elastic_power_w: f64,
+    dt: f64,
+) {
     let old_force = record.friction.tangential_force_n;
     let (state, slip) = if dt > 0.0 {
-        (pending.item.state, pending.item.outcome.slip_rate_m_per_s)
+        (item.state, item.outcome.slip_rate_m_per_s)
     } else {
         (record.friction, 0.0)
     };
     // The load point's velocity is the relative tangential velocity.
-    let v_t = pending.item.load.load_point_velocity_m_per_s;
+    let v_t = item.load.load_point_velocity_m_per_s;
     // The kicks apply the old spring force over the first half step and the
     // new one over the second: energy accounting uses their mean. Of the
     // work it does on the relative tangential motion, the part on the slip is
@@ -207,7 +199,7 @@ pub fn finish_friction(record: &mut ContactRecord, pending: &FrictionPending, dt
     record.slip_rate_m_per_s = slip;
     record.friction_power_w = mean_tangential * slip;
     record.tangential_energy_j += mean_tangential * (v_t - slip) * dt;
-    record.normal_energy_j += pending.elastic_power_w * dt;
+    record.normal_energy_j += elastic_power_w * dt;
 }
 
 /// Force on `b` and the torques on `a` and `b` of a contact record.

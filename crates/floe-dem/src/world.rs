@@ -21,13 +21,12 @@ use rayon::prelude::*;
 use crate::broad_phase::{BroadPhase, CandidatePair, Periodicity};
 use crate::checkpoint::WorldState;
 use crate::contact_kernel::{
-    contact_before_friction, finish_friction, force_and_torques, overlap_stiffness, Body, Carried,
-    FrictionPending,
+    contact_before_friction, finish_friction, force_and_torques, overlap_stiffness, Body,
 };
 use crate::contacts::{BrokenContact, ContactModel, ContactRecord};
 use crate::error::DemError;
 use crate::floes::{Floes, Motion};
-use crate::geometry::{overlap_cached, ClipScratch, SeparatingEdge};
+use crate::geometry::{overlap_cached, ClipScratch, Overlap, SeparatingEdge};
 use crate::Vec2;
 
 /// Forces on floes from outside the floe assembly (wind, ocean, Coriolis).
@@ -116,26 +115,26 @@ fn pair_chunk(n_pairs: usize) -> usize {
 /// side.
 const FRICTION_BATCH: usize = 32;
 
+/// The outcome of a friction step not yet taken.
+const NO_OUTCOME: StepOutcome = StepOutcome {
+    slip_rate_m_per_s: 0.0,
+    mu: 0.0,
+    iterations: 0,
+};
+
 /// Placeholder for the unused slots of the friction batch.
-const NO_PENDING: FrictionPending = FrictionPending {
-    item: BatchItem {
-        state: ContactState {
-            tangential_force_n: 0.0,
-            theta: 0.0,
-            solver_guess: 0.0,
-        },
-        load: ContactLoad {
-            load_point_velocity_m_per_s: 0.0,
-            stiffness_n_per_m: 0.0,
-            normal_load_n: 0.0,
-        },
-        outcome: StepOutcome {
-            slip_rate_m_per_s: 0.0,
-            mu: 0.0,
-            iterations: 0,
-        },
+const NO_ITEM: BatchItem = BatchItem {
+    state: ContactState {
+        tangential_force_n: 0.0,
+        theta: 0.0,
+        solver_guess: 0.0,
     },
-    elastic_power_w: 0.0,
+    load: ContactLoad {
+        load_point_velocity_m_per_s: 0.0,
+        stiffness_n_per_m: 0.0,
+        normal_load_n: 0.0,
+    },
+    outcome: NO_OUTCOME,
 };
 
 /// The simulation state.
@@ -484,11 +483,12 @@ impl<F: ExternalForces> World<F> {
             free: f.is_free(i),
         };
         let placed = |i: usize, offset: Vec2| f.placed(i, offset, trig[i]);
-        let contact_of_pair = |pair: &CandidatePair,
-                               old: Option<&ContactRecord>,
+        // The overlap of a candidate pair, and the offset of the image of `b`
+        // that touches `a`.
+        let overlap_of_pair = |pair: &CandidatePair,
                                edge: &mut SeparatingEdge,
                                scratch: &mut ClipScratch|
-         -> Option<(ContactRecord, FrictionPending)> {
+         -> Option<(Overlap, Vec2)> {
             let (a, b) = (pair.a as usize, pair.b as usize);
             if !f.is_free(a) && !f.is_free(b) {
                 return None;
@@ -499,37 +499,17 @@ impl<F: ExternalForces> World<F> {
                 return None; // bounding circles apart: no clipping needed
             }
             let ov = overlap_cached(placed(a, Vec2::ZERO), placed(b, offset), edge, scratch)?;
-            let carried = old.map_or_else(
-                || {
-                    let mut fresh =
-                        Carried::new_contact(model, &ov, &body(a, Vec2::ZERO), &body(b, offset));
-                    // A pair that touched recently resumes its state.
-                    if let Ok(k) = broken.binary_search_by(|c| (c.a, c.b).cmp(&(pair.a, pair.b))) {
-                        fresh.friction.theta = broken[k].friction.theta;
-                        fresh.friction.solver_guess = broken[k].friction.solver_guess;
-                    }
-                    fresh
-                },
-                |c| Carried {
-                    friction: c.friction,
-                    elastic_force_n: c.elastic_force_n,
-                    normal_energy_j: c.normal_energy_j,
-                    tangential_energy_j: c.tangential_energy_j,
-                },
-            );
-            let (mut record, pending) = contact_before_friction(
-                model,
-                damping_ratio,
-                &body(a, Vec2::ZERO),
-                &body(b, offset),
-                &ov,
-                carried,
-            );
-            record.a = pair.a;
-            record.b = pair.b;
-            record.image_offset = offset;
-            record.age_steps = old.map_or(0, |c| c.age_steps + 1);
-            Some((record, pending))
+            Some((ov, offset))
+        };
+        // A contact that has just formed; a pair that touched recently
+        // resumes its state.
+        let new_contact = |pair: &CandidatePair, ov: &Overlap, a: &Body, b: &Body, offset: Vec2| {
+            let mut fresh = ContactRecord::new_contact(model, ov, a, b, (pair.a, pair.b), offset);
+            if let Ok(k) = broken.binary_search_by(|c| (c.a, c.b).cmp(&(pair.a, pair.b))) {
+                fresh.friction.theta = broken[k].friction.theta;
+                fresh.friction.solver_guess = broken[k].friction.solver_guess;
+            }
+            fresh
         };
         let remember = model.memory_s > 0.0;
         let time_s = self.time_s;
@@ -583,32 +563,28 @@ impl<F: ExternalForces> World<F> {
                     ended.clear();
                     let TaskWorkspace {
                         clip: scratch,
-                        pending,
+                        slots,
+                        elastic_power,
                         items,
                     } = workspace;
                     let mut waiting = 0;
-                    let mut flush =
-                        |pending: &mut [(Slot, FrictionPending)],
-                         run: &mut [ContactRecord],
-                         born: &mut Vec<ContactRecord>| {
-                            let items = &mut items[..pending.len()];
-                            if dt > 0.0 {
-                                for (item, (_, p)) in items.iter_mut().zip(pending.iter()) {
-                                    *item = p.item;
-                                }
-                                model.law.step_batch(items, dt);
-                                for (item, (_, p)) in items.iter().zip(pending.iter_mut()) {
-                                    p.item = *item;
-                                }
-                            }
-                            for (slot, p) in pending.iter() {
-                                let record = match *slot {
-                                    Slot::Run(k) => &mut run[k],
-                                    Slot::Born(k) => &mut born[k],
-                                };
-                                finish_friction(record, p, dt);
-                            }
-                        };
+                    // Steps the waiting contacts' friction and completes their records.
+                    let flush = |items: &mut [BatchItem],
+                                 slots: &[Slot],
+                                 elastic_power: &[f64],
+                                 run: &mut [ContactRecord],
+                                 born: &mut Vec<ContactRecord>| {
+                        if dt > 0.0 {
+                            model.law.step_batch(items, dt);
+                        }
+                        for ((slot, item), &power) in slots.iter().zip(&*items).zip(elastic_power) {
+                            let record = match *slot {
+                                Slot::Run(k) => &mut run[k],
+                                Slot::Born(k) => &mut born[k],
+                            };
+                            finish_friction(record, item, power, dt);
+                        }
+                    };
                     let mut k = 0;
                     for (pair, edge) in pairs.iter().zip(edges) {
                         let key = (pair.a, pair.b);
@@ -621,34 +597,47 @@ impl<F: ExternalForces> World<F> {
                             k += 1;
                             k - 1
                         });
-                        match contact_of_pair(pair, old.map(|i| &run[i]), edge, scratch) {
-                            Some((record, p)) => {
-                                let slot = match old {
-                                    Some(i) => {
-                                        run[i] = record;
-                                        Slot::Run(i)
-                                    }
-                                    None => {
-                                        born.push(record);
-                                        Slot::Born(born.len() - 1)
-                                    }
-                                };
-                                pending[waiting] = (slot, p);
-                                waiting += 1;
-                                if waiting == FRICTION_BATCH {
-                                    flush(&mut pending[..], run, born);
-                                    waiting = 0;
-                                }
+                        let Some((ov, offset)) = overlap_of_pair(pair, edge, scratch) else {
+                            if let Some(i) = old {
+                                end_contact(&mut run[i], ended);
+                            }
+                            continue;
+                        };
+                        let (a, b) = (
+                            body(pair.a as usize, Vec2::ZERO),
+                            body(pair.b as usize, offset),
+                        );
+                        let (slot, record) = match old {
+                            Some(i) => {
+                                let record = &mut run[i];
+                                record.age_steps += 1;
+                                record.image_offset = offset;
+                                (Slot::Run(i), record)
                             }
                             None => {
-                                if let Some(i) = old {
-                                    end_contact(&mut run[i], ended);
-                                }
+                                born.push(new_contact(pair, &ov, &a, &b, offset));
+                                let i = born.len() - 1;
+                                (Slot::Born(i), &mut born[i])
                             }
+                        };
+                        let (load, power) =
+                            contact_before_friction(model, damping_ratio, &a, &b, &ov, record);
+                        items[waiting] = BatchItem {
+                            state: record.friction,
+                            load,
+                            outcome: NO_OUTCOME,
+                        };
+                        slots[waiting] = slot;
+                        elastic_power[waiting] = power;
+                        waiting += 1;
+                        if waiting == FRICTION_BATCH {
+                            flush(&mut items[..], &slots[..], &elastic_power[..], run, born);
+                            waiting = 0;
                         }
                     }
                     if waiting > 0 {
-                        flush(&mut pending[..waiting], run, born);
+                        let n = waiting;
+                        flush(&mut items[..n], &slots[..n], &elastic_power[..n], run, born);
                     }
                     while k < run.len() {
                         end_contact(&mut run[k], ended);
@@ -863,10 +852,12 @@ const DEAD: u32 = u32::MAX;
 struct TaskWorkspace {
     /// The clipper's buffers.
     clip: ClipScratch,
-    /// Friction steps waiting, [`FRICTION_BATCH`] at a time, with where
-    /// their record is: in place in the run, or among the born.
-    pending: [(Slot, FrictionPending); FRICTION_BATCH],
-    /// The waiting steps' items, side by side for `Law::step_batch`.
+    /// Friction steps waiting, [`FRICTION_BATCH`] at a time: where their
+    /// record is (in place in the run, or among the born), ...
+    slots: [Slot; FRICTION_BATCH],
+    /// ... the power of their elastic normal force, W, ...
+    elastic_power: [f64; FRICTION_BATCH],
+    /// ... and their items, side by side for `Law::step_batch`.
     items: [BatchItem; FRICTION_BATCH],
 }
 
@@ -874,8 +865,9 @@ impl Default for TaskWorkspace {
     fn default() -> Self {
         Self {
             clip: ClipScratch::default(),
-            pending: [(Slot::Run(0), NO_PENDING); FRICTION_BATCH],
-            items: [NO_PENDING.item; FRICTION_BATCH],
+            slots: [Slot::Run(0); FRICTION_BATCH],
+            elastic_power: [0.0; FRICTION_BATCH],
+            items: [NO_ITEM; FRICTION_BATCH],
         }
     }
 }
