@@ -209,8 +209,14 @@ pub fn force_and_torques(
     a_position: Vec2,
     b_position: Vec2,
 ) -> (Vec2, f64, f64) {
-    let f = c.normal * c.normal_force_n + perp(c.normal) * c.tangential_force_n();
+    let f = contact_force_on_b(c);
     let torque_b = cross(c.point - b_position, f);
     let torque_a = cross(c.point - a_position, -f);
     (f, torque_a, torque_b)
+}
+
+/// Force on `b` of a contact record, N.
+#[inline(always)]
+pub fn contact_force_on_b(c: &ContactRecord) -> Vec2 {
+    c.normal * c.normal_force_n + perp(c.normal) * c.tangential_force_n()
 }

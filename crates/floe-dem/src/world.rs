@@ -21,12 +21,13 @@ use rayon::prelude::*;
 use crate::broad_phase::{BroadPhase, CandidatePair, Periodicity};
 use crate::checkpoint::WorldState;
 use crate::contact_kernel::{
-    contact_before_friction, finish_friction, force_and_torques, overlap_stiffness, Body,
+    contact_before_friction, contact_force_on_b, finish_friction, force_and_torques,
+    overlap_stiffness, Body,
 };
 use crate::contacts::{BrokenContact, ContactModel, ContactRecord};
 use crate::error::DemError;
 use crate::floes::{Floes, Motion};
-use crate::geometry::{overlap_cached, ClipScratch, Overlap, SeparatingEdge};
+use crate::geometry::{cross, overlap_cached, ClipScratch, Overlap, SeparatingEdge};
 use crate::Vec2;
 
 /// Forces on floes from outside the floe assembly (wind, ocean, Coriolis).
@@ -740,19 +741,18 @@ impl<F: ExternalForces> World<F> {
                     .iter()
                     .map(|&k| &contacts[k as usize]);
                 let as_a = &contacts[a_start[i] as usize..a_start[i + 1] as usize];
-                for c in as_b.chain(as_a) {
-                    let (pa, pb) = (
-                        f.position[c.a as usize],
-                        f.position[c.b as usize] + c.image_offset,
-                    );
-                    let (fb, ta, tb) = force_and_torques(c, pa, pb);
-                    if c.b as usize == i {
-                        fsum += fb;
-                        tsum += tb;
-                    } else {
-                        fsum -= fb;
-                        tsum += ta;
-                    }
+                // Each contact is visited from both its floes; each visit
+                // computes only its own floe's torque (the expressions of
+                // `force_and_torques`, so the same bits).
+                for c in as_b {
+                    let fb = contact_force_on_b(c);
+                    fsum += fb;
+                    tsum += cross(c.point - (f.position[i] + c.image_offset), fb);
+                }
+                for c in as_a {
+                    let fb = contact_force_on_b(c);
+                    fsum -= fb;
+                    tsum += cross(c.point - f.position[i], -fb);
                 }
                 *force = fsum;
                 *torque = tsum;
