@@ -210,7 +210,7 @@ impl<F: ExternalForces> World<F> {
         let mut world = Self::new_checked(floes, model, forcing, periodicity, dt_s)?;
         let moved_far = world.prepare_contacts();
         world.update_contacts(0.0, moved_far);
-        world.gather_forces();
+        world.gather_forces_and_contact_power();
         Ok(world)
     }
 
@@ -388,27 +388,15 @@ impl<F: ExternalForces> World<F> {
         self.time_s += dt;
         self.steps += 1;
         // Keep this step's starting external forces for the work integral;
-        // gather_forces overwrites every entry of the other buffer.
+        // gather_forces_and_contact_power overwrites every entry of the other buffer.
         std::mem::swap(&mut self.external_force, &mut self.previous_external_force);
         std::mem::swap(
             &mut self.external_torque,
             &mut self.previous_external_torque,
         );
         self.update_contacts(dt, moved_far);
-        self.gather_forces();
-        // Kick.
-        let f = &mut self.floes;
-        let (force, torque) = (&self.force, &self.torque);
-        (&mut f.velocity[..owned], &mut f.angular_velocity[..owned])
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(i, (v, omega))| {
-                if let Motion::Free = f.motion[i] {
-                    *v += force[i] / f.mass_kg[i] * (0.5 * dt);
-                    *omega += torque[i] / f.inertia_kg_m2[i] * (0.5 * dt);
-                }
-            });
-        self.account_energy(dt);
+        self.gather_forces_and_contact_power();
+        self.kick_and_account_energy(dt);
     }
 
     /// Per-floe rotation and broad-phase staleness, when [`World::step`] has
@@ -451,22 +439,31 @@ impl<F: ExternalForces> World<F> {
         debug_assert!(chunk > 0);
         let n_chunks = pairs.len().div_ceil(chunk);
         {
-            // One binary search per chunk, in parallel: each probes records
-            // spread over the whole list, a cache miss apiece (about 1 ms
-            // per step at 1e5 floes done one after the other).
+            // One binary search per chunk, in parallel for long lists: each
+            // probes records spread over the whole list, a cache miss apiece
+            // (about 1 ms per step at 1e5 floes done one after the other).
+            // A short list is searched in turn: a parallel region costs more
+            // there than its few dozen searches in cache.
             let previous = &self.contacts;
-            pairs
-                .par_chunks(chunk)
-                .enumerate()
-                .map(|(j, chunk)| {
-                    let first = (chunk[0].a, chunk[0].b);
-                    if j == 0 {
-                        0
-                    } else {
-                        previous.partition_point(|c| (c.a, c.b) < first)
-                    }
-                })
-                .collect_into_vec(&mut self.chunk_start);
+            let start_of = |(j, chunk): (usize, &[CandidatePair])| {
+                let first = (chunk[0].a, chunk[0].b);
+                if j == 0 {
+                    0
+                } else {
+                    previous.partition_point(|c| (c.a, c.b) < first)
+                }
+            };
+            if n_chunks <= PAIR_TASKS {
+                self.chunk_start.clear();
+                self.chunk_start
+                    .extend(pairs.chunks(chunk).enumerate().map(start_of));
+            } else {
+                pairs
+                    .par_chunks(chunk)
+                    .enumerate()
+                    .map(start_of)
+                    .collect_into_vec(&mut self.chunk_start);
+            }
             if self.chunk_start.is_empty() {
                 self.chunk_start.push(0);
             }
@@ -680,8 +677,10 @@ impl<F: ExternalForces> World<F> {
         self.energy.released_at_break_j += released;
     }
 
-    /// External forces and the contact forces, gathered per floe in contact order.
-    fn gather_forces(&mut self) {
+    /// External forces and the contact forces, gathered per floe in contact
+    /// order; and, beside them, the contacts' powers in fixed blocks (summed
+    /// into the ledger by [`World::kick_and_account_energy`]).
+    fn gather_forces_and_contact_power(&mut self) {
         let n = self.floes.len();
         // Contacts of each floe, in contact order. The list is sorted by
         // (a, b) with a < b, so a floe's contacts as `a` are one block of
@@ -724,67 +723,112 @@ impl<F: ExternalForces> World<F> {
         }
         let (f, contacts, forcing, t) = (&self.floes, &self.contacts, &self.forcing, self.time_s);
         let (start, adjacency, a_start) = (&self.adjacency_start, &self.adjacency, &self.a_start);
-        (
-            &mut self.force,
-            &mut self.torque,
-            (&mut self.external_force, &mut self.external_torque),
-        )
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(i, (force, torque, (ext_f, ext_t)))| {
-                let (ef, et) = if f.is_free(i) {
-                    forcing.force_and_torque(t, f, i)
-                } else {
-                    (Vec2::ZERO, 0.0)
-                };
-                *ext_f = ef;
-                *ext_t = et;
-                let (mut fsum, mut tsum) = (ef, et);
-                let as_b = adjacency[start[i] as usize..start[i + 1] as usize]
-                    .iter()
-                    .map(|&k| &contacts[k as usize]);
-                let as_a = &contacts[a_start[i] as usize..a_start[i + 1] as usize];
-                // Each contact is visited from both its floes; each visit
-                // computes only its own floe's torque (the expressions of
-                // `force_and_torques`, so the same bits).
-                for c in as_b {
-                    let fb = contact_force_on_b(c);
-                    fsum += fb;
-                    tsum += cross(c.point - (f.position[i] + c.image_offset), fb);
-                }
-                for c in as_a {
-                    let fb = contact_force_on_b(c);
-                    fsum -= fb;
-                    tsum += cross(c.point - f.position[i], -fb);
-                }
-                *force = fsum;
-                *torque = tsum;
-            });
+        let (force, torque) = (&mut self.force, &mut self.torque);
+        let (external_force, external_torque) =
+            (&mut self.external_force, &mut self.external_torque);
+        let energy_partials = &mut self.energy_partials;
+        // Both passes only read the contacts: one parallel region for the two
+        // (each region wakes the pool, a visible cost at 1e3 floes).
+        rayon::join(
+            || {
+                (force, torque, (external_force, external_torque))
+                    .into_par_iter()
+                    .enumerate()
+                    .for_each(|(i, (force, torque, (ext_f, ext_t)))| {
+                        let (ef, et) = if f.is_free(i) {
+                            forcing.force_and_torque(t, f, i)
+                        } else {
+                            (Vec2::ZERO, 0.0)
+                        };
+                        *ext_f = ef;
+                        *ext_t = et;
+                        let (mut fsum, mut tsum) = (ef, et);
+                        let as_b = adjacency[start[i] as usize..start[i + 1] as usize]
+                            .iter()
+                            .map(|&k| &contacts[k as usize]);
+                        let as_a = &contacts[a_start[i] as usize..a_start[i + 1] as usize];
+                        // Each contact is visited from both its floes; each visit
+                        // computes only its own floe's torque (the expressions of
+                        // `force_and_torques`, so the same bits).
+                        for c in as_b {
+                            let fb = contact_force_on_b(c);
+                            fsum += fb;
+                            tsum += cross(c.point - (f.position[i] + c.image_offset), fb);
+                        }
+                        for c in as_a {
+                            let fb = contact_force_on_b(c);
+                            fsum -= fb;
+                            tsum += cross(c.point - f.position[i], -fb);
+                        }
+                        *force = fsum;
+                        *torque = tsum;
+                    });
+            },
+            // The contacts' powers, summed over fixed blocks of the contact
+            // list in parallel and added in block order (in
+            // `kick_and_account_energy`): the same sums for any thread count,
+            // and, as they depend on the contact list alone, after a resume
+            // from a checkpoint too. (Summed instead per chunk of candidate
+            // pairs inside the contact update, they depended on the broad
+            // phase's pair list, which a resume rebuilds differently, and a
+            // resumed run drifted from the uninterrupted one by an ulp.) The
+            // velocities they read are the walls', which the kick leaves alone.
+            || {
+                contacts
+                    .par_chunks(ENERGY_CHUNK)
+                    .map(|block| {
+                        let mut power = ContactPower::default();
+                        for c in block {
+                            power.add(c, f);
+                        }
+                        power
+                    })
+                    .collect_into_vec(energy_partials);
+            },
+        );
     }
 
-    /// Work of forcing and walls, and dissipation, over the step just taken.
-    fn account_energy(&mut self, dt: f64) {
-        let f = &self.floes;
-        // Trapezoidal in the force, with the velocity at the end of the step
-        // and at the half step averaged through the kicks. Summed over fixed
-        // blocks of floes in parallel and added in block order, as the
-        // contacts' powers below: the same sum for any thread count (one
-        // pass after the other, it was 1-2 % of a step on two threads).
-        let (force, torque) = (&self.external_force, &self.external_torque);
+    /// The second kick, and the work of forcing and walls and the
+    /// dissipation over the step just taken.
+    fn kick_and_account_energy(&mut self, dt: f64) {
+        let Floes {
+            velocity,
+            angular_velocity,
+            motion,
+            mass_kg,
+            inertia_kg_m2,
+            owned,
+            ..
+        } = &mut self.floes;
+        let owned = *owned;
+        let (force, torque) = (&self.force, &self.torque);
+        let (external_force, external_torque) = (&self.external_force, &self.external_torque);
         let (previous_force, previous_torque) = (
             &self.previous_external_force,
             &self.previous_external_torque,
         );
-        (0..f.owned)
+        // The kick, and in the same pass the power of the external forces:
+        // trapezoidal in the force, with the velocity at the end of the step
+        // and at the half step averaged through the kicks. Summed over fixed
+        // blocks of floes and added in block order: the same sum for any
+        // thread count (summed in one pass after the other, it was 1-2 % of
+        // a step on two threads).
+        (
+            velocity[..owned].par_chunks_mut(ENERGY_CHUNK),
+            angular_velocity[..owned].par_chunks_mut(ENERGY_CHUNK),
+        )
             .into_par_iter()
-            .step_by(ENERGY_CHUNK)
-            .map(|start| {
+            .enumerate()
+            .map(|(block, (vs, omegas))| {
                 let mut power_w = 0.0;
-                for i in start..(start + ENERGY_CHUNK).min(f.owned) {
-                    if f.is_free(i) {
-                        let mean_f = 0.5 * (previous_force[i] + force[i]);
-                        let mean_t = 0.5 * (previous_torque[i] + torque[i]);
-                        power_w += mean_f.dot(f.velocity[i]) + mean_t * f.angular_velocity[i];
+                for (k, (v, omega)) in vs.iter_mut().zip(omegas).enumerate() {
+                    let i = block * ENERGY_CHUNK + k;
+                    if let Motion::Free = motion[i] {
+                        *v += force[i] / mass_kg[i] * (0.5 * dt);
+                        *omega += torque[i] / inertia_kg_m2[i] * (0.5 * dt);
+                        let mean_f = 0.5 * (previous_force[i] + external_force[i]);
+                        let mean_t = 0.5 * (previous_torque[i] + external_torque[i]);
+                        power_w += mean_f.dot(*v) + mean_t * *omega;
                     }
                 }
                 power_w
@@ -793,23 +837,6 @@ impl<F: ExternalForces> World<F> {
         for p in &self.forcing_partials {
             self.energy.forcing_work_j += dt * p;
         }
-        // The contacts' powers, summed over fixed blocks of the contact list
-        // in parallel and added in block order: the same sums for any thread
-        // count, and, as they depend on the contact list alone, after a
-        // resume from a checkpoint too. (Summed instead per chunk of
-        // candidate pairs inside the contact update, they depended on the
-        // broad phase's pair list, which a resume rebuilds differently, and
-        // a resumed run drifted from the uninterrupted one by an ulp.)
-        self.contacts
-            .par_chunks(ENERGY_CHUNK)
-            .map(|block| {
-                let mut power = ContactPower::default();
-                for c in block {
-                    power.add(c, f);
-                }
-                power
-            })
-            .collect_into_vec(&mut self.energy_partials);
         let mut power = ContactPower::default();
         for p in &self.energy_partials {
             power.friction_w += p.friction_w;
