@@ -287,6 +287,8 @@ impl RateState {
         let mut setup = [IDLE_SETUP; LANES];
         let mut solver = [Solver::new(0.0, TOLERANCE, 0.0); LANES];
         let mut next = 0;
+        let mut x = [0.0; LANES];
+        let mut constants = [IDLE_SETUP.constants; LANES];
         loop {
             // Refill idle lanes (contacts that need no solve finish here).
             for l in 0..LANES {
@@ -311,10 +313,11 @@ impl RateState {
             if !active.contains(&true) {
                 return;
             }
-            let evals = self.residual_lanes::<LANES>(
-                std::array::from_fn(|l| solver[l].x),
-                &std::array::from_fn(|l| setup[l].constants),
-            );
+            for l in 0..LANES {
+                x[l] = solver[l].x;
+                constants[l] = setup[l].constants;
+            }
+            let evals = self.residual_lanes::<LANES>(x, &constants);
             for l in 0..LANES {
                 if active[l] {
                     if let Some(root) = solver[l].update(evals[l], EndOfStep::advanced) {
@@ -341,62 +344,90 @@ impl RateState {
         q: [f64; N],
         c: &[StepConstants; N],
     ) -> [Eval<EndOfStep>; N] {
+        // Each stage a plain loop over arrays set up front: built with
+        // `std::array::from_fn` the stages cost about 200 instructions per
+        // contact in copies (callgrind, docs/performance.md).
         let p = &self.params;
-        let speed: [f64; N] = std::array::from_fn(|l| p.v_star_m_per_s * q[l].exp());
-        let state: [(f64, f64, f64); N] = std::array::from_fn(|l| {
+        let mut speed = [0.0; N];
+        for l in 0..N {
+            speed[l] = p.v_star_m_per_s * q[l].exp();
+        }
+        let mut state = [(0.0, 0.0, 0.0); N];
+        for l in 0..N {
             let slip = SlipMeasure {
                 q: q[l],
                 x: speed[l] * c[l].dt_over_l,
             };
-            evolve(
+            state[l] = evolve(
                 self.state_law,
                 p.b,
                 c[l].theta,
                 slip,
                 c[l].ln_vstar_dt_over_l,
-            )
-        });
+            );
+        }
         // d(speed)/dq = speed, so the spring term is its own derivative.
-        let spring: [f64; N] = std::array::from_fn(|l| c[l].kappa * speed[l]);
-        let rdr: [(f64, f64, f64); N] = match self.form {
-            Form::Published => std::array::from_fn(|l| {
-                let (theta, dtheta, d2theta) = state[l];
-                (
-                    p.mu0 + theta + p.a * q[l] - c[l].trial_mu + spring[l],
-                    p.a + dtheta + spring[l],
-                    d2theta + spring[l],
-                )
-            }),
+        let mut spring = [0.0; N];
+        for l in 0..N {
+            spring[l] = c[l].kappa * speed[l];
+        }
+        let mut rdr = [(0.0, 0.0, 0.0); N];
+        match self.form {
+            Form::Published => {
+                for l in 0..N {
+                    let (theta, dtheta, d2theta) = state[l];
+                    rdr[l] = (
+                        p.mu0 + theta + p.a * q[l] - c[l].trial_mu + spring[l],
+                        p.a + dtheta + spring[l],
+                        d2theta + spring[l],
+                    );
+                }
+            }
             Form::Regularized => {
-                let m: [(f64, f64); N] = std::array::from_fn(|l| {
-                    asinh_of_exp(q[l] - std::f64::consts::LN_2 + (p.mu0 + state[l].0) / p.a)
-                });
+                let mut m = [(0.0, 0.0); N];
+                for l in 0..N {
+                    m[l] = asinh_of_exp(q[l] - std::f64::consts::LN_2 + (p.mu0 + state[l].0) / p.a);
+                }
                 // With g = dm/dz: dz/dq = 1 + dtheta/A, so
                 // d(A m)/dq = (A + dtheta) g, and as dg/dz = g (1 - g^2),
                 // d2(A m)/dq2 = g (1 - g^2) (A + dtheta)^2 / A + g d2theta.
-                std::array::from_fn(|l| {
+                for l in 0..N {
                     let (m, g) = m[l];
                     let (_, dtheta, d2theta) = state[l];
                     let slope = p.a + dtheta;
-                    (
+                    rdr[l] = (
                         p.a * m - c[l].trial_mu.abs() + spring[l],
                         slope * g + spring[l],
                         g * (1.0 - g * g) * slope * slope / p.a + g * d2theta + spring[l],
-                    )
-                })
+                    );
+                }
             }
-        };
-        std::array::from_fn(|l| Eval {
-            r: rdr[l].0,
-            dr: rdr[l].1,
-            d2r: rdr[l].2,
+        }
+        let mut evals = [Eval {
+            r: 0.0,
+            dr: 0.0,
+            d2r: 0.0,
             payload: EndOfStep {
-                theta: state[l].0,
-                speed: speed[l],
-                dtheta: state[l].1,
-                d2theta: if state[l].2.is_nan() { 0.0 } else { state[l].2 },
+                theta: 0.0,
+                speed: 0.0,
+                dtheta: 0.0,
+                d2theta: 0.0,
             },
-        })
+        }; N];
+        for l in 0..N {
+            evals[l] = Eval {
+                r: rdr[l].0,
+                dr: rdr[l].1,
+                d2r: rdr[l].2,
+                payload: EndOfStep {
+                    theta: state[l].0,
+                    speed: speed[l],
+                    dtheta: state[l].1,
+                    d2theta: if state[l].2.is_nan() { 0.0 } else { state[l].2 },
+                },
+            };
+        }
+        evals
     }
 
     /// The part of a step before the solve.
