@@ -1,6 +1,7 @@
 //! The per-contact update must not allocate: the DEM calls it for every
+//! contact of every step. Counted per thread with a global allocator in this
+//! test binary.
 #![allow(unsafe_code)] // a counting global allocator needs `unsafe impl GlobalAlloc`
-//! contact of every step. Counted with a global allocator in this test binary.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

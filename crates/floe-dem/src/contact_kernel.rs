@@ -117,7 +117,7 @@ impl ContactRecord {
 /// (`FrictionLaw::step`, or `Law::step_batch` for many contacts at once, as
 /// the world does), then [`finish_friction`]. The record is updated in
 /// place, not returned: copying the 160 B record and the friction step's
-/// items in and out was about 4 % of a step's instructions
+/// items in and out was about 1 % of a step's instructions
 /// (docs/performance.md).
 #[inline]
 pub fn contact_before_friction(
@@ -148,9 +148,10 @@ pub fn contact_before_friction(
     let damping = 2.0 * damping_ratio * (k_n * reduced_mass).sqrt();
     // v_n > 0 is separation: the dashpot resists it, and the contact never pulls.
     let normal = (elastic - damping * v_n).max(0.0);
-    let damping_power = (elastic - normal) * v_n; // >= 0 whichever way
-                                                  // Work of the elastic force over the step (trapezoid in the force,
-                                                  // penetration rate -v_n): exact storage for any overlap shape.
+    // >= 0 whichever way.
+    let damping_power = (elastic - normal) * v_n;
+    // Work of the elastic force over the step (trapezoid in the force,
+    // penetration rate -v_n): exact storage for any overlap shape.
     let elastic_power = 0.5 * (record.elastic_force_n + elastic) * (-v_n);
 
     let k_t = k_n / (2.0 * (1.0 + model.poisson_ratio));

@@ -849,8 +849,10 @@ impl<F: ExternalForces> World<F> {
     }
 }
 
-/// Contacts per block of the energy sums: fixed, so that the sums do not
-/// depend on the thread count.
+/// Contacts (or floes) per block of the energy sums: the contacts' powers
+/// and the forcing work of `kick_and_account_energy` are summed block by
+/// block in parallel, then the blocks' sums in order. Fixed, so that the
+/// sums do not depend on the thread count.
 const ENERGY_CHUNK: usize = 4096;
 
 /// Power of a set of contacts over a step.
@@ -900,12 +902,13 @@ const DEAD: u32 = u32::MAX;
 struct TaskWorkspace {
     /// The clipper's buffers.
     clip: ClipScratch,
-    /// Friction steps waiting, [`FRICTION_BATCH`] at a time: where their
-    /// record is (in place in the run, or among the born), ...
+    /// Where the records of the friction steps waiting ([`FRICTION_BATCH`]
+    /// at a time) are: in place in the run, or among the born.
     slots: [Slot; FRICTION_BATCH],
-    /// ... the power of their elastic normal force, W, ...
+    /// The power of the waiting contacts' elastic normal force, W.
     elastic_power: [f64; FRICTION_BATCH],
-    /// ... and their items, side by side for `Law::step_batch`.
+    /// The waiting friction steps' items, side by side for
+    /// `Law::step_batch`.
     items: [BatchItem; FRICTION_BATCH],
 }
 

@@ -46,11 +46,13 @@ const MAX_EVALUATIONS: u32 = 400;
 /// and positive as `x -> +inf` (not necessarily monotone in between).
 ///
 /// Starts from `x0`; takes Halley steps (Newton's where the residual gives
-/// no second derivative) while they stay inside the bracket found so far,
-/// bisects otherwise, and expands geometrically until a sign change is
-/// found. Converges when `|f| <= r_tol` (the point evaluated is returned),
+/// no second derivative, or where Halley's would be shorter than 2/3 of
+/// Newton's, as beside a local extremum) while they stay inside the bracket
+/// found so far, bisects otherwise, and expands geometrically until a sign
+/// change is found. Converges when `|f| <= r_tol` (the point evaluated is returned),
 /// or when the correction `dx` is small enough that the corrected point
-/// `x + dx` is within `tol * |x|` of the root. Newton's error after a step is
+/// `x + dx` is within `tol * |x|` of the root (for a Halley step, only where
+/// it agrees with Newton's, `|r r''| <= r'^2`). Newton's error after a step is
 /// `C dx^2`, Halley's `C dx^3`, with `C` of order one for the laws'
 /// residuals, so `dx^2 <= tol |x|` (Newton) or `|dx|^3 <= tol |x|` (Halley)
 /// suffices (relative: near `x = 0` the unknown of the regularised law is
@@ -155,16 +157,22 @@ impl Solver {
         let halley_denominator = 2.0 * e.dr * e.dr - e.r * e.d2r;
         let halley = x - 2.0 * e.r * e.dr / halley_denominator;
         let cubic = halley_denominator > 0.0 && halley.is_finite();
-        // The step to take: Halley's where it exists, else Newton's.
-        let (step_to, converged) = if downhill && cubic {
+        // Halley's step is `dx_newton / (1 - u)` with `u = r r'' / (2 r'^2)`
+        // (`u < 1` where `cubic`), and its error bound `C dx^3` holds near a
+        // simple root, where the two steps agree (`u` near 0).
+        // Beside a local extremum `u` is large and negative, and Halley's
+        // step tiny however far the root is: it can round to no step at all,
+        // and the solver would evaluate the same point until its budget ran
+        // out. So Halley's step is taken only where it is at least 2/3 of
+        // Newton's (`u >= -1/2`), and convergence on it is trusted only
+        // where `|u| <= 1/2`. (Where `1/2 < u < 1`, down a convex
+        // exponential branch, Halley's is the longer step and the better
+        // one: Newton's crawls by about one unit per step there.)
+        let halley_ok = downhill && cubic && e.r * e.d2r >= -e.dr * e.dr;
+        let near_root = (e.r * e.d2r).abs() <= e.dr * e.dr;
+        // The step to take: Halley's where it is trusted, else Newton's.
+        let (step_to, converged) = if halley_ok {
             let dx = halley - x;
-            // Halley's error bound `C dx^3` holds near a simple root, where
-            // its step and Newton's agree: `dx = dx_newton / (1 - u)` with
-            // `u = r r'' / (2 r'^2)`. Beside a local extremum `u` is large and
-            // Halley's step tiny however far the root is, so convergence
-            // also asks `|u| <= 1/2` (the step within 2/3 to 2 times
-            // Newton's).
-            let near_root = (e.r * e.d2r).abs() <= e.dr * e.dr;
             (
                 halley,
                 near_root && dx.abs() * dx * dx <= self.tol * x.abs(),
@@ -342,6 +350,27 @@ mod tests {
                 g(root.x).r
             );
         }
+    }
+
+    #[test]
+    fn a_halley_step_that_rounds_to_no_step_does_not_stall_the_solver() {
+        // r = x - 1 with a huge (made-up) curvature: Halley's step from
+        // x = 3 is 4 / 2e308 = 0, which would have the solver evaluate x = 3
+        // until its budget ran out. Newton's step lands on the root.
+        let root = solve(
+            |x: f64| Eval {
+                r: x - 1.0,
+                dr: 1.0,
+                d2r: -1e308,
+                payload: (),
+            },
+            keep,
+            3.0,
+            1e-12,
+            0.0,
+        );
+        assert!((root.x - 1.0).abs() < 1e-12, "x {}", root.x);
+        assert!(root.evaluations <= 3, "{} evaluations", root.evaluations);
     }
 
     #[test]
