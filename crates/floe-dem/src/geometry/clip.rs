@@ -95,8 +95,10 @@ impl<const N: usize> Poly<N> {
 /// candidate pair, about 2 % of a step's instructions.
 #[derive(Debug, Clone)]
 pub struct ClipScratch {
-    a: Poly<MAX_VERTICES>,
-    b: Poly<MAX_VERTICES>,
+    /// The placed floes, with one slot beyond the vertices for a copy of
+    /// the first (edges then need no wrap-around index).
+    a: Poly<{ MAX_VERTICES + 1 }>,
+    b: Poly<{ MAX_VERTICES + 1 }>,
     /// Clipped polygons, with one slot beyond the `na + nb` vertices an
     /// overlap can have, for a copy of the first vertex.
     bufs: [Poly<{ 2 * MAX_VERTICES + 1 }>; 2],
@@ -153,10 +155,11 @@ fn next(i: usize, n: usize) -> usize {
 }
 
 /// `vertices` rotated, then shifted by `shift` if given, into `poly`: at
-/// most [`MAX_VERTICES`] (the floe constructor refuses more).
+/// most [`MAX_VERTICES`] (the floe constructor refuses more), and the first
+/// again after the last.
 #[inline(always)]
 fn place(
-    poly: &mut Poly<MAX_VERTICES>,
+    poly: &mut Poly<{ MAX_VERTICES + 1 }>,
     vertices: &[Vec2],
     shift: Option<Vec2>,
     cos: f64,
@@ -170,6 +173,7 @@ fn place(
         Some(shift) => slots.for_each(|(slot, &v)| *slot = shift + rotate(v, cos, sin)),
         None => slots.for_each(|(slot, &v)| *slot = rotate(v, cos, sin)),
     }
+    poly.v[n] = poly.v[0];
     poly.len = n;
 }
 
@@ -198,10 +202,15 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
     place(&mut scratch.a, a.vertices, None, a.cos, a.sin);
     place(&mut scratch.b, b.vertices, Some(offset), b.cos, b.sin);
     let (result, exact_zero) = scratch.clip(a.radius_m);
-    let poly = scratch.bufs[result].as_slice();
-    if poly.len() < 3 {
+    let len = scratch.bufs[result].len;
+    if len < 3 {
         return None;
     }
+    // The first vertex again after the last (the clipper leaves that slot
+    // free), so that the edges below need no wrap-around index.
+    scratch.bufs[result].v[len] = scratch.bufs[result].v[0];
+    let closed = &scratch.bufs[result].v[..=len];
+    let poly = &closed[..len];
     let (area, centroid) = crate::geometry::shape::area_and_centroid(poly);
     let size = a.radius_m.min(b.radius_m);
     if area <= AREA_FLOOR * size * size {
@@ -222,10 +231,10 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
     };
     let (normal, length) = match chord {
         Some(chord) => (
-            perp(snap_to_overlap_edge(chord, poly)).normalize(),
+            perp(snap_to_overlap_edge(chord, closed)).normalize(),
             chord.length(),
         ),
-        None => principal_normal(poly, centroid),
+        None => principal_normal(closed, centroid),
     };
     let scale = a
         .position
@@ -574,7 +583,7 @@ fn clip_convex<const N: usize, const M: usize>(
     // variable one was a `memset` call per pair).
     tags[0][..N.min(M)].fill(ON_FIRST);
     bufs[0].len = ns;
-    let n = clip.len.min(N);
+    let n = clip.len.min(N - 1);
     let mut cur = 0;
     let mut exact_zero = false;
     for i in 0..n {
@@ -582,7 +591,8 @@ fn clip_convex<const N: usize, const M: usize>(
         if m == 0 {
             return (cur, exact_zero);
         }
-        let (s, e) = (clip.v[i], clip.v[next(i, n)]);
+        // `clip` repeats its first vertex after the last (`place`).
+        let (s, e) = (clip.v[i], clip.v[i + 1]);
         let dir = e - s;
         // An edge whose line keeps the subject's whole bounding circle
         // inside, with room to spare, keeps every vertex strictly inside
@@ -753,14 +763,15 @@ const SNAP_SINE: f64 = 0.17; // about 10 degrees
 /// then the diagonal, off the shared edge by about depth/length, and the
 /// pressed edge itself is the right contact line. For a corner pressed into
 /// an edge the chord already is an edge of the overlap and is unchanged.
-fn snap_to_overlap_edge(chord: Vec2, poly: &[Vec2]) -> Vec2 {
+/// `closed` is the overlap polygon with its first vertex repeated at the end.
+fn snap_to_overlap_edge(chord: Vec2, closed: &[Vec2]) -> Vec2 {
     // On squares, against the chord as it is: no square root per edge, and
     // none to normalise the chord.
     let chord_len2 = chord.length_squared();
     let mut best = chord;
     let mut best_len2 = 0.25 * chord_len2;
-    for i in 0..poly.len() {
-        let e = poly[next(i, poly.len())] - poly[i];
+    for edge in closed.windows(2) {
+        let e = edge[1] - edge[0];
         let len2 = e.length_squared();
         let c = cross(chord, e);
         if len2 > best_len2 && c * c <= SNAP_SINE * SNAP_SINE * chord_len2 * len2 {
@@ -772,12 +783,12 @@ fn snap_to_overlap_edge(chord: Vec2, poly: &[Vec2]) -> Vec2 {
 }
 
 /// Normal along the overlap's thinnest principal direction, and the overlap's
-/// extent across it.
-fn principal_normal(poly: &[Vec2], centroid: Vec2) -> (Vec2, f64) {
+/// extent across it. `closed` is the overlap polygon with its first vertex
+/// repeated at the end.
+fn principal_normal(closed: &[Vec2], centroid: Vec2) -> (Vec2, f64) {
     let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    let n = poly.len();
-    for i in 0..n {
-        let (u, v) = (poly[i] - centroid, poly[next(i, n)] - centroid);
+    for edge in closed.windows(2) {
+        let (u, v) = (edge[0] - centroid, edge[1] - centroid);
         let w = cross(u, v);
         sxx += w * (u.x * u.x + u.x * v.x + v.x * v.x);
         syy += w * (u.y * u.y + u.y * v.y + v.y * v.y);
@@ -794,7 +805,7 @@ fn principal_normal(poly: &[Vec2], centroid: Vec2) -> (Vec2, f64) {
         Vec2::new(-major_angle.sin(), major_angle.cos())
     };
     let tangent = perp(normal);
-    let (lo, hi) = poly
+    let (lo, hi) = closed
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
             let s = tangent.dot(p);
