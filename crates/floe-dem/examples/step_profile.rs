@@ -1,10 +1,17 @@
 //! Where a DEM step's time goes (docs/performance.md):
 //! `cargo run --release -p floe-dem --example step_profile -- 10000 [amontons|rate-state] [threads] [steps]`
+//! prints the time per step and a fingerprint of the final state;
+//! `... --example step_profile -- full [threads]` only the fingerprint of a
+//! run with walls, forcing and contact memory (see `full_scenario`).
 #[path = "../../../benches/dem_step.rs"]
 #[allow(dead_code)]
 mod bench;
 
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("full") {
+        full_scenario();
+        return;
+    }
     let n: usize = std::env::args()
         .nth(1)
         .and_then(|s| s.parse().ok())
@@ -94,4 +101,115 @@ fn fingerprint<F: floe_dem::world::ExternalForces>(w: &floe_dem::world::World<F>
     }
     mix(w.energy.friction_dissipation_j);
     h
+}
+
+/// `step_profile full [threads]`: a fingerprint of a run that uses what the
+/// sheared channel does not: jittered floes of mixed thickness, walls (the
+/// bottom row fixed, the top row moving), wind and current with Coriolis,
+/// sea-surface tilt and rotational drag, contact memory; the fingerprint
+/// also covers the broken contacts and every entry of the energy ledger.
+/// To check that a change meant to leave results alone does so beyond the
+/// benchmark's world.
+fn full_scenario() {
+    use floe_dem::broad_phase::{Period, Periodicity};
+    use floe_dem::contacts::ContactModel;
+    use floe_dem::floes::{Floes, Motion};
+    use floe_dem::forcing::{Coriolis, Forcing, VelocityField};
+    use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
+    use floe_dem::world::{stable_time_step, World};
+    use floe_dem::Vec2;
+    let threads: usize = std::env::args()
+        .nth(2)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let (side, width) = (1000.0, 20_000.0);
+        let lattice = DiamondLattice {
+            domain: Rect {
+                min: Vec2::new(0.0, 0.0),
+                max: Vec2::new(4.0 * width, width),
+            },
+            side_m: side,
+            acute_angle_deg: 60.0,
+            orientation_deg: 0.0,
+            thickness: ThicknessDistribution::UniformRange {
+                min_m: 0.5,
+                max_m: 2.0,
+            },
+            jitter_fraction: 0.05,
+            seed: 7,
+        };
+        let t = lattice.build().expect("lattice");
+        let mut floes = Floes::from_polygons(&t.polygons, &t.thickness_m, 917.0).expect("floes");
+        for i in 0..floes.len() {
+            let y = floes.position[i].y;
+            let velocity = if y < side {
+                Vec2::ZERO
+            } else if y > width - side {
+                Vec2::new(0.05, 0.0)
+            } else {
+                continue;
+            };
+            floes.motion[i] = Motion::Prescribed { velocity };
+            floes.velocity[i] = velocity;
+        }
+        let model = ContactModel {
+            memory_s: 3600.0,
+            ..ContactModel::default()
+        };
+        let forcing = Forcing {
+            wind: VelocityField::Uniform(Vec2::new(10.0, 2.0)),
+            current: VelocityField::Uniform(Vec2::new(0.05, 0.0)),
+            coriolis: Coriolis::LatitudeDeg(75.0),
+            ..Forcing::default()
+        };
+        let periodic = Periodicity {
+            x: Some(Period {
+                min_m: 0.0,
+                length_m: 4.0 * width,
+            }),
+            y: None,
+        };
+        let dt = 0.5 * stable_time_step(&floes, &model).0;
+        let mut w = World::new(floes, model, forcing, periodic, dt).expect("world");
+        for _ in 0..3000 {
+            w.step();
+        }
+        let mut h = fingerprint(&w);
+        let mut mix = |x: f64| {
+            for b in x.to_bits().to_le_bytes() {
+                h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+            }
+        };
+        for c in &w.broken {
+            mix(f64::from(c.a));
+            mix(f64::from(c.b));
+            mix(c.friction.theta);
+            mix(c.broke_at_s);
+        }
+        let e = w.energy;
+        for x in [
+            e.forcing_work_j,
+            e.friction_dissipation_j,
+            e.damping_dissipation_j,
+            e.boundary_work_j,
+            e.released_at_break_j,
+        ] {
+            mix(x);
+        }
+        println!(
+            "full scenario: {} floes, {} contacts, {} broken remembered, {:.0} s in steps of {:.3} s, {:?}, {} threads; fingerprint {h:016x}",
+            w.floes.len(),
+            w.contacts.len(),
+            w.broken.len(),
+            w.time_s,
+            w.dt_s,
+            w.energy,
+            rayon::current_num_threads()
+        );
+    });
 }
