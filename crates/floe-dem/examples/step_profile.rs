@@ -103,13 +103,17 @@ fn fingerprint<F: floe_dem::world::ExternalForces>(w: &floe_dem::world::World<F>
     h
 }
 
-/// `step_profile full [threads]`: a fingerprint of a run that uses what the
-/// sheared channel does not: jittered floes of mixed thickness, walls (the
-/// bottom row fixed, the top row moving), wind and current with Coriolis,
-/// sea-surface tilt and rotational drag, contact memory; the fingerprint
-/// also covers the broken contacts and every entry of the energy ledger.
-/// To check that a change meant to leave results alone does so beyond the
-/// benchmark's world.
+/// `step_profile full [threads]`: a fingerprint of a run that exercises
+/// what the sheared channel does not: jittered floes of mixed thickness,
+/// walls (the bottom row fixed, the top row moving), free floes spreading
+/// apart so that contacts break as well as form, wind and current with
+/// Coriolis, sea-surface tilt and rotational drag, contact memory short
+/// enough (1 s) that remembered contacts also expire within the run. The
+/// fingerprint also covers the remembered broken contacts and every entry
+/// of the energy ledger. The run is 3,000 steps of about a millisecond, so
+/// the forcing's effect is small (`f t` is about 6e-4): it checks that a
+/// change meant to leave results alone does so on these code paths, not
+/// the physics.
 fn full_scenario() {
     use floe_dem::broad_phase::{Period, Periodicity};
     use floe_dem::contacts::ContactModel;
@@ -152,13 +156,18 @@ fn full_scenario() {
             } else if y > width - side {
                 Vec2::new(0.05, 0.0)
             } else {
+                // Free floes start spreading apart along x from every
+                // tenth column of the lattice, so that contacts break
+                // (and are remembered) as well as form.
+                let x = floes.position[i].x;
+                floes.velocity[i] = Vec2::new(if (x / side) as i64 % 10 < 5 { -0.2 } else { 0.2 }, 0.0);
                 continue;
             };
             floes.motion[i] = Motion::Prescribed { velocity };
             floes.velocity[i] = velocity;
         }
         let model = ContactModel {
-            memory_s: 3600.0,
+            memory_s: 1.0,
             ..ContactModel::default()
         };
         let forcing = Forcing {

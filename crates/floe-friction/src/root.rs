@@ -46,13 +46,14 @@ const MAX_EVALUATIONS: u32 = 400;
 /// and positive as `x -> +inf` (not necessarily monotone in between).
 ///
 /// Starts from `x0`; takes Halley steps (Newton's where the residual gives
-/// no second derivative, or where Halley's would be shorter than 2/3 of
-/// Newton's, as beside a local extremum) while they stay inside the bracket
-/// found so far, bisects otherwise, and expands geometrically until a sign
-/// change is found. Converges when `|f| <= r_tol` (the point evaluated is returned),
-/// or when the correction `dx` is small enough that the corrected point
-/// `x + dx` is within `tol * |x|` of the root (for a Halley step, only where
-/// it agrees with Newton's, `|r r''| <= r'^2`). Newton's error after a step is
+/// no second derivative, where Halley's would be shorter than 2/3 of
+/// Newton's, as beside a local extremum, or where it does not exist) while
+/// they stay inside the bracket found so far, bisects otherwise, and
+/// expands geometrically until a sign change is found. Converges when
+/// `|f| <= r_tol` (the point evaluated is returned), or when the correction
+/// `dx` is small enough that the corrected point `x + dx` is within
+/// `tol * |x|` of the root (for a Halley step, only where it agrees with
+/// Newton's, `|r r''| <= r'^2`). Newton's error after a step is
 /// `C dx^2`, Halley's `C dx^3`, with `C` of order one for the laws'
 /// residuals, so `dx^2 <= tol |x|` (Newton) or `|dx|^3 <= tol |x|` (Halley)
 /// suffices (relative: near `x = 0` the unknown of the regularised law is
@@ -158,16 +159,15 @@ impl Solver {
         let halley = x - 2.0 * e.r * e.dr / halley_denominator;
         let cubic = halley_denominator > 0.0 && halley.is_finite();
         // Halley's step is `dx_newton / (1 - u)` with `u = r r'' / (2 r'^2)`
-        // (`u < 1` where `cubic`), and its error bound `C dx^3` holds near a
-        // simple root, where the two steps agree (`u` near 0).
-        // Beside a local extremum `u` is large and negative, and Halley's
-        // step tiny however far the root is: it can round to no step at all,
-        // and the solver would evaluate the same point until its budget ran
-        // out. So Halley's step is taken only where it is at least 2/3 of
-        // Newton's (`u >= -1/2`), and convergence on it is trusted only
-        // where `|u| <= 1/2`. (Where `1/2 < u < 1`, down a convex
-        // exponential branch, Halley's is the longer step and the better
-        // one: Newton's crawls by about one unit per step there.)
+        // (`u < 1` where `cubic`; where `u >= 1` Newton's is taken), and its
+        // error bound `C dx^3` holds near a simple root, where the two steps
+        // agree (`u` near 0). Beside a local extremum `u` is large and
+        // negative, and Halley's step tiny however far the root is. So
+        // Halley's step is taken only where it is at least 2/3 of Newton's
+        // (`u >= -1/2`), and convergence on it is trusted only where
+        // `|u| <= 1/2`. (For `0 < u < 1` Halley's is the longer step: down
+        // a convex exponential branch, where `u` is about 1/2, Newton's
+        // crawls by about one unit per step.)
         let halley_ok = downhill && cubic && e.r * e.d2r >= -e.dr * e.dr;
         let near_root = (e.r * e.d2r).abs() <= e.dr * e.dr;
         // The step to take: Halley's where it is trusted, else Newton's.
@@ -204,15 +204,19 @@ impl Solver {
         } else if bracketed {
             0.5 * (lo + hi)
         } else if e.r < 0.0 {
+            // No bracket yet: towards the root, by the step if it moves at
+            // all (a step that rounds to no step, as from a huge slope or
+            // curvature, would have the solver evaluate `x` again and
+            // again), by the growing expansion otherwise.
             self.expand *= 2.0;
-            if downhill {
+            if downhill && step_to > x {
                 step_to.min(x + self.expand)
             } else {
                 x + self.expand
             }
         } else {
             self.expand *= 2.0;
-            if downhill {
+            if downhill && step_to < x {
                 step_to.max(x - self.expand)
             } else {
                 x - self.expand
@@ -222,8 +226,12 @@ impl Solver {
         self.last_step = next - x;
         self.x = next;
         // Bracket collapsed (a root where the residual is not smooth, e.g.
-        // the regularised law at V = 0): evaluate the midpoint and stop.
-        self.last = bracketed && (hi - lo) <= self.tol * lo.abs().max(hi.abs());
+        // at the rate-dependent law's velocity floor): evaluate the midpoint
+        // and stop. The width is also allowed `tol` absolute, so that a
+        // bracket about `x = 0` collapses too (relative to `|lo|, |hi|` it
+        // never would); the laws' unknowns are logarithms of slip rates, for
+        // which that is a relative `tol` in the rate.
+        self.last = bracketed && (hi - lo) <= self.tol * lo.abs().max(hi.abs()).max(1.0);
         None
     }
 }
@@ -355,13 +363,14 @@ mod tests {
     #[test]
     fn a_halley_step_that_rounds_to_no_step_does_not_stall_the_solver() {
         // r = x - 1 with a huge (made-up) curvature: Halley's step from
-        // x = 3 is 4 / 2e308 = 0, which would have the solver evaluate x = 3
-        // until its budget ran out. Newton's step lands on the root.
+        // x = 3 is 4 / 2e300, which rounds to no step, and the solver would
+        // evaluate x = 3 until its budget ran out. Newton's step lands on
+        // the root.
         let root = solve(
             |x: f64| Eval {
                 r: x - 1.0,
                 dr: 1.0,
-                d2r: -1e308,
+                d2r: -1e300,
                 payload: (),
             },
             keep,
@@ -371,6 +380,44 @@ mod tests {
         );
         assert!((root.x - 1.0).abs() < 1e-12, "x {}", root.x);
         assert!(root.evaluations <= 3, "{} evaluations", root.evaluations);
+    }
+
+    #[test]
+    fn a_step_that_rounds_to_no_step_before_a_bracket_does_not_stall_the_solver() {
+        // r = 1e17 (x - 3) + 2 from x = 3: the root is 2e-17 below 3, less
+        // than an ulp, so Newton's and Halley's steps round to no step
+        // (with this curvature u = 3/4: Halley's is taken, not trusted for
+        // convergence). Before a bracket is known the solver must then
+        // expand instead of evaluating x = 3 again.
+        let root = solve(
+            |x: f64| Eval {
+                r: 1e17 * (x - 3.0) + 2.0,
+                dr: 1e17,
+                d2r: 7.5e33,
+                payload: (),
+            },
+            keep,
+            3.0,
+            1e-12,
+            0.0,
+        );
+        assert!((root.x - 3.0).abs() < 1e-12, "x {}", root.x);
+        assert!(root.evaluations < 100, "{} evaluations", root.evaluations);
+    }
+
+    #[test]
+    fn a_jump_at_zero_collapses_the_bracket() {
+        // A sign change exactly at x = 0: relative to the bracket's ends the
+        // width never gets small; the absolute floor ends the bisection.
+        let root = solve(
+            plain(|x| (if x < 0.0 { -1.0 } else { 1.0 }, 0.0)),
+            keep,
+            5.0,
+            1e-12,
+            0.0,
+        );
+        assert!(root.x.abs() < 1e-11, "x {}", root.x);
+        assert!(root.evaluations < 100, "{} evaluations", root.evaluations);
     }
 
     #[test]

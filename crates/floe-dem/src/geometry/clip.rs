@@ -548,7 +548,9 @@ const ON_FIRST: u8 = 1;
 const CROSSING: u8 = 2;
 
 /// Sutherland-Hodgman: `subject` clipped by every edge of the convex,
-/// counter-clockwise `clip`. Points on a clip line count as inside. The two
+/// counter-clockwise `clip`, which must repeat its first vertex after its
+/// last (`clip.v[clip.len] == clip.v[0]`, `clip.len < N`: [`place`] does
+/// both). Points on a clip line count as inside. The two
 /// buffers alternate as source and destination (no copying between them);
 /// returns which one holds the result, and whether any vertex fell exactly
 /// on a clip line.
@@ -575,7 +577,8 @@ fn clip_convex<const N: usize, const M: usize>(
     // few vertices of a floe, `copy_from_slice`, `fill` and the iterator
     // adaptors were library calls and overhead, a quarter of the clipper's
     // instructions (docs/performance.md).
-    let ns = subject.len.min(N).min(M - 1);
+    debug_assert!(clip.len < N && clip.v[clip.len] == clip.v[0]);
+    let ns = subject.len.min(N - 1).min(M - 1);
     for k in 0..ns {
         bufs[0].v[k] = subject.v[k];
     }
@@ -805,12 +808,13 @@ fn principal_normal(closed: &[Vec2], centroid: Vec2) -> (Vec2, f64) {
         Vec2::new(-major_angle.sin(), major_angle.cos())
     };
     let tangent = perp(normal);
-    let (lo, hi) = closed
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
+    let (lo, hi) = closed[..closed.len() - 1].iter().fold(
+        (f64::INFINITY, f64::NEG_INFINITY),
+        |(lo, hi), &p| {
             let s = tangent.dot(p);
             (lo.min(s), hi.max(s))
-        });
+        },
+    );
     (normal, hi - lo)
 }
 
