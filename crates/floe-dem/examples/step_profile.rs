@@ -12,19 +12,8 @@ fn main() {
         full_scenario();
         return;
     }
-    let n: usize = std::env::args()
-        .nth(1)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(10_000);
-    let threads: usize = std::env::args()
-        .nth(3)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    let n: usize = arg(1, 10_000);
+    pool_of(arg(3, 1)).install(|| {
         let law = std::env::args().nth(2).unwrap_or_default();
         let model = match law.as_str() {
             "amontons" => bench::amontons_model(),
@@ -34,10 +23,7 @@ fn main() {
         let mut w = bench::sheared_channel_with(n, model);
         let r0 = w.broad_phase().rebuilds;
         let t = std::time::Instant::now();
-        let steps: usize = std::env::args()
-            .nth(4)
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(20);
+        let steps: usize = arg(4, 20);
         for _ in 0..steps {
             w.step();
         }
@@ -71,6 +57,22 @@ fn main() {
             0.5 * bp.skin_m / (0.1 * w.dt_s)
         );
     });
+}
+
+/// Command-line argument `i` as a number, or `default`.
+fn arg(i: usize, default: usize) -> usize {
+    std::env::args()
+        .nth(i)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}
+
+/// A rayon pool of `threads` threads.
+fn pool_of(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool")
 }
 
 /// FNV-1a over the bits of every floe's position, velocity, angle and
@@ -122,15 +124,7 @@ fn full_scenario() {
     use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
     use floe_dem::world::{stable_time_step, World};
     use floe_dem::Vec2;
-    let threads: usize = std::env::args()
-        .nth(2)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    pool_of(arg(2, 1)).install(|| {
         let (side, width) = (1000.0, 20_000.0);
         let lattice = DiamondLattice {
             domain: Rect {
