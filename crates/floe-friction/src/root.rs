@@ -62,10 +62,10 @@ const MAX_EVALUATIONS: u32 = 400;
 /// and the relative test asks for more digits than needed where `V` nears
 /// `V*`. `tol max(|x|, 1)` was tried: on the sheared 1e4-floe pack 3,325
 /// instructions per contact and step against 3,320, no gain, so the results
-/// were not changed for it: docs/performance.md.) That last
-/// correction is taken without
-/// evaluating the residual again, the payload carried to `x + dx` by
-/// `advance(payload, dx)`, which must be accurate to the same order.
+/// were not changed for it: docs/performance.md.) That last correction is
+/// taken without evaluating the residual again, the payload carried to
+/// `x + dx` by `advance(payload, dx)`, which must be accurate to the same
+/// order.
 /// Waiting for a correction below `tol |x|` instead cost one more evaluation
 /// per update, a quarter of the friction update in a sheared DEM pack; with
 /// Halley's cubic convergence a contact whose `q` moved by less than
