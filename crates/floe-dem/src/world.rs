@@ -678,101 +678,32 @@ impl<F: ExternalForces> World<F> {
     }
 
     /// External forces and the contact forces, gathered per floe in contact
-    /// order; and, beside them, the contacts' powers in fixed blocks (summed
-    /// into the ledger by [`World::kick_and_account_energy`]).
+    /// order; before that, the per-floe contact index and, beside it, the
+    /// contacts' powers in fixed blocks (summed into the ledger by
+    /// [`World::kick_and_account_energy`]).
     fn gather_forces_and_contact_power(&mut self) {
         let n = self.floes.len();
-        // Contacts of each floe, in contact order. The list is sorted by
-        // (a, b) with a < b, so a floe's contacts as `a` are one block of
-        // it, and come after all its contacts as `b` (whose `a` is smaller).
-        // So only the contacts as `b` need a list of their own (CSR, in
-        // contact order); the blocks are found from the `a`s. At 1e5 floes
-        // building a list of both sides took 4.4-5.9 ms of a step, with the
-        // sides' random increments and writes (docs/performance.md).
-        //
-        // The keys are first copied out of the 160 B records in parallel:
-        // the sequential passes below then stream 8 B per contact instead of
-        // a cache line or two per record (at 1e5 floes, 3.7-4.9 ms of
-        // sequential reading before).
-        self.contacts
-            .par_iter()
-            .map(|c| (c.a, c.b))
-            .collect_into_vec(&mut self.keys);
-        self.adjacency_start.clear();
-        self.adjacency_start.resize(n + 1, 0);
-        self.a_start.clear();
-        self.a_start.reserve(n + 1);
-        for (k, &(a, b)) in self.keys.iter().enumerate() {
-            debug_assert!(a < b);
-            while self.a_start.len() <= a as usize {
-                self.a_start.push(k as u32);
-            }
-            self.adjacency_start[b as usize] += 1;
-        }
-        self.a_start.resize(n + 1, self.keys.len() as u32);
-        // Each floe's end, then filled back to front: every entry moves down
-        // to its floe's start, and each floe's list is in contact order.
-        for i in 1..=n {
-            self.adjacency_start[i] += self.adjacency_start[i - 1];
-        }
-        self.adjacency.resize(self.keys.len(), 0);
-        for (k, &(_, b)) in self.keys.iter().enumerate().rev() {
-            let end = &mut self.adjacency_start[b as usize];
-            *end -= 1;
-            self.adjacency[*end as usize] = k as u32;
-        }
-        let (f, contacts, forcing, t) = (&self.floes, &self.contacts, &self.forcing, self.time_s);
-        let (start, adjacency, a_start) = (&self.adjacency_start, &self.adjacency, &self.a_start);
-        let (force, torque) = (&mut self.force, &mut self.torque);
-        let (external_force, external_torque) =
-            (&mut self.external_force, &mut self.external_torque);
+        let (f, contacts) = (&self.floes, &self.contacts);
+        let (keys, start, a_start, adjacency) = (
+            &mut self.keys,
+            &mut self.adjacency_start,
+            &mut self.a_start,
+            &mut self.adjacency,
+        );
         let energy_partials = &mut self.energy_partials;
-        // Both passes only read the contacts: one parallel region for the two
-        // (each region wakes the pool, a visible cost at 1e3 floes).
+        // The contacts' powers, summed over fixed blocks of the contact
+        // list in parallel and added in block order (in
+        // `kick_and_account_energy`): the same sums for any thread count,
+        // and, as they depend on the contact list alone, after a resume
+        // from a checkpoint too. (Summed instead per chunk of candidate
+        // pairs inside the contact update, they depended on the broad
+        // phase's pair list, which a resume rebuilds differently, and a
+        // resumed run drifted from the uninterrupted one by an ulp.) The
+        // velocities they read are the walls', which the kick leaves alone.
+        // They run beside the adjacency build, whose passes are sequential
+        // (about 0.15 ms of a 5 ms two-thread step at 1e4 floes).
         rayon::join(
-            || {
-                (force, torque, (external_force, external_torque))
-                    .into_par_iter()
-                    .enumerate()
-                    .for_each(|(i, (force, torque, (ext_f, ext_t)))| {
-                        let (ef, et) = if f.is_free(i) {
-                            forcing.force_and_torque(t, f, i)
-                        } else {
-                            (Vec2::ZERO, 0.0)
-                        };
-                        *ext_f = ef;
-                        *ext_t = et;
-                        let (mut fsum, mut tsum) = (ef, et);
-                        let as_b = adjacency[start[i] as usize..start[i + 1] as usize]
-                            .iter()
-                            .map(|&k| &contacts[k as usize]);
-                        let as_a = &contacts[a_start[i] as usize..a_start[i + 1] as usize];
-                        // Each contact is visited from both its floes; each visit
-                        // computes only its own floe's torque (the expressions of
-                        // `force_and_torques`, so the same bits).
-                        for c in as_b {
-                            let fb = contact_force_on_b(c);
-                            fsum += fb;
-                            tsum += cross(c.point - (f.position[i] + c.image_offset), fb);
-                        }
-                        for c in as_a {
-                            let fb = contact_force_on_b(c);
-                            fsum -= fb;
-                            tsum += cross(c.point - f.position[i], -fb);
-                        }
-                        *force = fsum;
-                        *torque = tsum;
-                    });
-            },
-            // The contacts' powers, summed over fixed blocks of the contact
-            // list in parallel and added in block order (in
-            // `kick_and_account_energy`): the same sums for any thread count,
-            // and, as they depend on the contact list alone, after a resume
-            // from a checkpoint too. (Summed instead per chunk of candidate
-            // pairs inside the contact update, they depended on the broad
-            // phase's pair list, which a resume rebuilds differently, and a
-            // resumed run drifted from the uninterrupted one by an ulp.) The
-            // velocities they read are the walls', which the kick leaves alone.
+            || build_adjacency(contacts, n, keys, start, a_start, adjacency),
             || {
                 contacts
                     .par_chunks(ENERGY_CHUNK)
@@ -786,6 +717,43 @@ impl<F: ExternalForces> World<F> {
                     .collect_into_vec(energy_partials);
             },
         );
+        let (forcing, t) = (&self.forcing, self.time_s);
+        let (start, adjacency, a_start) = (&self.adjacency_start, &self.adjacency, &self.a_start);
+        let (force, torque) = (&mut self.force, &mut self.torque);
+        let (external_force, external_torque) =
+            (&mut self.external_force, &mut self.external_torque);
+        (force, torque, (external_force, external_torque))
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(i, (force, torque, (ext_f, ext_t)))| {
+                let (ef, et) = if f.is_free(i) {
+                    forcing.force_and_torque(t, f, i)
+                } else {
+                    (Vec2::ZERO, 0.0)
+                };
+                *ext_f = ef;
+                *ext_t = et;
+                let (mut fsum, mut tsum) = (ef, et);
+                let as_b = adjacency[start[i] as usize..start[i + 1] as usize]
+                    .iter()
+                    .map(|&k| &contacts[k as usize]);
+                let as_a = &contacts[a_start[i] as usize..a_start[i + 1] as usize];
+                // Each contact is visited from both its floes; each visit
+                // computes only its own floe's torque (the expressions of
+                // `force_and_torques`, so the same bits).
+                for c in as_b {
+                    let fb = contact_force_on_b(c);
+                    fsum += fb;
+                    tsum += cross(c.point - (f.position[i] + c.image_offset), fb);
+                }
+                for c in as_a {
+                    let fb = contact_force_on_b(c);
+                    fsum -= fb;
+                    tsum += cross(c.point - f.position[i], -fb);
+                }
+                *force = fsum;
+                *torque = tsum;
+            });
     }
 
     /// The second kick, and the work of forcing and walls and the
@@ -930,6 +898,54 @@ enum Slot {
     Run(usize),
     /// New this step, at this index of the chunk's born list.
     Born(usize),
+}
+
+/// The per-floe contact index of the force gathering, in contact order.
+/// The list is sorted by (a, b) with a < b, so a floe's contacts as `a`
+/// are one block of it (from `a_start`), and come after all its contacts
+/// as `b` (whose `a` is smaller). So only the contacts as `b` need a list
+/// of their own: `adjacency[start[i]..start[i + 1]]` (CSR). At 1e5 floes
+/// building a list of both sides took 4.4-5.9 ms of a step, with the
+/// sides' random increments and writes (docs/performance.md).
+///
+/// The keys are first copied out of the 160 B records in parallel: the
+/// sequential passes then stream 8 B per contact instead of a cache line or
+/// two per record (at 1e5 floes, 3.7-4.9 ms of sequential reading before).
+fn build_adjacency(
+    contacts: &[ContactRecord],
+    n: usize,
+    keys: &mut Vec<(u32, u32)>,
+    start: &mut Vec<u32>,
+    a_start: &mut Vec<u32>,
+    adjacency: &mut Vec<u32>,
+) {
+    contacts
+        .par_iter()
+        .map(|c| (c.a, c.b))
+        .collect_into_vec(keys);
+    start.clear();
+    start.resize(n + 1, 0);
+    a_start.clear();
+    a_start.reserve(n + 1);
+    for (k, &(a, b)) in keys.iter().enumerate() {
+        debug_assert!(a < b);
+        while a_start.len() <= a as usize {
+            a_start.push(k as u32);
+        }
+        start[b as usize] += 1;
+    }
+    a_start.resize(n + 1, keys.len() as u32);
+    // Each floe's end, then filled back to front: every entry moves down
+    // to its floe's start, and each floe's list is in contact order.
+    for i in 1..=n {
+        start[i] += start[i - 1];
+    }
+    adjacency.resize(keys.len(), 0);
+    for (k, &(_, b)) in keys.iter().enumerate().rev() {
+        let end = &mut start[b as usize];
+        *end -= 1;
+        adjacency[*end as usize] = k as u32;
+    }
 }
 
 /// Removes the dead records of `contacts` and merges in the new contacts of
