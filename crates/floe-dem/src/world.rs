@@ -191,8 +191,12 @@ pub struct World<F: ExternalForces> {
     /// whether the force gathering's contact index still holds).
     chunk_changes: Vec<ChunkChanges>,
     /// `keys`, `adjacency_start`, `adjacency` and `a_start` describe
-    /// `contacts` as it is: the index need not be rebuilt.
+    /// `contacts` as the last force gathering left it, and
+    /// `update_contacts` found it unchanged since (no contact ended, formed
+    /// or moved, the same length): the index need not be rebuilt.
     index_current: bool,
+    /// Times the contact index was built (a diagnostic for the tests).
+    index_builds: u64,
     /// Candidate pairs per task if set, instead of [`pair_chunk`] (tests
     /// that results do not depend on it).
     fixed_pair_chunk: Option<usize>,
@@ -341,6 +345,7 @@ impl<F: ExternalForces> World<F> {
             ended: Vec::new(),
             chunk_changes: Vec::new(),
             index_current: false,
+            index_builds: 0,
             fixed_pair_chunk: None,
             keys: Vec::new(),
             energy_partials: Vec::new(),
@@ -749,6 +754,7 @@ impl<F: ExternalForces> World<F> {
         // is skipped where the contact list is the one it was built for
         // (`index_current`, kept by `update_contacts`).
         let rebuild = !self.index_current || a_start.len() != n + 1;
+        self.index_builds += u64::from(rebuild);
         rayon::join(
             || {
                 if rebuild {
@@ -950,7 +956,9 @@ struct ChunkChanges {
     /// It ended one of its previous contacts.
     ended: bool,
     /// A contact it continued is not where the force gathering's index has
-    /// it (the list was changed between steps, through `World::contacts`).
+    /// it: the list was changed between steps, through `World::contacts`
+    /// (or, on the first step after `World::new` or `World::resume`, no
+    /// index has been built yet).
     moved: bool,
 }
 
@@ -1217,14 +1225,14 @@ mod tests {
     #[test]
     fn keeping_the_contact_index_gives_the_results_of_rebuilding_it() {
         let (mut kept, mut rebuilt) = (released_pack(), released_pack());
-        let mut steps_kept = 0;
+        let builds = kept.index_builds;
         for _ in 0..400 {
             kept.step();
-            steps_kept += usize::from(kept.index_current);
             rebuilt.index_current = false;
             rebuilt.step();
         }
-        assert!(steps_kept > 100, "{steps_kept} steps kept the index");
+        let built = kept.index_builds - builds;
+        assert!(built < 200, "the index was built in {built} of 400 steps");
         assert_eq!(kept.energy, rebuilt.energy);
         assert_eq!(kept.floes.position, rebuilt.floes.position);
         assert_eq!(kept.floes.velocity, rebuilt.floes.velocity);
@@ -1260,7 +1268,7 @@ mod tests {
                 .filter(|c| now.binary_search(&key(c)).is_err())
                 .copied()
                 .collect();
-            if ending == 0 || ending != forming.len() || !checked.index_current {
+            if ending == 0 || ending != forming.len() {
                 checked.step();
                 rebuilt.step();
                 continue;
@@ -1276,6 +1284,7 @@ mod tests {
             };
             edit(&mut checked);
             edit(&mut rebuilt);
+            let builds = checked.index_builds;
             checked.step();
             rebuilt.index_current = false;
             rebuilt.step();
@@ -1283,6 +1292,7 @@ mod tests {
                 checked.chunk_changes.iter().any(|c| c.moved),
                 "the edit was seen as moved contacts"
             );
+            assert_eq!(checked.index_builds, builds + 1);
             assert!(checked.born.iter().all(Vec::is_empty));
             assert!(checked.chunk_changes.iter().all(|c| !c.ended));
             assert_eq!(checked.floes.velocity, rebuilt.floes.velocity);
@@ -1290,6 +1300,59 @@ mod tests {
             return;
         }
         panic!("no step ended and formed as many contacts");
+    }
+
+    /// A contact list shortened between steps by the contacts at its end
+    /// that the next step would end anyway: the step ends, forms and moves
+    /// nothing, but the list is shorter than the index: rebuilt.
+    #[test]
+    fn an_index_of_a_list_shortened_between_steps_is_rebuilt() {
+        let (mut checked, mut rebuilt) = (released_pack(), released_pack());
+        let (model, periodicity, dt) = (checked.model, checked.periodicity, checked.dt_s);
+        let key = |c: &ContactRecord| (c.a, c.b);
+        for _ in 0..400 {
+            let mut ahead =
+                World::resume(checked.state(), model, NoForcing, periodicity, dt).unwrap();
+            ahead.step();
+            let next: Vec<_> = ahead.contacts.iter().map(key).collect();
+            let forming = ahead
+                .contacts
+                .iter()
+                .filter(|c| checked.contacts.binary_search_by_key(&key(c), key).is_err())
+                .count();
+            // The contacts after the last one that continues, all ending.
+            let tail = checked
+                .contacts
+                .iter()
+                .rev()
+                .take_while(|c| next.binary_search(&key(c)).is_err())
+                .count();
+            let ending = checked
+                .contacts
+                .iter()
+                .filter(|c| next.binary_search(&key(c)).is_err())
+                .count();
+            if tail == 0 || ending != tail || forming > 0 || tail == checked.contacts.len() {
+                checked.step();
+                rebuilt.step();
+                continue;
+            }
+            for world in [&mut checked, &mut rebuilt] {
+                let keep = world.contacts.len() - tail;
+                world.contacts.truncate(keep);
+            }
+            let builds = checked.index_builds;
+            checked.step();
+            rebuilt.index_current = false;
+            rebuilt.step();
+            assert!(checked.born.iter().all(Vec::is_empty));
+            assert!(checked.chunk_changes.iter().all(|c| !c.ended && !c.moved));
+            assert_eq!(checked.index_builds, builds + 1);
+            assert_eq!(checked.floes.velocity, rebuilt.floes.velocity);
+            assert_eq!(checked.contacts, rebuilt.contacts);
+            return;
+        }
+        panic!("no step ended contacts at the end of the list and formed none");
     }
 
     proptest! {
