@@ -70,7 +70,7 @@ pub enum Command {
         /// Laws to compare, comma-separated.
         #[arg(long, default_value = "amontons,rate,rate-state")]
         laws: String,
-        /// Output directory: <law>.h5, <law>.toml, <law>/ maps, report.md and figures.
+        /// Output directory: LAW.h5, LAW.toml, LAW/ maps, report.md and figures (LAW each law's name).
         #[arg(long, short)]
         output: PathBuf,
         /// Slip speed at which Amontons' mu equals the rate-and-state steady state, m/s.
