@@ -1239,6 +1239,47 @@ mod tests {
         assert_eq!(kept.contacts, rebuilt.contacts);
     }
 
+    /// Two copies of the released pack stepped in lockstep (the steps are
+    /// deterministic), each with the index its own last step built, until
+    /// `edit`, shown the contact list now and the one the next step would
+    /// make, returns an edited list. Both copies then take it and step: the
+    /// first keeping its index if it can, the second made to rebuild it.
+    /// Asks that the edited step formed no contact, built the first copy's
+    /// index once, and gave both copies the same floes and contacts; returns
+    /// the first copy for the caller's own checks.
+    fn step_after_an_edit(
+        edit: impl Fn(&[ContactRecord], &[ContactRecord]) -> Option<Vec<ContactRecord>>,
+    ) -> World<NoForcing> {
+        let (mut checked, mut rebuilt) = (released_pack(), released_pack());
+        let (model, periodicity, dt) = (checked.model, checked.periodicity, checked.dt_s);
+        for _ in 0..400 {
+            let mut ahead =
+                World::resume(checked.state(), model, NoForcing, periodicity, dt).unwrap();
+            ahead.step();
+            let Some(edited) = edit(&checked.contacts, &ahead.contacts) else {
+                checked.step();
+                rebuilt.step();
+                continue;
+            };
+            checked.contacts.clone_from(&edited);
+            rebuilt.contacts = edited;
+            let builds = checked.index_builds;
+            checked.step();
+            rebuilt.index_current = false;
+            rebuilt.step();
+            assert!(checked.born.iter().all(Vec::is_empty));
+            assert_eq!(checked.index_builds, builds + 1);
+            assert_eq!(checked.floes.velocity, rebuilt.floes.velocity);
+            assert_eq!(checked.contacts, rebuilt.contacts);
+            return checked;
+        }
+        panic!("no step allowed the edit");
+    }
+
+    fn key(c: &ContactRecord) -> (u32, u32) {
+        (c.a, c.b)
+    }
+
     /// A contact list edited between steps (through the public field) so
     /// that the step neither ends nor forms a contact, yet the list is not
     /// the one the index was built for: the index is rebuilt. The edit
@@ -1247,59 +1288,31 @@ mod tests {
     /// would gather forces through a stale index.
     #[test]
     fn an_index_of_a_list_edited_between_steps_is_rebuilt() {
-        // Two copies in lockstep (the steps are deterministic), each with
-        // the index its own last step built.
-        let (mut checked, mut rebuilt) = (released_pack(), released_pack());
-        let (model, periodicity, dt) = (checked.model, checked.periodicity, checked.dt_s);
-        let key = |c: &ContactRecord| (c.a, c.b);
-        for _ in 0..400 {
-            let mut ahead =
-                World::resume(checked.state(), model, NoForcing, periodicity, dt).unwrap();
-            ahead.step();
-            let now: Vec<_> = checked.contacts.iter().map(key).collect();
-            let next: Vec<_> = ahead.contacts.iter().map(key).collect();
+        let checked = step_after_an_edit(|now, next| {
             let ending = now
                 .iter()
-                .filter(|k| next.binary_search(k).is_err())
+                .filter(|c| next.binary_search_by_key(&key(c), key).is_err())
                 .count();
-            let forming: Vec<ContactRecord> = ahead
-                .contacts
+            let forming = next
                 .iter()
-                .filter(|c| now.binary_search(&key(c)).is_err())
+                .filter(|c| now.binary_search_by_key(&key(c), key).is_err());
+            if ending == 0 || ending != forming.clone().count() {
+                return None;
+            }
+            let mut edited: Vec<ContactRecord> = now
+                .iter()
+                .filter(|c| next.binary_search_by_key(&key(c), key).is_ok())
+                .chain(forming)
                 .copied()
                 .collect();
-            if ending == 0 || ending != forming.len() {
-                checked.step();
-                rebuilt.step();
-                continue;
-            }
-            // The edit, made on both copies: one keeps its index if it can,
-            // the other is made to rebuild it.
-            let edit = |world: &mut World<NoForcing>| {
-                world
-                    .contacts
-                    .retain(|c| next.binary_search(&key(c)).is_ok());
-                world.contacts.extend_from_slice(&forming);
-                world.contacts.sort_by_key(key);
-            };
-            edit(&mut checked);
-            edit(&mut rebuilt);
-            let builds = checked.index_builds;
-            checked.step();
-            rebuilt.index_current = false;
-            rebuilt.step();
-            assert!(
-                checked.chunk_changes.iter().any(|c| c.moved),
-                "the edit was seen as moved contacts"
-            );
-            assert_eq!(checked.index_builds, builds + 1);
-            assert!(checked.born.iter().all(Vec::is_empty));
-            assert!(checked.chunk_changes.iter().all(|c| !c.ended));
-            assert_eq!(checked.floes.velocity, rebuilt.floes.velocity);
-            assert_eq!(checked.contacts, rebuilt.contacts);
-            return;
-        }
-        panic!("no step ended and formed as many contacts");
+            edited.sort_by_key(key);
+            Some(edited)
+        });
+        assert!(
+            checked.chunk_changes.iter().any(|c| c.moved),
+            "the edit was seen as moved contacts"
+        );
+        assert!(checked.chunk_changes.iter().all(|c| !c.ended));
     }
 
     /// A contact list shortened between steps by the contacts at its end
@@ -1307,52 +1320,19 @@ mod tests {
     /// nothing, but the list is shorter than the index: rebuilt.
     #[test]
     fn an_index_of_a_list_shortened_between_steps_is_rebuilt() {
-        let (mut checked, mut rebuilt) = (released_pack(), released_pack());
-        let (model, periodicity, dt) = (checked.model, checked.periodicity, checked.dt_s);
-        let key = |c: &ContactRecord| (c.a, c.b);
-        for _ in 0..400 {
-            let mut ahead =
-                World::resume(checked.state(), model, NoForcing, periodicity, dt).unwrap();
-            ahead.step();
-            let next: Vec<_> = ahead.contacts.iter().map(key).collect();
-            let forming = ahead
-                .contacts
+        let checked = step_after_an_edit(|now, next| {
+            let ends = |c: &&ContactRecord| next.binary_search_by_key(&key(c), key).is_err();
+            let forming = next
                 .iter()
-                .filter(|c| checked.contacts.binary_search_by_key(&key(c), key).is_err())
+                .filter(|c| now.binary_search_by_key(&key(c), key).is_err())
                 .count();
             // The contacts after the last one that continues, all ending.
-            let tail = checked
-                .contacts
-                .iter()
-                .rev()
-                .take_while(|c| next.binary_search(&key(c)).is_err())
-                .count();
-            let ending = checked
-                .contacts
-                .iter()
-                .filter(|c| next.binary_search(&key(c)).is_err())
-                .count();
-            if tail == 0 || ending != tail || forming > 0 || tail == checked.contacts.len() {
-                checked.step();
-                rebuilt.step();
-                continue;
-            }
-            for world in [&mut checked, &mut rebuilt] {
-                let keep = world.contacts.len() - tail;
-                world.contacts.truncate(keep);
-            }
-            let builds = checked.index_builds;
-            checked.step();
-            rebuilt.index_current = false;
-            rebuilt.step();
-            assert!(checked.born.iter().all(Vec::is_empty));
-            assert!(checked.chunk_changes.iter().all(|c| !c.ended && !c.moved));
-            assert_eq!(checked.index_builds, builds + 1);
-            assert_eq!(checked.floes.velocity, rebuilt.floes.velocity);
-            assert_eq!(checked.contacts, rebuilt.contacts);
-            return;
-        }
-        panic!("no step ended contacts at the end of the list and formed none");
+            let tail = now.iter().rev().take_while(ends).count();
+            let ending = now.iter().filter(ends).count();
+            (tail > 0 && ending == tail && forming == 0 && tail < now.len())
+                .then(|| now[..now.len() - tail].to_vec())
+        });
+        assert!(checked.chunk_changes.iter().all(|c| !c.ended && !c.moved));
     }
 
     proptest! {
