@@ -128,10 +128,12 @@ fn batch_contact(law: Law) -> impl Strategy<Value = (ContactState, ContactLoad)>
         signed_log(1e-15, 10.0),
         signed_log(1e-15, 10.0),
         -50.0..50.0f64,
+        -1.0..1.0f64,
     )
-        .prop_map(move |(n, k, v0, v, guess)| {
+        .prop_map(move |(n, k, v0, v, guess, trend)| {
             let mut state = law.steady_state(v0, n);
             state.solver_guess += guess * 0.1;
+            state.solver_trend = trend;
             let load = ContactLoad {
                 load_point_velocity_m_per_s: v,
                 stiffness_n_per_m: k,
@@ -168,7 +170,9 @@ proptest! {
         for (item, &(state, load)) in items.iter().zip(&contacts) {
             let mut alone = state;
             let out = law.step(&mut alone, &load, dt);
-            let bits = |s: &ContactState| [s.tangential_force_n.to_bits(), s.theta.to_bits(), s.solver_guess.to_bits()];
+            let bits = |s: &ContactState| {
+                [s.tangential_force_n, s.theta, s.solver_guess, s.solver_trend].map(f64::to_bits)
+            };
             prop_assert_eq!(bits(&item.state), bits(&alone));
             prop_assert_eq!(item.outcome.slip_rate_m_per_s.to_bits(), out.slip_rate_m_per_s.to_bits());
             prop_assert_eq!(item.outcome.mu.to_bits(), out.mu.to_bits());

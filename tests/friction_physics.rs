@@ -352,3 +352,60 @@ fn rate_dependent_law_stick_slips_on_a_soft_spring() {
         late.len()
     );
 }
+
+#[test]
+fn the_extrapolated_start_saves_evaluations_and_changes_no_result() {
+    // The paper's velocity steps at its dt = 1 ms, up and down, through
+    // transients that last ~L / V (hundreds of steps): the slip rate
+    // changes smoothly, and starting each solve from the last root plus its
+    // last change (`solver_trend`) should take one evaluation in most
+    // steps. The same run with the trend zeroed before every step starts
+    // from the last root alone: it must give the same friction to the
+    // solver's tolerance, in more evaluations.
+    let p = Preset::Lab.params();
+    let apparatus = Preset::Lab.apparatus(1e-3);
+    let segments = [(1e-4, 2.0), (1e-3, 1.0), (1e-4, 2.0), (3e-3, 0.5)];
+    for form in FORMS {
+        let law = rate_state(p, form, StateLaw::Slip);
+        let run = |extrapolate: bool| {
+            let mut state = law.steady_state(1e-4, apparatus.normal_load_n);
+            let (mut mu, mut evaluations) = (Vec::new(), 0u64);
+            for &(v, duration) in &segments {
+                let load = ContactLoad {
+                    load_point_velocity_m_per_s: v,
+                    stiffness_n_per_m: apparatus.stiffness_n_per_m,
+                    normal_load_n: apparatus.normal_load_n,
+                };
+                for _ in 0..(duration / apparatus.dt_s).round() as usize {
+                    if !extrapolate {
+                        state.solver_trend = 0.0;
+                    }
+                    let out = law.step(&mut state, &load, apparatus.dt_s);
+                    mu.push(out.mu);
+                    evaluations += u64::from(out.iterations);
+                }
+            }
+            let mean = evaluations as f64 / mu.len() as f64;
+            (mu, mean)
+        };
+        let ((with, mean_with), (without, mean_without)) = (run(true), run(false));
+        let worst = with
+            .iter()
+            .zip(&without)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        eprintln!(
+            "{form:?}: {mean_with:.3} evaluations per step extrapolated, \
+             {mean_without:.3} from the last root; results differ by {worst:.1e}"
+        );
+        assert!(worst < 1e-10, "{form:?}: results differ by {worst}");
+        assert!(
+            mean_with < 1.1,
+            "{form:?}: {mean_with} evaluations per step"
+        );
+        assert!(
+            mean_with < mean_without - 0.1,
+            "{form:?}: {mean_with} against {mean_without}"
+        );
+    }
+}

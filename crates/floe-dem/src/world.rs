@@ -129,6 +129,7 @@ const NO_ITEM: BatchItem = BatchItem {
         tangential_force_n: 0.0,
         theta: 0.0,
         solver_guess: 0.0,
+        solver_trend: 0.0,
     },
     load: ContactLoad {
         load_point_velocity_m_per_s: 0.0,

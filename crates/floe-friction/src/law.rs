@@ -13,7 +13,7 @@ use crate::amontons::Amontons;
 use crate::rate_dependent::RateDependent;
 use crate::rate_state::RateState;
 
-/// What persists on a contact between steps. 24 bytes, `Copy`, no heap.
+/// What persists on a contact between steps. 32 bytes, `Copy`, no heap.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct ContactState {
     /// Tangential spring force in N (signed: positive resists positive slip).
@@ -21,10 +21,19 @@ pub struct ContactState {
     /// Rate-and-state state variable `theta` (dimensionless, Lishman's log-state).
     /// Unused by the laws without state.
     pub theta: f64,
-    /// The rate-and-state solver's unknown at the end of the last step
-    /// (`ln(V/V*)` in the published form, `asinh(V/2V*)` in the regularised
-    /// one); the next step starts its Newton iteration here.
+    /// The solver's unknown `q = ln(|V|/V*)` at the end of the last step
+    /// (rate-and-state and rate-dependent laws).
     pub solver_guess: f64,
+    /// How much the rate-and-state solver's unknown changed over the last
+    /// step, limited to `±1` (a factor `e` in slip rate): the next step
+    /// starts its iteration at `solver_guess + solver_trend`. A contact's
+    /// slip rate changes smoothly from step to step, so this linear
+    /// extrapolation starts the solve about ten times closer to the root
+    /// than the last root does, and the solve then mostly takes a single
+    /// evaluation (docs/performance.md). Zero for a new contact and after a
+    /// step without a solve. It steers only where the solve starts, not
+    /// what it converges to.
+    pub solver_trend: f64,
 }
 
 /// What is imposed on a contact over one step.

@@ -59,6 +59,7 @@ impl FrictionLaw for RateDependent {
             tangential_force_n: self.mu_at(v) * n.max(0.0) * sign(v),
             theta: 0.0,
             solver_guess: (v.abs().max(self.v_floor_m_per_s) / self.v_star_m_per_s).ln(),
+            solver_trend: 0.0,
         }
     }
 
@@ -108,6 +109,7 @@ impl FrictionLaw for RateDependent {
                     r: mu * n + kdt * s - trial_abs,
                     dr: dmu * n + kdt * s,
                     d2r: f64::NAN,
+                    d3r: f64::NAN,
                     payload: s,
                 }
             },

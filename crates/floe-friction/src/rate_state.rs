@@ -15,7 +15,11 @@
 //! the spring would carry if the slider stood still). The residual tends to
 //! `-inf`/`+inf` at the ends of the `q` axis, so a root always exists; it is
 //! not always monotone (when `V dt > L` and `B > A`), which is why the solver
-//! brackets. The scheme is first order in `dt` (backward Euler in the slip)
+//! brackets. It starts from the last step's root extrapolated by its last
+//! change ([`ContactState::solver_trend`]), and ends with a fourth-order
+//! correction computed from the residual's first three derivatives, so that
+//! a contact whose slip rate changes smoothly is solved by one evaluation.
+//! The scheme is first order in `dt` (backward Euler in the slip)
 //! and L-stable: it does not blow up at low normal load or large `dt`, where
 //! an explicit update needs `(k/N) V dt / A < 1`.
 
@@ -25,7 +29,7 @@ use crate::amontons::sign;
 use crate::law::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 use crate::params::RateStateParams;
 use crate::root::{solve, Eval, Root, Solver};
-use crate::state_evolution::{evolve, SlipMeasure, StateLaw};
+use crate::state_evolution::{evolve, Evolved, SlipMeasure, StateLaw};
 
 /// How the friction coefficient relates to the slip rate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -50,6 +54,12 @@ const TOLERANCE: f64 = 1e-12;
 const RESIDUAL_TOLERANCE: f64 = 1e-13;
 /// Above this `z`, `asinh(e^z)` is `z + ln 2` to within 1e-22.
 const ASINH_LOG_SWITCH: f64 = 25.0;
+/// Largest change of the solver's unknown extrapolated into the next step's
+/// start (a factor `e` in slip rate): a bigger one is a jump (a load
+/// reversal, a contact starting to slide), not a trend. Unbounded, a jump
+/// of 1e3 once started the solve where the slip rate overflows (found by
+/// `tests/friction_kernel_properties.rs`).
+const MAX_TREND: f64 = 1.0;
 
 /// The rate-and-state law: parameters, form and state-evolution law.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -64,7 +74,7 @@ pub struct RateState {
 }
 
 /// What an evaluation of the residual keeps: `theta` at the end of the step,
-/// the slip speed `|V|`, and the first two derivatives of `theta` with
+/// the slip speed `|V|`, and the first three derivatives of `theta` with
 /// respect to `q` (to carry the two to a corrected `q` without another
 /// evaluation).
 #[derive(Debug, Clone, Copy)]
@@ -76,18 +86,22 @@ struct EndOfStep {
     /// solve then takes Newton steps, whose last correction needs first
     /// order only.
     d2theta: f64,
+    /// Zero where the state law gives no third derivative (aging).
+    d3theta: f64,
 }
 
 impl EndOfStep {
-    /// The state at `q + dq`, to second order (`speed = V* e^q`), as the
-    /// solver's last correction needs after a Halley step.
+    /// The state at `q + dq`, to third order (`speed = V* e^q`), as the
+    /// solver's fourth-order last correction needs: its `dq` reaches 2e-3,
+    /// whose cube is 8e-9.
     #[inline(always)]
     fn advanced(self, dq: f64) -> Self {
+        let third = 1.0 / 6.0;
         Self {
-            theta: self.theta + (self.dtheta + 0.5 * self.d2theta * dq) * dq,
-            speed: self.speed + self.speed * (dq + 0.5 * dq * dq),
-            dtheta: self.dtheta,
-            d2theta: self.d2theta,
+            theta: self.theta
+                + (self.dtheta + (0.5 * self.d2theta + third * self.d3theta * dq) * dq) * dq,
+            speed: self.speed + self.speed * (dq + (0.5 + third * dq) * dq * dq),
+            ..self
         }
     }
 }
@@ -166,7 +180,7 @@ impl RateState {
             slip,
             (p.v_star_m_per_s * dt_over_l).ln(),
         )
-        .0
+        .theta
     }
 }
 
@@ -186,6 +200,7 @@ impl FrictionLaw for RateState {
                 tangential_force_n: 0.0,
                 theta: 0.0,
                 solver_guess: 0.0,
+                solver_trend: 0.0,
             };
         }
         let dir = match self.form {
@@ -196,6 +211,7 @@ impl FrictionLaw for RateState {
             tangential_force_n: dir * self.mu_steady(v) * n.max(0.0),
             theta: self.params.theta_steady(v),
             solver_guess: self.unknown_for_slip_rate(v),
+            solver_trend: 0.0,
         }
     }
 
@@ -207,7 +223,7 @@ impl FrictionLaw for RateState {
                 let root = solve(
                     |q| self.residual(q, &setup.constants),
                     EndOfStep::advanced,
-                    state.solver_guess,
+                    state.solver_guess + state.solver_trend,
                     TOLERANCE,
                     setup.residual_tolerance,
                 );
@@ -236,6 +252,7 @@ impl SolveSetup {
         let v = self.direction * end.speed;
         state.tangential_force_n = self.trial_force - self.kdt * v;
         state.theta = end.theta;
+        state.solver_trend = (root.x - state.solver_guess).clamp(-MAX_TREND, MAX_TREND);
         state.solver_guess = root.x;
         StepOutcome {
             slip_rate_m_per_s: v,
@@ -298,7 +315,7 @@ impl RateState {
                         Prepared::Done(outcome) => item.outcome = outcome,
                         Prepared::Solve(s) => {
                             solver[l] = Solver::new(
-                                item.state.solver_guess,
+                                item.state.solver_guess + item.state.solver_trend,
                                 TOLERANCE,
                                 s.residual_tolerance,
                             );
@@ -352,7 +369,12 @@ impl RateState {
         for l in 0..N {
             speed[l] = p.v_star_m_per_s * q[l].exp();
         }
-        let mut state = [(0.0, 0.0, 0.0); N];
+        let mut state = [Evolved {
+            theta: 0.0,
+            d1: 0.0,
+            d2: 0.0,
+            d3: 0.0,
+        }; N];
         for l in 0..N {
             let slip = SlipMeasure {
                 q: q[l],
@@ -371,35 +393,46 @@ impl RateState {
         for l in 0..N {
             spring[l] = c[l].kappa * speed[l];
         }
-        let mut rdr = [(0.0, 0.0, 0.0); N];
+        // The residual and its first three derivatives (NaN from the
+        // second on for the aging law: `state[l].d2`, `.d3` are NaN).
+        let mut rdr = [[0.0; 4]; N];
         match self.form {
             Form::Published => {
                 for l in 0..N {
-                    let (theta, dtheta, d2theta) = state[l];
-                    rdr[l] = (
-                        p.mu0 + theta + p.a * q[l] - c[l].trial_mu + spring[l],
-                        p.a + dtheta + spring[l],
-                        d2theta + spring[l],
-                    );
+                    let s = state[l];
+                    rdr[l] = [
+                        p.mu0 + s.theta + p.a * q[l] - c[l].trial_mu + spring[l],
+                        p.a + s.d1 + spring[l],
+                        s.d2 + spring[l],
+                        s.d3 + spring[l],
+                    ];
                 }
             }
             Form::Regularized => {
                 let mut m = [(0.0, 0.0); N];
                 for l in 0..N {
-                    m[l] = asinh_of_exp(q[l] - std::f64::consts::LN_2 + (p.mu0 + state[l].0) / p.a);
+                    m[l] = asinh_of_exp(
+                        q[l] - std::f64::consts::LN_2 + (p.mu0 + state[l].theta) / p.a,
+                    );
                 }
-                // With g = dm/dz: dz/dq = 1 + dtheta/A, so
-                // d(A m)/dq = (A + dtheta) g, and as dg/dz = g (1 - g^2),
-                // d2(A m)/dq2 = g (1 - g^2) (A + dtheta)^2 / A + g d2theta.
+                // With g = dm/dz and z = q - ln 2 + (mu0 + theta)/A:
+                // z' = (A + theta')/A, z'' = theta''/A, z''' = theta'''/A, and
+                // g' = dg/dz = g (1 - g^2), g'' = g' (1 - 3 g^2). Then
+                // (A m)' = A g z', (A m)'' = A (g' z'^2 + g z''),
+                // (A m)''' = A (g'' z'^3 + 3 g' z' z'' + g z''').
                 for l in 0..N {
                     let (m, g) = m[l];
-                    let (_, dtheta, d2theta) = state[l];
-                    let slope = p.a + dtheta;
-                    rdr[l] = (
+                    let s = state[l];
+                    let slope = p.a + s.d1;
+                    let z1 = slope / p.a;
+                    let g1 = g * (1.0 - g * g);
+                    let g2 = g1 * (1.0 - 3.0 * g * g);
+                    rdr[l] = [
                         p.a * m - c[l].trial_mu.abs() + spring[l],
                         slope * g + spring[l],
-                        g * (1.0 - g * g) * slope * slope / p.a + g * d2theta + spring[l],
-                    );
+                        g1 * slope * z1 + g * s.d2 + spring[l],
+                        g2 * slope * z1 * z1 + 3.0 * g1 * z1 * s.d2 + g * s.d3 + spring[l],
+                    ];
                 }
             }
         }
@@ -407,23 +440,29 @@ impl RateState {
             r: 0.0,
             dr: 0.0,
             d2r: 0.0,
+            d3r: 0.0,
             payload: EndOfStep {
                 theta: 0.0,
                 speed: 0.0,
                 dtheta: 0.0,
                 d2theta: 0.0,
+                d3theta: 0.0,
             },
         }; N];
         for l in 0..N {
+            let s = state[l];
+            let [r, dr, d2r, d3r] = rdr[l];
             evals[l] = Eval {
-                r: rdr[l].0,
-                dr: rdr[l].1,
-                d2r: rdr[l].2,
+                r,
+                dr,
+                d2r,
+                d3r,
                 payload: EndOfStep {
-                    theta: state[l].0,
+                    theta: s.theta,
                     speed: speed[l],
-                    dtheta: state[l].1,
-                    d2theta: if state[l].2.is_nan() { 0.0 } else { state[l].2 },
+                    dtheta: s.d1,
+                    d2theta: if s.d2.is_nan() { 0.0 } else { s.d2 },
+                    d3theta: if s.d3.is_nan() { 0.0 } else { s.d3 },
                 },
             };
         }
@@ -442,6 +481,7 @@ impl RateState {
             };
             state.tangential_force_n = 0.0;
             state.theta = self.evolve_at(state.theta, v, dt);
+            state.solver_trend = 0.0;
             if v != 0.0 {
                 state.solver_guess = self.unknown_for_slip_rate(v);
             }
@@ -468,6 +508,7 @@ impl RateState {
             // Regularised form with no force on the spring: no slip this step.
             state.tangential_force_n = 0.0;
             state.theta = self.evolve_at(state.theta, 0.0, dt);
+            state.solver_trend = 0.0;
             return Prepared::Done(StepOutcome {
                 slip_rate_m_per_s: 0.0,
                 mu: 0.0,
@@ -541,9 +582,11 @@ mod tests {
 
         /// The solver ends with a correction it does not evaluate, carrying
         /// `theta` and the slip rate to the corrected point by a Taylor
-        /// step (second order after a Halley step). Against the state law
-        /// and the friction law evaluated afresh at the returned slip rate:
-        /// a first-order carry after a Halley step is off by ~1e-9 here.
+        /// step (third order: the fourth-order correction reaches 2e-3).
+        /// Against the state law and the friction law evaluated afresh at
+        /// the returned slip rate: a first-order carry after a Halley step
+        /// is off by ~1e-9 here, a second-order one after the fourth-order
+        /// correction by ~1e-10.
         #[test]
         fn the_carried_state_is_the_state_at_the_returned_slip_rate(
             published in any::<bool>(),
@@ -555,6 +598,7 @@ mod tests {
             v0 in signed_log(1e-12, 10.0),
             change in -1.0..1.0f64,
             guess in -1.0..1.0f64,
+            small in any::<bool>(),
         ) {
             let law = RateState::new(
                 RateStateParams::lishman_2011(l),
@@ -563,12 +607,15 @@ mod tests {
             );
             // Steady sliding, then a load-point velocity changed by up to a
             // factor e either way: the small changes of a DEM contact, where
-            // the last correction is taken after one or two evaluations.
+            // the last correction is taken after one or two evaluations. Or
+            // by up to 1e-3 from a start 1e-4 off: where one evaluation and
+            // the fourth-order correction do.
+            let scale = if small { 1e-3 } else { 1.0 };
             let mut state = law.steady_state(v0, n);
-            state.solver_guess += 0.01 * guess;
+            state.solver_guess += 0.01 * scale * guess;
             let before = state;
             let load = ContactLoad {
-                load_point_velocity_m_per_s: v0 * change.exp(),
+                load_point_velocity_m_per_s: v0 * (scale * change).exp(),
                 stiffness_n_per_m: k,
                 normal_load_n: n,
             };
@@ -591,6 +638,103 @@ mod tests {
                 (mu - out.mu).abs() <= 1e-10 * (1.0 + mu.abs()) + 1e-11 * (1.0 + q.abs()) * spring,
                 "law {mu} vs F/N {}, {out:?}", out.mu
             );
+        }
+    }
+
+    #[test]
+    fn a_nearly_flat_residual_is_solved_to_the_tolerance() {
+        // At V dt / L = 1.67, where B (1 - e^(-V dt/L)) = A, theta's
+        // response to the slip rate cancels the direct effect and the
+        // residual is nearly flat at its root (here with a soft spring): the
+        // corrections' error constants are large, and a correction trusted
+        // as if they were one left the law and F/N 1.6e-8 apart (found by
+        // the proptest above). Cases of that proptest, one per form.
+        let cases = [
+            (
+                Form::Published,
+                1.8358669027395884e-6,
+                2.3006603362920417e-6,
+                20352983.102828193,
+                1.329152547598036,
+                -0.5843504788236481e-2,
+            ),
+            (
+                Form::Regularized,
+                2.443849386149912e-6,
+                6.268254184983195e-6,
+                14301606.262449186,
+                0.6512058826263392,
+                -0.7339506920737375e-5,
+            ),
+        ];
+        for (form, l, dt, n, v0, offset) in cases {
+            let law = RateState::new(RateStateParams::lishman_2011(l), form, StateLaw::Slip);
+            let mut state = law.steady_state(v0, n);
+            state.solver_guess += offset;
+            let before = state;
+            let load = ContactLoad {
+                load_point_velocity_m_per_s: v0,
+                stiffness_n_per_m: 100.0,
+                normal_load_n: n,
+            };
+            let out = law.step(&mut state, &load, dt);
+            let v = out.slip_rate_m_per_s;
+            let theta = law.evolve_at(before.theta, v, dt);
+            let mu = law.mu_at(v, state.theta);
+            eprintln!(
+                "{form:?}: {} evaluations, theta {:.1e}, mu {:.1e}",
+                out.iterations,
+                state.theta - theta,
+                mu - out.mu
+            );
+            assert!(
+                (state.theta - theta).abs() <= 1e-10 * (1.0 + theta.abs()),
+                "{form:?}: {out:?}"
+            );
+            assert!(
+                (mu - out.mu).abs() <= 1e-10 * (1.0 + mu.abs()),
+                "{form:?}: law {mu} vs F/N {}",
+                out.mu
+            );
+        }
+    }
+
+    #[test]
+    fn the_residual_derivatives_match_finite_differences() {
+        // Each derivative against a central difference of the one below
+        // it, for both forms and state laws, at slip rates from 3e-12 to
+        // 0.6 m/s and states that put `asinh(e^z)` on each of its three
+        // branches (z < 0, 0 <= z <= 25, z > 25 at theta = 8).
+        let h = 1e-6;
+        for form in [Form::Published, Form::Regularized] {
+            for state_law in [StateLaw::Slip, StateLaw::Aging] {
+                let law = RateState::new(RateStateParams::lishman_2011(2e-4), form, state_law);
+                for (theta, dt) in [(-3.0, 1e-3), (0.2, 1e-3), (0.2, 0.5), (8.0, 1e-2)] {
+                    let c = StepConstants {
+                        dt_over_l: dt / 2e-4,
+                        ln_vstar_dt_over_l: (1e-5 * dt / 2e-4).ln(),
+                        trial_mu: 0.6,
+                        kappa: 0.05,
+                        theta,
+                    };
+                    for q in [-15.0, -2.0, 0.5, 3.0, 7.0, 11.0] {
+                        let at = |q: f64| law.residual(q, &c);
+                        let (up, down, here) = (at(q + h), at(q - h), at(q));
+                        let close = |fd: f64, d: f64| (fd - d).abs() <= 1e-6 * (1.0 + d.abs());
+                        let case = format!("{form:?} {state_law:?} theta {theta} dt {dt} q {q}");
+                        let fd = (up.r - down.r) / (2.0 * h);
+                        assert!(close(fd, here.dr), "{case}: r' {} vs {fd}", here.dr);
+                        if state_law == StateLaw::Slip {
+                            let fd2 = (up.dr - down.dr) / (2.0 * h);
+                            assert!(close(fd2, here.d2r), "{case}: r'' {} vs {fd2}", here.d2r);
+                            let fd3 = (up.d2r - down.d2r) / (2.0 * h);
+                            assert!(close(fd3, here.d3r), "{case}: r''' {} vs {fd3}", here.d3r);
+                        } else {
+                            assert!(here.d2r.is_nan() && here.d3r.is_nan(), "{case}");
+                        }
+                    }
+                }
+            }
         }
     }
 

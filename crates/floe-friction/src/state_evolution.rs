@@ -14,8 +14,10 @@
 //!   evaluated in log space so long holds cannot overflow.
 //!
 //! `theta_ss = -B ln(|V|/V*)` in both. `evolve` also returns the
-//! derivative of `theta_new` with respect to the solver's unknown
-//! `q = ln(|V|/V*)` (note `dx/dq = x`).
+//! derivatives of `theta_new` with respect to the solver's unknown
+//! `q = ln(|V|/V*)` (note `dx/dq = x`): the first for both laws, the second
+//! and third for the slip law (the solver's Halley steps and its
+//! fourth-order last correction, `crate::root`).
 
 use serde::{Deserialize, Serialize};
 
@@ -39,10 +41,23 @@ pub(crate) struct SlipMeasure {
     pub x: f64,
 }
 
-/// `theta` at the end of the step and its first and second derivatives with
-/// respect to `q` (the second for the slip law only, NaN for the aging law,
-/// whose solve takes Newton steps). `ln_vstar_dt_over_l` is `ln(V* dt / L)`
-/// (used by the aging law only).
+/// `theta` at the end of a step and its derivatives with respect to `q`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Evolved {
+    /// `theta` at the end of the step.
+    pub theta: f64,
+    /// `d theta / dq`.
+    pub d1: f64,
+    /// `d2 theta / dq2`; NaN for the aging law, whose solve takes Newton
+    /// steps.
+    pub d2: f64,
+    /// `d3 theta / dq3`; NaN for the aging law.
+    pub d3: f64,
+}
+
+/// `theta` at the end of the step and its derivatives with respect to `q`
+/// (see [`Evolved`]). `ln_vstar_dt_over_l` is `ln(V* dt / L)` (used by the
+/// aging law only).
 #[inline(always)]
 pub(crate) fn evolve(
     law: StateLaw,
@@ -50,26 +65,42 @@ pub(crate) fn evolve(
     theta: f64,
     slip: SlipMeasure,
     ln_vstar_dt_over_l: f64,
-) -> (f64, f64, f64) {
+) -> Evolved {
     let SlipMeasure { q, x } = slip;
     match law {
         StateLaw::Slip => {
             if x == 0.0 {
-                return (theta, 0.0, 0.0);
+                return Evolved {
+                    theta,
+                    d1: 0.0,
+                    d2: 0.0,
+                    d3: 0.0,
+                };
             }
             let one_minus_e = -(-x).exp_m1();
             let e = 1.0 - one_minus_e;
             let theta_ss = -b * q;
             let theta_new = theta + (theta_ss - theta) * one_minus_e;
-            let d = -(b * one_minus_e + (theta - theta_ss) * e * x);
-            // With dx/dq = x and de/dq = -e x.
+            // With dx/dq = x, de/dq = -e x and d(theta - theta_ss)/dq = b:
+            // d(e x)/dq = e x (1 - x), d(e x (1 - x))/dq = e x ((1 - x)^2 - x).
+            let gap = theta - theta_ss;
             let ex = e * x;
-            let d2 = -(2.0 * b * ex + (theta - theta_ss) * ex * (1.0 - x));
-            (theta_new, d, d2)
+            let one_minus_x = 1.0 - x;
+            Evolved {
+                theta: theta_new,
+                d1: -(b * one_minus_e + gap * ex),
+                d2: -(2.0 * b * ex + gap * ex * one_minus_x),
+                d3: -(3.0 * b * ex * one_minus_x + gap * ex * (one_minus_x * one_minus_x - x)),
+            }
         }
         StateLaw::Aging => {
             if b == 0.0 {
-                return (theta, 0.0, f64::NAN);
+                return Evolved {
+                    theta,
+                    d1: 0.0,
+                    d2: f64::NAN,
+                    d3: f64::NAN,
+                };
             }
             // ln of the two terms of phi_new, and x h'(x)/h(x) with h = (1-e^-x)/x.
             let (ln_h, x_dlnh) = if x < 1e-8 {
@@ -96,8 +127,12 @@ pub(crate) fn evolve(
             } else {
                 (e_small, 1.0)
             };
-            let d = b * (w2 * x_dlnh - w1 * x) / (1.0 + e_small);
-            (theta_new, d, f64::NAN)
+            Evolved {
+                theta: theta_new,
+                d1: b * (w2 * x_dlnh - w1 * x) / (1.0 + e_small),
+                d2: f64::NAN,
+                d3: f64::NAN,
+            }
         }
     }
 }
@@ -134,7 +169,7 @@ mod tests {
                     q: (v / vstar).ln(),
                     x: v * dt / l,
                 };
-                let (exact, _, _) = evolve(law, b, theta, slip, (vstar * dt / l).ln());
+                let exact = evolve(law, b, theta, slip, (vstar * dt / l).ln()).theta;
                 let reference = rk4(law, b, l, vstar, v, theta, dt);
                 assert!(
                     (exact - reference).abs() < 1e-9,
@@ -145,10 +180,13 @@ mod tests {
     }
 
     #[test]
-    fn derivative_matches_finite_difference() {
+    fn derivatives_match_finite_differences() {
+        // Each derivative against a central difference of the one below it,
+        // for slips per step x = V dt / L from 1e-13 to 160 (through x = 1
+        // and 3, where the factors 1 - x and (1 - x)^2 - x change sign).
         let (b, l, vstar, dt, theta) = (0.382, 2e-4, 1e-5, 1e-3, 0.2);
         for law in [StateLaw::Slip, StateLaw::Aging] {
-            for w in [-20.0, -3.0, 0.5, 2.3, 9.0] {
+            for w in [-20.0, -3.0, 0.5, 2.3, 9.0, 10.0, 11.0, 12.0, 15.0] {
                 let at = |w: f64| {
                     let v = vstar * f64::exp(w);
                     let slip = SlipMeasure {
@@ -158,19 +196,25 @@ mod tests {
                     evolve(law, b, theta, slip, (vstar * dt / l).ln())
                 };
                 let h = 1e-6;
-                let fd = (at(w + h).0 - at(w - h).0) / (2.0 * h);
-                let d = at(w).1;
-                assert!(
-                    (fd - d).abs() <= 1e-6 * (1.0 + d.abs()),
-                    "{law:?} w {w}: {d} vs {fd}"
-                );
+                let (up, down, here) = (at(w + h), at(w - h), at(w));
+                let close = |fd: f64, d: f64| (fd - d).abs() <= 1e-6 * (1.0 + d.abs());
+                let fd = (up.theta - down.theta) / (2.0 * h);
+                assert!(close(fd, here.d1), "{law:?} w {w}: {} vs {fd}", here.d1);
                 if law == StateLaw::Slip {
-                    let fd2 = (at(w + h).1 - at(w - h).1) / (2.0 * h);
-                    let d2 = at(w).2;
+                    let fd2 = (up.d1 - down.d1) / (2.0 * h);
                     assert!(
-                        (fd2 - d2).abs() <= 1e-6 * (1.0 + d2.abs()),
-                        "{law:?} w {w}: second derivative {d2} vs {fd2}"
+                        close(fd2, here.d2),
+                        "{law:?} w {w}: second derivative {} vs {fd2}",
+                        here.d2
                     );
+                    let fd3 = (up.d2 - down.d2) / (2.0 * h);
+                    assert!(
+                        close(fd3, here.d3),
+                        "{law:?} w {w}: third derivative {} vs {fd3}",
+                        here.d3
+                    );
+                } else {
+                    assert!(here.d2.is_nan() && here.d3.is_nan());
                 }
             }
         }
@@ -183,11 +227,11 @@ mod tests {
             q: f64::NEG_INFINITY,
             x: 0.0,
         };
-        let (slip_theta, _, _) = evolve(StateLaw::Slip, b, 0.1, at_rest, 0.0);
+        let slip_theta = evolve(StateLaw::Slip, b, 0.1, at_rest, 0.0).theta;
         assert_eq!(slip_theta, 0.1);
         // phi = e^{theta/B} grows by V* t / L: theta -> B ln(e^{theta/B} + V* t/L).
         let t = 1000.0;
-        let (aged, _, _) = evolve(StateLaw::Aging, b, 0.1, at_rest, f64::ln(vstar * t / l));
+        let aged = evolve(StateLaw::Aging, b, 0.1, at_rest, f64::ln(vstar * t / l)).theta;
         let expected = b * ((0.1 / b).exp() + vstar * t / l).ln();
         assert!((aged - expected).abs() < 1e-12);
     }

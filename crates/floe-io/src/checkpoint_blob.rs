@@ -17,6 +17,11 @@
 //! declaration order; a vector is its length (u64) then its elements.
 //! Bytes after the payload are ignored (a slot is reused for smaller states
 //! without shrinking).
+//!
+//! Version 2 added the friction solver's trend to every contact state
+//! (`ContactState::solver_trend`, after `solver_guess`). Version 1
+//! checkpoints are still read, with a zero trend: the run resumes as if
+//! every contact's solve started from its last root once.
 
 use floe_dem::checkpoint::WorldState;
 use floe_dem::contacts::{BrokenContact, ContactRecord};
@@ -27,8 +32,10 @@ use floe_friction::ContactState;
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
-/// Version of the encoding written; others are refused.
-pub const FORMAT_VERSION: u32 = 1;
+/// Version of the encoding written.
+pub const FORMAT_VERSION: u32 = 2;
+/// The oldest version read; older and newer ones are refused.
+pub const OLDEST_READABLE_VERSION: u32 = 1;
 /// Bytes before the payload.
 pub const HEADER_LEN: usize = 32;
 
@@ -54,7 +61,8 @@ pub fn fnv1a64(bytes: &[u8]) -> u64 {
     h
 }
 
-struct Enc(Vec<u8>);
+/// The payload being written, and the format version it follows.
+struct Enc(Vec<u8>, u32);
 
 impl Enc {
     fn u8(&mut self, v: u8) {
@@ -89,10 +97,14 @@ impl Enc {
             tangential_force_n,
             theta,
             solver_guess,
+            solver_trend,
         } = *s;
         self.f64(tangential_force_n);
         self.f64(theta);
         self.f64(solver_guess);
+        if self.1 >= 2 {
+            self.f64(solver_trend);
+        }
     }
     fn str(&mut self, s: &str) {
         self.len(s.len());
@@ -102,7 +114,12 @@ impl Enc {
 
 /// The checkpoint bytes of `state` with the output `counts`.
 pub fn encode(state: &WorldState, counts: &OutputCounts) -> Vec<u8> {
-    let mut e = Enc(Vec::with_capacity(estimate_len(state)));
+    encode_version(state, counts, FORMAT_VERSION)
+}
+
+/// [`encode`] in an older layout (for the tests of reading one).
+fn encode_version(state: &WorldState, counts: &OutputCounts, version: u32) -> Vec<u8> {
+    let mut e = Enc(Vec::with_capacity(estimate_len(state)), version);
     e.u64(counts.snapshots);
     e.u64(counts.contact_rows);
     e.len(counts.observables.len());
@@ -249,7 +266,7 @@ pub fn encode(state: &WorldState, counts: &OutputCounts) -> Vec<u8> {
     let payload = e.0;
     let mut out = Vec::with_capacity(HEADER_LEN + payload.len());
     out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    out.extend_from_slice(&version.to_le_bytes());
     out.extend_from_slice(&0u32.to_le_bytes());
     out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
     out.extend_from_slice(&fnv1a64(&payload).to_le_bytes());
@@ -263,13 +280,15 @@ pub fn estimate_len(state: &WorldState) -> usize {
         + 1024
         + state.floes.len() * 200
         + state.floes.vertices.len() * 16
-        + state.contacts.len() * 168
-        + state.broken.len() * 40
+        + state.contacts.len() * 176
+        + state.broken.len() * 48
 }
 
 struct Dec<'a> {
     buf: &'a [u8],
     pos: usize,
+    /// Format version of the bytes.
+    version: u32,
 }
 
 type DecResult<T> = Result<T, String>;
@@ -340,6 +359,7 @@ impl<'a> Dec<'a> {
             tangential_force_n: self.f64()?,
             theta: self.f64()?,
             solver_guess: self.f64()?,
+            solver_trend: if self.version >= 2 { self.f64()? } else { 0.0 },
         })
     }
     fn str(&mut self) -> DecResult<String> {
@@ -361,10 +381,10 @@ pub fn verify(bytes: &[u8]) -> DecResult<&[u8]> {
         b.copy_from_slice(&bytes[at..at + 8]);
         u64::from_le_bytes(b)
     };
-    let version = u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]);
-    if version != FORMAT_VERSION {
+    let version = version_of(bytes);
+    if !(OLDEST_READABLE_VERSION..=FORMAT_VERSION).contains(&version) {
         return Err(format!(
-            "format version {version}; this floe reads version {FORMAT_VERSION}"
+            "format version {version}; this floe reads versions {OLDEST_READABLE_VERSION} to {FORMAT_VERSION}"
         ));
     }
     let len = word(16);
@@ -384,6 +404,11 @@ pub fn verify(bytes: &[u8]) -> DecResult<&[u8]> {
     Ok(payload)
 }
 
+/// The format version in a header that [`verify`] accepted.
+fn version_of(bytes: &[u8]) -> u32 {
+    u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]])
+}
+
 /// The state and counts of checkpoint `bytes`, after checking the header,
 /// the checksum and the state's consistency.
 pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
@@ -391,6 +416,7 @@ pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
     let d = &mut Dec {
         buf: payload,
         pos: 0,
+        version: version_of(bytes),
     };
     let snapshots = d.u64()?;
     let contact_rows = d.u64()?;
@@ -515,4 +541,73 @@ fn check_floes(f: &Floes) -> DecResult<()> {
         return Err(format!("{} owned floes of {n}", f.owned));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use floe_dem::broad_phase::Periodicity;
+    use floe_dem::contacts::ContactModel;
+    use floe_dem::world::{stable_time_step, NoForcing, World};
+
+    /// A 4 x 4 grid of squares pressed into each other and let go, a few
+    /// steps in: its contacts slip at changing rates, so their friction
+    /// states carry non-zero trends.
+    fn springing_pack() -> WorldState {
+        let polys: Vec<Vec<Vec2>> = (0..16)
+            .map(|k| {
+                let c = Vec2::new(
+                    (k % 4) as f64 * 98.0,
+                    (k / 4) as f64 * 98.0 + 0.7 * (k % 4) as f64,
+                );
+                [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                    .map(|(x, y)| c + 50.0 * Vec2::new(x, y))
+                    .to_vec()
+            })
+            .collect();
+        let floes = Floes::from_polygons(&polys, &[1.0; 16], 917.0).unwrap();
+        let model = ContactModel::default();
+        let dt = 0.5 * stable_time_step(&floes, &model).0;
+        let mut world = World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap();
+        for _ in 0..3 {
+            world.step();
+        }
+        world.state()
+    }
+
+    #[test]
+    fn a_version_1_checkpoint_is_read_with_zero_trends() {
+        let state = springing_pack();
+        let trends = state
+            .contacts
+            .iter()
+            .filter(|c| c.friction.solver_trend != 0.0)
+            .count();
+        assert!(trends > 0, "no contact with a trend to lose");
+        let counts = OutputCounts::default();
+        let (v1, v2) = (encode_version(&state, &counts, 1), encode(&state, &counts));
+        // Version 1 is version 2 without the trend's 8 bytes per friction state.
+        assert_eq!(
+            v2.len() - v1.len(),
+            8 * (state.contacts.len() + state.broken.len())
+        );
+        let mut expected = state.clone();
+        expected
+            .contacts
+            .iter_mut()
+            .for_each(|c| c.friction.solver_trend = 0.0);
+        expected
+            .broken
+            .iter_mut()
+            .for_each(|c| c.friction.solver_trend = 0.0);
+        let (back, _) = decode(&v1).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{expected:?}"));
+        let (back, _) = decode(&v2).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{state:?}"));
+        // A version from the future is refused, by name.
+        let mut v3 = v2.clone();
+        v3[8..12].copy_from_slice(&3u32.to_le_bytes());
+        let e = decode(&v3).expect_err("version 3");
+        assert!(e.contains("format version 3"), "{e}");
+    }
 }
