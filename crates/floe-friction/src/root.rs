@@ -167,7 +167,9 @@ impl Solver {
         }
         self.lo = lo;
         self.hi = hi;
-        let newton = x - e.r / e.dr;
+        // Newton's step is `-a`.
+        let a = e.r / e.dr;
+        let newton = x - a;
         let downhill = e.dr > 0.0 && newton.is_finite();
         // Halley's step, where the second derivative is known and the step
         // goes the way Newton's does (false for a NaN `d2r`).
@@ -194,28 +196,6 @@ impl Solver {
         // tolerances are scaled by them, not taken as if they were one.
         let h2 = e.d2r / e.dr;
         let h3 = e.d3r / e.dr;
-        if downhill && h2.is_finite() && h3.is_finite() {
-            // Householder's fourth-order correction, in ratios that stay
-            // finite for the spring's steep residuals (`r'^3` may overflow
-            // where `r/r'` does not).
-            let a = e.r / e.dr;
-            let (u, w) = (a * h2, a * a * h3);
-            let dx = -a * (1.0 - 0.5 * u) / (1.0 - u + w * (1.0 / 6.0));
-            let to = x + dx;
-            let error_constant = h2.abs().powi(3).max((h2 * h3).abs()).max(1.0);
-            if u.abs() <= 0.5
-                && w.abs() <= 0.5
-                && (dx * dx) * (dx * dx) * error_constant <= self.tol * x.abs()
-                && to >= lo
-                && to <= hi
-            {
-                return Some(Root {
-                    x: to,
-                    payload: advance(e.payload, dx),
-                    evaluations,
-                });
-            }
-        }
         // The step to take: Halley's where it is trusted, else Newton's.
         let (step_to, converged) = if halley_ok {
             let dx = halley - x;
@@ -241,6 +221,28 @@ impl Solver {
                 payload: advance(e.payload, dx),
                 evaluations,
             });
+        }
+        if downhill && h2.is_finite() && h3.is_finite() {
+            // Householder's fourth-order correction, tried where Halley's
+            // is not close enough, in ratios that stay finite for the
+            // spring's steep residuals (`r'^3` may overflow where `r/r'`
+            // does not).
+            let (u, w) = (a * h2, a * a * h3);
+            let dx = -a * (1.0 - 0.5 * u) / (1.0 - u + w * (1.0 / 6.0));
+            let to = x + dx;
+            let error_constant = h2.abs().powi(3).max((h2 * h3).abs()).max(1.0);
+            if u.abs() <= 0.5
+                && w.abs() <= 0.5
+                && (dx * dx) * (dx * dx) * error_constant <= self.tol * x.abs()
+                && to >= lo
+                && to <= hi
+            {
+                return Some(Root {
+                    x: to,
+                    payload: advance(e.payload, dx),
+                    evaluations,
+                });
+            }
         }
         let bracketed = lo.is_finite() && hi.is_finite();
         // As in Numerical Recipes' rtsafe: inside a bracket, bisect whenever
