@@ -116,7 +116,7 @@ impl ContactRecord {
 /// Then the law's step on the returned load and `record.friction`
 /// (`FrictionLaw::step`, or `Law::step_batch` for many contacts at once, as
 /// the world does), then [`finish_friction`]. The record is updated in
-/// place, not returned: copying the 160 B record and the friction step's
+/// place, not returned: copying the 168 B record and the friction step's
 /// items in and out was about 1 % of a step's instructions
 /// (docs/performance.md).
 #[inline]

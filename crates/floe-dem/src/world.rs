@@ -440,7 +440,7 @@ impl<F: ExternalForces> World<F> {
                 .resize(self.broad_phase.pairs.len(), SeparatingEdge::NONE);
         }
         // The contact list is updated in place: a step holds one list, not
-        // the previous one, per-task outputs and a new one (three 160 B
+        // the previous one, per-task outputs and a new one (three 168 B
         // records per contact, 960 B per floe at 1e6 floes: the 1 KB per
         // floe budget, docs/performance.md). Pairs and contacts are both
         // sorted by (a, b), so each fixed chunk of pairs owns the contiguous
@@ -980,7 +980,7 @@ enum Slot {
 /// building a list of both sides took 4.4-5.9 ms of a step, with the
 /// sides' random increments and writes (docs/performance.md).
 ///
-/// The keys are first copied out of the 160 B records in parallel: the
+/// The keys are first copied out of the 168 B records in parallel: the
 /// sequential passes then stream 8 B per contact instead of a cache line or
 /// two per record (at 1e5 floes, 3.7-4.9 ms of sequential reading before).
 fn build_adjacency(
