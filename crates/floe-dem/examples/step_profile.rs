@@ -98,6 +98,7 @@ fn fingerprint<F: floe_dem::world::ExternalForces>(w: &floe_dem::world::World<F>
         mix(c.friction.tangential_force_n);
         mix(c.friction.theta);
         mix(c.friction.solver_guess);
+        mix(c.friction.solver_trend);
         mix(c.normal_energy_j);
         mix(c.tangential_energy_j);
     }

@@ -92,8 +92,9 @@ struct EndOfStep {
 
 impl EndOfStep {
     /// The state at `q + dq`, to third order (`speed = V* e^q`), as the
-    /// solver's fourth-order last correction needs: its `dq` reaches 2e-3,
-    /// whose cube is 8e-9.
+    /// solver's fourth-order last correction needs: its `dq` reaches
+    /// `(1e-12 |q|)^(1/4)`, 2e-3 at the DEM's `|q|` of about 10 (5e-3 at
+    /// 700), whose cube is 8e-9.
     #[inline(always)]
     fn advanced(self, dq: f64) -> Self {
         let third = 1.0 / 6.0;
@@ -582,7 +583,8 @@ mod tests {
 
         /// The solver ends with a correction it does not evaluate, carrying
         /// `theta` and the slip rate to the corrected point by a Taylor
-        /// step (third order: the fourth-order correction reaches 2e-3).
+        /// step (third order: the fourth-order correction reaches about
+        /// 2e-3).
         /// Against the state law and the friction law evaluated afresh at
         /// the returned slip rate: a first-order carry after a Halley step
         /// is off by ~1e-9 here, a second-order one after the fourth-order
@@ -608,7 +610,7 @@ mod tests {
             // Steady sliding, then a load-point velocity changed by up to a
             // factor e either way: the small changes of a DEM contact, where
             // the last correction is taken after one or two evaluations. Or
-            // by up to 1e-3 from a start 1e-4 off: where one evaluation and
+            // by up to 1e-3 from a start 1e-5 off: where one evaluation and
             // the fourth-order correction do.
             let scale = if small { 1e-3 } else { 1.0 };
             let mut state = law.steady_state(v0, n);

@@ -59,14 +59,22 @@ const MAX_EVALUATIONS: u32 = 400;
 /// `dx` is small enough that the corrected point `x + dx` is within
 /// `tol * |x|` of the root (for a Halley step, only where it agrees with
 /// Newton's, `|r r''| <= r'^2`). Newton's error after a step is
-/// `C dx^2`, Halley's `C dx^3`, with `C` of order one for the laws'
-/// residuals, so `dx^2 <= tol |x|` (Newton) or `|dx|^3 <= tol |x|` (Halley)
-/// suffices. Where the residual also gives its third derivative, the last
-/// correction may be Householder's of fourth order,
-/// `dx = -(r/r') (1 - u/2) / (1 - u + w/6)` with `u = r r''/r'^2` and
-/// `w = r^2 r'''/r'^3`, whose error is `C dx^4`: `dx^4 <= tol |x|` suffices,
-/// where `|u|, |w| <= 1/2` (near a simple root both are small). It serves
-/// only to end the iteration, whose steps stay Halley's. (Relative to `|x|`: it was chosen when a law's unknown was
+/// `C2 dx^2`, Halley's `C3 dx^3`, with `C2 = h2/2`, `C3 = h2^2/4 - h3/6`
+/// in the ratios `h2 = r''/r'`, `h3 = r'''/r'`; so `dx^2 K2 <= tol |x|`
+/// (Newton) or `|dx|^3 K3 <= tol |x|` (Halley) suffices, with
+/// `K2 = max(1, |h2|)` and `K3 = max(1, h2^2, |h3|)` (where a derivative is
+/// not given, its term is left out: the aging law's Newton test is
+/// unscaled). The constants are of order one at a well-conditioned root
+/// and large where `r'` nearly vanishes at the root, as it does for a
+/// rate-and-state contact at `V dt / L` near `-ln(1 - A/B)`. Where the
+/// residual also gives its third derivative, the last correction may be
+/// Householder's of fourth order, `dx = -(r/r') (1 - u/2) / (1 - u + w/6)`
+/// with `u = r r''/r'^2` and `w = r^2 r'''/r'^3`, tried after Halley's,
+/// whose error is `C4 dx^4` with `C4 = h2^3/8 - h2 h3/6 + h4/24`:
+/// `dx^4 K4 <= tol |x|` with `K4 = max(1, |h2|^3, |h2 h3|)` suffices where
+/// `|u|, |w| <= 1/2` (`h4 = r''''/r'` is not formed and is taken to be of
+/// the order of the other terms, as it is for the laws' residuals). It
+/// serves only to end the iteration, whose steps stay Halley's. (Relative to `|x|`: it was chosen when a law's unknown was
 /// linear in the slip rate near zero. The unknowns are now logarithms of
 /// slip rates, `q = ln(|V|/V*)`, for which an absolute tolerance would do,
 /// and the relative test asks for more digits than needed where `V` nears
@@ -80,8 +88,9 @@ const MAX_EVALUATIONS: u32 = 400;
 /// per update, a quarter of the friction update in a sheared DEM pack. A
 /// solve that starts within `(tol |x|)^(1/4)` of its root (1e-3 `|x|^(1/4)`
 /// at the laws' `tol`; `(tol |x|)^(1/3)` without a third derivative) takes
-/// one evaluation: in a sheared DEM pack, started from the extrapolated
-/// last root, 9 in 10 rate-and-state solves (docs/performance.md).
+/// one evaluation: in a settled sheared DEM pack, started from the
+/// extrapolated last root, all but a few in a thousand rate-and-state
+/// solves (docs/performance.md).
 #[inline]
 pub(crate) fn solve<T: Copy>(
     mut f: impl FnMut(f64) -> Eval<T>,
@@ -212,7 +221,13 @@ impl Solver {
             )
         } else {
             let dx = newton - x;
-            (newton, dx * dx <= self.tol * x.abs())
+            // `h2` is NaN where the residual gives no second derivative.
+            let error_constant = if h2.is_finite() {
+                h2.abs().max(1.0)
+            } else {
+                1.0
+            };
+            (newton, dx * dx * error_constant <= self.tol * x.abs())
         };
         let dx = step_to - x;
         if downhill && converged && step_to >= lo && step_to <= hi {
@@ -230,6 +245,7 @@ impl Solver {
             let (u, w) = (a * h2, a * a * h3);
             let dx = -a * (1.0 - 0.5 * u) / (1.0 - u + w * (1.0 / 6.0));
             let to = x + dx;
+            // Without the fourth derivative's term `h4/24` (not formed).
             let error_constant = h2.abs().powi(3).max((h2 * h3).abs()).max(1.0);
             if u.abs() <= 0.5
                 && w.abs() <= 0.5
@@ -425,6 +441,29 @@ mod tests {
         let found = solve(steep, keep, root_x + 1e-3, 1e-12, 0.0);
         assert!(found.evaluations >= 2, "{} evaluations", found.evaluations);
         assert!((found.x - root_x).abs() <= 1e-12 * root_x);
+    }
+
+    #[test]
+    fn a_newton_correction_beside_a_steep_curvature_is_not_trusted() {
+        // r = e + K e^2 about the root x = 1 (e = x - 1), K = 1.333e6: from
+        // e = -3e-7 the curvature term is comparable to the slope, Halley's
+        // step is refused (r r'' < -r'^2) and Newton's, 9e-7 long, passes
+        // an unscaled test (dx^2 = 8e-13 <= 1e-12 |x|) although it lands
+        // 6e-7 beyond the root (its error is (r''/2r') dx^2). Scaled by
+        // |r''/r'| it is not trusted, and the solve goes on to the root.
+        let k = 1.333e6;
+        let g = |x: f64| {
+            let e = x - 1.0;
+            Eval {
+                r: e + k * e * e,
+                dr: 1.0 + 2.0 * k * e,
+                d2r: 2.0 * k,
+                d3r: 0.0,
+                payload: (),
+            }
+        };
+        let root = solve(g, keep, 1.0 - 3e-7, 1e-12, 0.0);
+        assert!((root.x - 1.0).abs() <= 1e-12, "x - 1 = {:e}", root.x - 1.0);
     }
 
     #[test]
