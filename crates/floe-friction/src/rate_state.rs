@@ -578,6 +578,35 @@ mod tests {
         })
     }
 
+    /// A step and, for checking it, the state law and the friction law
+    /// evaluated afresh at the slip rate it returned.
+    struct Recheck {
+        out: StepOutcome,
+        /// The state the step left (its `theta` carried by the solver).
+        state: ContactState,
+        /// `theta` evolved from the start of the step at the returned rate.
+        theta: f64,
+        /// The law's friction at the returned rate and carried `theta`.
+        mu: f64,
+    }
+
+    fn step_and_recheck(
+        law: &RateState,
+        mut state: ContactState,
+        load: &ContactLoad,
+        dt: f64,
+    ) -> Recheck {
+        let before = state;
+        let out = law.step(&mut state, load, dt);
+        let v = out.slip_rate_m_per_s;
+        Recheck {
+            out,
+            state,
+            theta: law.evolve_at(before.theta, v, dt),
+            mu: law.mu_at(v, state.theta),
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig { cases: 4000, ..ProptestConfig::default() })]
 
@@ -615,16 +644,14 @@ mod tests {
             let scale = if small { 1e-3 } else { 1.0 };
             let mut state = law.steady_state(v0, n);
             state.solver_guess += 0.01 * scale * guess;
-            let before = state;
             let load = ContactLoad {
                 load_point_velocity_m_per_s: v0 * (scale * change).exp(),
                 stiffness_n_per_m: k,
                 normal_load_n: n,
             };
-            let out = law.step(&mut state, &load, dt);
+            let Recheck { out, state, theta, mu } = step_and_recheck(&law, state, &load, dt);
             let v = out.slip_rate_m_per_s;
             prop_assume!(v.abs() > 1e-290 && out.iterations > 0);
-            let theta = law.evolve_at(before.theta, v, dt);
             prop_assert!(
                 (state.theta - theta).abs() <= 1e-10 * (1.0 + theta.abs()),
                 "theta carried {} vs evolved {theta}, {out:?}", state.theta
@@ -633,7 +660,6 @@ mod tests {
             // slope in q includes the spring's k dt V / N, so an error in q
             // of a few ulps (and of the solver's 1e-12 |q|) shows up
             // multiplied by it.
-            let mu = law.mu_at(v, state.theta);
             let q = state.solver_guess;
             let spring = k * dt / n * v.abs();
             prop_assert!(
@@ -673,16 +699,17 @@ mod tests {
             let law = RateState::new(RateStateParams::lishman_2011(l), form, StateLaw::Slip);
             let mut state = law.steady_state(v0, n);
             state.solver_guess += offset;
-            let before = state;
             let load = ContactLoad {
                 load_point_velocity_m_per_s: v0,
                 stiffness_n_per_m: 100.0,
                 normal_load_n: n,
             };
-            let out = law.step(&mut state, &load, dt);
-            let v = out.slip_rate_m_per_s;
-            let theta = law.evolve_at(before.theta, v, dt);
-            let mu = law.mu_at(v, state.theta);
+            let Recheck {
+                out,
+                state,
+                theta,
+                mu,
+            } = step_and_recheck(&law, state, &load, dt);
             eprintln!(
                 "{form:?}: {} evaluations, theta {:.1e}, mu {:.1e}",
                 out.iterations,

@@ -74,8 +74,9 @@ const MAX_EVALUATIONS: u32 = 400;
 /// `dx^4 K4 <= tol |x|` with `K4 = max(1, |h2|^3, |h2 h3|)` suffices where
 /// `|u|, |w| <= 1/2` (`h4 = r''''/r'` is not formed and is taken to be of
 /// the order of the other terms, as it is for the laws' residuals). It
-/// serves only to end the iteration, whose steps stay Halley's. (Relative to `|x|`: it was chosen when a law's unknown was
-/// linear in the slip rate near zero. The unknowns are now logarithms of
+/// serves only to end the iteration, whose steps stay Halley's. (Relative
+/// to `|x|`: it was chosen when a law's unknown was linear in the slip rate
+/// near zero. The unknowns are now logarithms of
 /// slip rates, `q = ln(|V|/V*)`, for which an absolute tolerance would do,
 /// and the relative test asks for more digits than needed where `V` nears
 /// `V*`. `tol max(|x|, 1)` was tried: on the sheared 1e4-floe pack 3,325
