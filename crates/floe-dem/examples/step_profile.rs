@@ -42,10 +42,11 @@ fn main() {
         println!("state fingerprint {:016x}", fingerprint(&w));
         // Cost of one broad-phase rebuild, against the step it would add to.
         let mut bp = floe_dem::broad_phase::BroadPhase::new(w.broad_phase().skin_m);
+        let trig: Vec<(f64, f64)> = w.floes.angle.iter().map(|a| a.sin_cos()).collect();
         let t = std::time::Instant::now();
         let reps = 5;
         for _ in 0..reps {
-            bp.rebuild(&w.floes.position, &w.floes.radius_m, w.periodicity);
+            bp.rebuild(&w.floes, &trig, w.periodicity);
         }
         let rebuild = t.elapsed().as_secs_f64() / reps as f64;
         println!(

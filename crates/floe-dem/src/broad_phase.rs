@@ -6,10 +6,27 @@
 //! neighbours in the 3x3 block around a cell, is rebuilt in linear time and
 //! needs no tree balancing (the cost is measured in docs/performance.md).
 //! Pairs are produced sorted by (a, b) with a < b, whatever the thread count.
-
+//!
+//! Bounding circles alone keep pairs that cannot touch before the next
+//! rebuild: in a 60-degree rhombus lattice a third of the circle pairs are
+//! two cells apart, their floes 0.87 of a side away. Those are left out by
+//! a lower bound on the floes' distance
+//! ([`separation_lower_bound`]),
+//! which needs a bound on rotation as well as on translation between
+//! rebuilds ([`BroadPhase::max_rotation_rad`]).
 use rayon::prelude::*;
 
+use crate::error::DemError;
+use crate::floes::Floes;
+use crate::geometry::clip::MAX_VERTICES;
+use crate::geometry::{rotate, separation_lower_bound};
 use crate::Vec2;
+
+/// Default for [`BroadPhase::max_rotation_rad`]: about 6 degrees, which
+/// moves a vertex a tenth of the floe's radius. A floe in a shear zone
+/// turns at about half the shear rate, so this forces a rebuild far less
+/// often than translation does.
+pub const MAX_ROTATION_RAD: f64 = 0.1;
 
 /// One periodic axis: positions wrap into `[min_m, min_m + length_m)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,45 +108,97 @@ pub struct CandidatePair {
 }
 
 /// The candidate list and what is needed to decide when to rebuild it.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct BroadPhase {
     /// Extra distance beyond touching bounding circles, m.
     pub skin_m: f64,
+    /// See [`BroadPhase::max_rotation_rad`].
+    max_rotation_rad: f64,
     /// Candidate pairs, sorted.
     pub pairs: Vec<CandidatePair>,
     positions_at_build: Vec<Vec2>,
+    angles_at_build: Vec<f64>,
     /// Number of rebuilds so far (for diagnostics and tests).
     pub rebuilds: u64,
 }
 
+impl Default for BroadPhase {
+    fn default() -> Self {
+        Self::new(0.0)
+    }
+}
+
+/// Relative allowance on the distance a pair must exceed to be left out:
+/// the bound is computed in floating point (a few ulps of the pair's
+/// extent), and so are the displacement and rotation tests (an ulp or two
+/// of the skin); this is far above both.
+const GAP_ROUND_OFF: f64 = 1e-9;
+
 impl BroadPhase {
-    /// An empty broad phase with the given skin (m).
+    /// An empty broad phase with the given skin (m) and
+    /// [`MAX_ROTATION_RAD`].
     pub fn new(skin_m: f64) -> Self {
         Self {
             skin_m,
-            ..Self::default()
+            max_rotation_rad: MAX_ROTATION_RAD,
+            pairs: Vec::new(),
+            positions_at_build: Vec::new(),
+            angles_at_build: Vec::new(),
+            rebuilds: 0,
         }
     }
 
+    /// Largest rotation of a floe between rebuilds, rad: a floe that has
+    /// turned more since the list was built forces a rebuild, as one that
+    /// has moved more than half the skin does. Until then each vertex of
+    /// floe `i` has moved at most `skin_m / 2 + radius_i * max_rotation_rad`,
+    /// so a pair whose floes are farther apart than the sum of that for
+    /// both cannot touch and is left out. Infinite: every pair whose
+    /// bounding circles come within the skin is kept, and rotation never
+    /// forces a rebuild.
+    pub fn max_rotation_rad(&self) -> f64 {
+        self.max_rotation_rad
+    }
+
+    /// Sets [`BroadPhase::max_rotation_rad`] (> 0, or `f64::INFINITY` for
+    /// bounding circles alone) and forgets the list, which was built for the
+    /// old value: the next [`BroadPhase::update`] rebuilds it.
+    pub fn set_max_rotation_rad(&mut self, rad: f64) -> Result<(), DemError> {
+        if rad.is_nan() || rad <= 0.0 {
+            return Err(DemError::InvalidParameter {
+                name: "max_rotation_rad",
+                value: rad,
+                reason: "must be > 0 (infinite: bounding circles alone)",
+            });
+        }
+        self.max_rotation_rad = rad;
+        self.positions_at_build.clear();
+        self.angles_at_build.clear();
+        Ok(())
+    }
+
     /// Rebuilds the candidate list if any floe moved more than half the skin
-    /// since the last build (then no pair can have come within touching
-    /// distance unnoticed). Returns whether it rebuilt.
-    pub fn update(&mut self, position: &[Vec2], radius: &[f64], periodic: Periodicity) -> bool {
-        let stale = self.is_stale(position, periodic);
+    /// or turned more than [`BroadPhase::max_rotation_rad`] since the last
+    /// build (then no pair left out can have come into contact). `trig`
+    /// holds each floe's `(sin, cos)` of its angle. Returns whether it
+    /// rebuilt.
+    pub fn update(&mut self, floes: &Floes, trig: &[(f64, f64)], periodic: Periodicity) -> bool {
+        let stale = self.is_stale(floes, periodic);
         if stale {
-            self.rebuild(position, radius, periodic);
+            self.rebuild(floes, trig, periodic);
         }
         stale
     }
 
-    /// `true` if the list must be rebuilt for floes at `position`: their
-    /// number changed, or one moved beyond half the skin.
-    pub fn is_stale(&self, position: &[Vec2], periodic: Periodicity) -> bool {
-        self.built_for() != position.len()
-            || position
-                .par_iter()
+    /// `true` if the list must be rebuilt for `floes`: their number
+    /// changed, or one moved beyond half the skin or turned beyond
+    /// [`BroadPhase::max_rotation_rad`].
+    pub fn is_stale(&self, floes: &Floes, periodic: Periodicity) -> bool {
+        self.built_for() != floes.len()
+            || (floes.position.par_iter(), floes.angle.par_iter())
+                .into_par_iter()
                 .enumerate()
-                .any(|(i, &p)| self.displaced_far(i, p, periodic))
+                .any(|(i, (&p, &angle))| self.displaced_far(i, p, angle, periodic))
     }
 
     /// Number of floes the candidate list was built for.
@@ -137,26 +206,43 @@ impl BroadPhase {
         self.positions_at_build.len()
     }
 
-    /// `true` if floe `i`, now at `position`, has moved more than half the
-    /// skin since the list was built (or was not there): the list must be
-    /// rebuilt. Callers that visit every floe anyway (the world's drift)
-    /// ask this per floe instead of calling [`BroadPhase::update`].
+    /// `true` if floe `i`, now at `position` and `angle`, has moved more
+    /// than half the skin or turned more than
+    /// [`BroadPhase::max_rotation_rad`] since the list was built (or was not
+    /// there): the list must be rebuilt. Callers that visit every floe
+    /// anyway (the world's drift) ask this per floe instead of calling
+    /// [`BroadPhase::update`].
     #[inline]
-    pub fn displaced_far(&self, i: usize, position: Vec2, periodic: Periodicity) -> bool {
+    pub fn displaced_far(
+        &self,
+        i: usize,
+        position: Vec2,
+        angle: f64,
+        periodic: Periodicity,
+    ) -> bool {
         let half_skin_sq = (0.5 * self.skin_m).powi(2);
-        match self.positions_at_build.get(i) {
-            Some(&q) => {
+        match (self.positions_at_build.get(i), self.angles_at_build.get(i)) {
+            (Some(&q), Some(&turned_from)) => {
                 (position + periodic.nearest_image(q, position) - q).length_squared() > half_skin_sq
+                    || (angle - turned_from).abs() > self.max_rotation_rad
             }
-            None => true,
+            _ => true,
         }
     }
 
-    /// Builds the candidate list from scratch.
-    pub fn rebuild(&mut self, position: &[Vec2], radius: &[f64], periodic: Periodicity) {
+    /// Builds the candidate list from scratch: the pairs whose bounding
+    /// circles come within the skin, less those whose floes are too far
+    /// apart to touch before the next rebuild (see
+    /// [`BroadPhase::max_rotation_rad`]). `trig` holds each floe's
+    /// `(sin, cos)` of its angle.
+    pub fn rebuild(&mut self, floes: &Floes, trig: &[(f64, f64)], periodic: Periodicity) {
+        let (position, radius) = (&floes.position[..], &floes.radius_m[..]);
+        assert_eq!(trig.len(), position.len(), "one (sin, cos) per floe");
         self.rebuilds += 1;
         self.positions_at_build.clear();
         self.positions_at_build.extend_from_slice(position);
+        self.angles_at_build.clear();
+        self.angles_at_build.extend_from_slice(&floes.angle);
         self.pairs.clear();
         let n = position.len();
         if n < 2 {
@@ -233,28 +319,60 @@ impl BroadPhase {
             (out, k)
         };
         let skin = self.skin_m;
+        let max_rotation = self.max_rotation_rad;
+        // Floe `i`'s vertices, turned, relative to `shift`.
+        let place = |i: usize, shift: Vec2, out: &mut [Vec2; MAX_VERTICES]| {
+            let (sin, cos) = trig[i];
+            let local = floes.local_vertices(i);
+            for (slot, &v) in out.iter_mut().zip(local) {
+                *slot = shift + rotate(v, cos, sin);
+            }
+            local.len()
+        };
         // Periodic axes narrower than three cells: test every pair along them.
         let brute_force = (wrap_x && nx < 3) || (wrap_y && ny < 3);
         let mut pairs: Vec<CandidatePair> = (0..n)
             .into_par_iter()
             .flat_map_iter(|i| {
                 let p = position[i];
-                let reach = |j: usize| {
-                    let q = position[j] + periodic.nearest_image(p, position[j]);
-                    (q - p).length() <= radius[i] + radius[j] + skin
+                let mut near = [Vec2::ZERO; MAX_VERTICES];
+                let mut other = [Vec2::ZERO; MAX_VERTICES];
+                let n_near = if max_rotation.is_finite() {
+                    place(i, Vec2::ZERO, &mut near)
+                } else {
+                    0
+                };
+                let reach = |j: usize, other: &mut [Vec2; MAX_VERTICES]| {
+                    let d = position[j] + periodic.nearest_image(p, position[j]) - p;
+                    let circles = radius[i] + radius[j];
+                    let distance = d.length();
+                    if distance > circles + skin {
+                        return false;
+                    }
+                    if !max_rotation.is_finite() {
+                        return true;
+                    }
+                    // Each floe's vertices move at most half the skin plus
+                    // its radius times the rotation allowed before a rebuild.
+                    let reachable = (skin + max_rotation * circles) * (1.0 + GAP_ROUND_OFF)
+                        + GAP_ROUND_OFF * (distance + circles);
+                    let n_other = place(j, d, other);
+                    separation_lower_bound(&near[..n_near], &other[..n_other]) <= reachable
                 };
                 let mut found: Vec<CandidatePair> = Vec::new();
                 if brute_force {
-                    found.extend(((i + 1)..n).filter(|&j| reach(j)).map(|j| CandidatePair {
-                        a: i as u32,
-                        b: j as u32,
+                    found.extend(((i + 1)..n).filter(|&j| reach(j, &mut other)).map(|j| {
+                        CandidatePair {
+                            a: i as u32,
+                            b: j as u32,
+                        }
                     }));
                 } else {
                     let (cells_near, k) = neighbours(cells[i]);
                     for &c in &cells_near[..k] {
                         for &j in &members[start[c] as usize..start[c + 1] as usize] {
                             let j = j as usize;
-                            if j > i && reach(j) {
+                            if j > i && reach(j, &mut other) {
                                 found.push(CandidatePair {
                                     a: i as u32,
                                     b: j as u32,

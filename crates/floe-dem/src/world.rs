@@ -359,6 +359,16 @@ impl<F: ExternalForces> World<F> {
         &self.broad_phase
     }
 
+    /// The rotation a floe may make before the candidate list is rebuilt
+    /// ([`BroadPhase::set_max_rotation_rad`]; default
+    /// [`MAX_ROTATION_RAD`](crate::broad_phase::MAX_ROTATION_RAD)). Results
+    /// do not depend on it, only how many candidate pairs are tested and
+    /// how often the list is rebuilt; `f64::INFINITY` keeps every pair whose
+    /// bounding circles come within the skin.
+    pub fn set_max_rotation_rad(&mut self, rad: f64) -> Result<(), DemError> {
+        self.broad_phase.set_max_rotation_rad(rad)
+    }
+
     /// Advances one time step.
     pub fn step(&mut self) {
         let dt = self.dt_s;
@@ -390,7 +400,7 @@ impl<F: ExternalForces> World<F> {
                 *x = periodicity.wrap(*x + *v * dt);
                 *theta += *omega * dt;
                 *trig = theta.sin_cos();
-                bp.displaced_far(i, *x, periodicity)
+                bp.displaced_far(i, *x, *theta, periodicity)
             })
             .reduce(|| false, |a, b| a || b);
         // Ghost floes (a subdomain's copies of its neighbours' floes) are
@@ -398,7 +408,7 @@ impl<F: ExternalForces> World<F> {
         let mut moved_far = moved_far || bp.built_for() != n;
         for i in owned..n {
             self.trig[i] = f.angle[i].sin_cos();
-            moved_far |= bp.displaced_far(i, f.position[i], periodicity);
+            moved_far |= bp.displaced_far(i, f.position[i], f.angle[i], periodicity);
         }
         self.time_s += dt;
         self.steps += 1;
@@ -421,7 +431,7 @@ impl<F: ExternalForces> World<F> {
         self.trig.clear();
         self.trig
             .par_extend(f.angle.par_iter().map(|a| a.sin_cos()));
-        self.broad_phase.is_stale(&f.position, self.periodicity)
+        self.broad_phase.is_stale(f, self.periodicity)
     }
 
     /// Broad phase, narrow phase and contact kernel: the new contact list.
@@ -431,8 +441,7 @@ impl<F: ExternalForces> World<F> {
     fn update_contacts(&mut self, dt: f64, moved_far: bool) {
         let f = &self.floes;
         if moved_far {
-            self.broad_phase
-                .rebuild(&f.position, &f.radius_m, self.periodicity);
+            self.broad_phase.rebuild(f, &self.trig, self.periodicity);
         }
         if moved_far || self.separating.len() != self.broad_phase.pairs.len() {
             self.separating.clear();

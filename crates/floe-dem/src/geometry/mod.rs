@@ -1,10 +1,13 @@
-//! Floe geometry: shapes and their mass properties ([`shape`]), and the
-//! overlap of two convex floes ([`clip`]).
+//! Floe geometry: shapes and their mass properties ([`shape`]), the
+//! overlap of two convex floes ([`clip`]), and a lower bound on their
+//! distance for the broad phase ([`separation`]).
 
 pub mod clip;
+pub mod separation;
 pub mod shape;
 
 pub use clip::{overlap, overlap_cached, ClipScratch, Overlap, Placed, SeparatingEdge};
+pub use separation::separation_lower_bound;
 pub use shape::FloeShape;
 
 use crate::Vec2;

@@ -1,0 +1,286 @@
+//! The broad phase leaves out candidate pairs whose floes are too far apart
+//! to touch before the next rebuild. Results must be bitwise those of the
+//! bounding-circle list it is cut from: these runs step the same world with
+//! the default rotation allowance and with an infinite one (circles alone)
+//! and compare every bit.
+
+use floe_dem::broad_phase::{BroadPhase, Period, Periodicity, MAX_ROTATION_RAD};
+use floe_dem::contacts::ContactModel;
+use floe_dem::floes::Floes;
+use floe_dem::geometry::{overlap, ClipScratch};
+use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
+use floe_dem::world::{stable_time_step, NoForcing, World};
+use floe_dem::Vec2;
+
+const RHO_ICE: f64 = 917.0;
+
+/// Every bit of the floes' state, the contacts and the energy ledger.
+fn bits(w: &World<NoForcing>) -> Vec<u64> {
+    let f = &w.floes;
+    let mut out = Vec::new();
+    for i in 0..f.len() {
+        out.extend([
+            f.position[i].x,
+            f.position[i].y,
+            f.velocity[i].x,
+            f.velocity[i].y,
+            f.angle[i],
+            f.angular_velocity[i],
+        ]);
+    }
+    for c in &w.contacts {
+        out.extend([
+            f64::from(c.a),
+            f64::from(c.b),
+            c.normal_force_n,
+            c.friction.tangential_force_n,
+            c.friction.theta,
+            c.normal_energy_j,
+            c.tangential_energy_j,
+        ]);
+    }
+    let e = w.energy;
+    out.extend([
+        e.friction_dissipation_j,
+        e.damping_dissipation_j,
+        e.released_at_break_j,
+    ]);
+    out.into_iter().map(f64::to_bits).collect()
+}
+
+/// What a run with the default allowance and one with circles alone
+/// report: the state's bits after each of `steps`, the most contacts seen,
+/// candidate pairs after the first step, and rebuilds.
+struct Runs {
+    /// Steps at which the two runs' states first differ, if any.
+    first_difference: Option<usize>,
+    most_contacts: usize,
+    pairs_default: usize,
+    pairs_circles: usize,
+    rebuilds_default: u64,
+    rebuilds_circles: u64,
+}
+
+fn run_both(make: impl Fn() -> World<NoForcing>, steps: usize) -> Runs {
+    let (mut kept, mut circles) = (make(), make());
+    circles.set_max_rotation_rad(f64::INFINITY).unwrap();
+    let mut runs = Runs {
+        first_difference: None,
+        most_contacts: 0,
+        pairs_default: 0,
+        pairs_circles: 0,
+        rebuilds_default: 0,
+        rebuilds_circles: 0,
+    };
+    for step in 0..steps {
+        kept.step();
+        circles.step();
+        if step == 0 {
+            runs.pairs_default = kept.broad_phase().pairs.len();
+            runs.pairs_circles = circles.broad_phase().pairs.len();
+        }
+        runs.most_contacts = runs.most_contacts.max(circles.contacts.len());
+        if runs.first_difference.is_none() && bits(&kept) != bits(&circles) {
+            runs.first_difference = Some(step);
+        }
+    }
+    runs.rebuilds_default = kept.broad_phase().rebuilds;
+    runs.rebuilds_circles = circles.broad_phase().rebuilds;
+    runs
+}
+
+fn bar(center: Vec2, length: f64, width: f64) -> Vec<Vec2> {
+    let (a, b) = (0.5 * length, 0.5 * width);
+    vec![
+        center + Vec2::new(-a, -b),
+        center + Vec2::new(a, -b),
+        center + Vec2::new(a, b),
+        center + Vec2::new(-a, b),
+    ]
+}
+
+/// Two thin parallel bars, the second above the first, their near edges
+/// `gap` apart, both about the origin's x.
+fn bars_apart(gap: f64) -> Floes {
+    let (length, width) = (10.0, 0.01);
+    let polys = [
+        bar(Vec2::ZERO, length, width),
+        bar(Vec2::new(0.0, width + gap), length, width),
+    ];
+    Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap()
+}
+
+fn sin_cos(floes: &Floes) -> Vec<(f64, f64)> {
+    floes.angle.iter().map(|a| a.sin_cos()).collect()
+}
+
+/// The allowance is tight, not just safe: two thin bars whose tips turn
+/// towards each other as they move together come within a fraction of a
+/// per cent of the bound (a tip at radius r turned by phi moves r sin(phi)
+/// towards the other bar, against r phi allowed). Just inside the bound the
+/// pair is kept, and indeed the bars then overlap after a motion the list
+/// allows (each half the skin closer, turned by the allowance); just
+/// outside it the pair is left out. Once with the rotation's term the
+/// larger, once with the skin's: the test fails if either term of the bound
+/// is cut by more than a few per cent.
+#[test]
+fn a_pair_is_kept_exactly_when_a_motion_within_the_allowance_could_make_it_touch() {
+    for skin in [0.25, 4.0] {
+        kept_exactly_when_it_could_touch(skin);
+    }
+}
+
+fn kept_exactly_when_it_could_touch(skin: f64) {
+    let probe = bars_apart(1.0);
+    let radius = probe.radius_m[0];
+    let bound = skin + MAX_ROTATION_RAD * 2.0 * radius;
+    let pairs_at = |gap: f64| {
+        let floes = bars_apart(gap);
+        let mut bp = BroadPhase::new(skin);
+        bp.rebuild(&floes, &sin_cos(&floes), Periodicity::default());
+        (floes, bp)
+    };
+    let (_, outside) = pairs_at(1.01 * bound);
+    assert!(
+        outside.pairs.is_empty(),
+        "skin {skin}: left out just beyond the bound"
+    );
+    let (mut floes, bp) = pairs_at(0.99 * bound);
+    assert_eq!(bp.pairs.len(), 1, "skin {skin}: kept just inside the bound");
+    // The motion the list allows: half the skin towards each other, the
+    // first bar turned counter-clockwise and the second clockwise (their
+    // right-hand tips towards each other), each by the allowance.
+    let (shift, turn) = (0.5 * skin * (1.0 - 1e-9), MAX_ROTATION_RAD * (1.0 - 1e-9));
+    floes.position[0].y += shift;
+    floes.position[1].y -= shift;
+    floes.angle[0] = turn;
+    floes.angle[1] = -turn;
+    assert!(
+        !bp.is_stale(&floes, Periodicity::default()),
+        "within the allowance"
+    );
+    let trig = sin_cos(&floes);
+    let touch = overlap(
+        floes.placed(0, Vec2::ZERO, trig[0]),
+        floes.placed(1, Vec2::ZERO, trig[1]),
+        &mut ClipScratch::default(),
+    );
+    assert!(
+        touch.is_some(),
+        "skin {skin}: the kept pair can touch before a rebuild"
+    );
+}
+
+/// A 10 m bar spinning next to a parallel one 2 m away: their bounding
+/// circles overlap, but the gap is wider than the skin plus the rotation
+/// allowed between rebuilds, so the pair is left out of the first list. It
+/// only touches after the spinning bar has turned by about 0.4 rad, without
+/// moving its centre: only a rebuild forced by rotation brings the pair back
+/// in time (the test fails if rotation does not force one).
+#[test]
+fn a_floe_turning_into_a_neighbour_left_out_of_the_list_meets_it_as_if_kept() {
+    let make = || {
+        let polys = [
+            bar(Vec2::ZERO, 10.0, 1.0),
+            bar(Vec2::new(0.0, 3.0), 10.0, 1.0),
+        ];
+        let mut floes = Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap();
+        floes.angular_velocity[0] = 0.5;
+        let model = ContactModel::default();
+        let dt = 0.5 * stable_time_step(&floes, &model).0;
+        World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap()
+    };
+    let w = make();
+    let steps = (1.2 / (0.5 * w.dt_s)).ceil() as usize; // 0.6 rad of turning
+    let runs = run_both(make, steps);
+    assert_eq!(runs.pairs_circles, 1);
+    assert_eq!(runs.pairs_default, 0, "the far pair is left out at first");
+    assert!(runs.most_contacts > 0, "the bars collide");
+    assert!(
+        runs.rebuilds_default > runs.rebuilds_circles,
+        "rotation forced rebuilds: {} against {}",
+        runs.rebuilds_default,
+        runs.rebuilds_circles
+    );
+    assert_eq!(runs.first_difference, None);
+}
+
+/// A jittered, periodic diamond lattice pulled apart and shaken: random
+/// velocities and spins on a spreading flow, so that floes move several
+/// skins and turn several allowances, contacts form and break, and the
+/// list is rebuilt many times. Every step must match circles alone.
+#[test]
+fn leaving_far_pairs_out_changes_no_result_in_a_shaken_spreading_lattice() {
+    use rand::{Rng, SeedableRng};
+    let side = 100.0;
+    let domain = Rect {
+        min: Vec2::ZERO,
+        max: Vec2::new(1500.0, 1200.0),
+    };
+    let make = || {
+        let lattice = DiamondLattice {
+            domain,
+            side_m: side,
+            acute_angle_deg: 60.0,
+            orientation_deg: 15.0,
+            thickness: ThicknessDistribution::UniformRange {
+                min_m: 0.5,
+                max_m: 2.0,
+            },
+            jitter_fraction: 0.05,
+            seed: 3,
+        };
+        let t = lattice.build().unwrap();
+        let mut floes = Floes::from_polygons(&t.polygons, &t.thickness_m, RHO_ICE).unwrap();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let centre = Vec2::new(750.0, 600.0);
+        for i in 0..floes.len() {
+            let spread = (floes.position[i] - centre) * 2e-3;
+            floes.velocity[i] =
+                spread + Vec2::new(rng.gen_range(-0.3..0.3), rng.gen_range(-0.3..0.3));
+            floes.angular_velocity[i] = rng.gen_range(-0.02..0.02);
+        }
+        let model = ContactModel::default();
+        let dt = 0.5 * stable_time_step(&floes, &model).0;
+        let periodic = Periodicity {
+            x: Some(Period {
+                min_m: 0.0,
+                length_m: 1500.0,
+            }),
+            y: None,
+        };
+        World::new(floes, model, NoForcing, periodic, dt).unwrap()
+    };
+    let w = make();
+    // About 6 m of travel at 0.3 m/s and 0.2 rad of turning at 0.02 rad/s:
+    // several half-skins (2.2 m) and two rotation allowances.
+    let steps = (20.0 / w.dt_s).ceil() as usize;
+    let runs = run_both(make, steps);
+    assert!(runs.most_contacts > 100, "contacts: {}", runs.most_contacts);
+    assert!(
+        (runs.pairs_default as f64) < 0.8 * runs.pairs_circles as f64,
+        "pairs left out: {} of {}",
+        runs.pairs_circles - runs.pairs_default,
+        runs.pairs_circles
+    );
+    assert!(
+        runs.rebuilds_circles >= 3,
+        "rebuilds {}",
+        runs.rebuilds_circles
+    );
+    assert_eq!(runs.first_difference, None);
+}
+
+#[test]
+fn a_rotation_allowance_that_is_not_positive_is_refused() {
+    let polys = [bar(Vec2::ZERO, 10.0, 1.0)];
+    let floes = Floes::from_polygons(&polys, &[1.0], RHO_ICE).unwrap();
+    let model = ContactModel::default();
+    let mut w = World::new(floes, model, NoForcing, Periodicity::default(), 0.01).unwrap();
+    for bad in [0.0, -0.1, f64::NAN] {
+        let e = w.set_max_rotation_rad(bad).unwrap_err();
+        assert!(e.to_string().contains("max_rotation_rad"), "{e}");
+    }
+    assert!(w.set_max_rotation_rad(0.05).is_ok());
+    assert_eq!(w.broad_phase().max_rotation_rad(), 0.05);
+}
