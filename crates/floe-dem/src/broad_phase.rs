@@ -128,11 +128,17 @@ impl Default for BroadPhase {
     }
 }
 
-/// Relative allowance on the distance a pair must exceed to be left out:
-/// the bound is computed in floating point (a few ulps of the pair's
-/// extent), and so are the displacement and rotation tests (an ulp or two
-/// of the skin); this is far above both.
+/// Relative allowance on the distance a pair must exceed to be left out,
+/// for round-off: the lower bound is computed from vertices placed about
+/// the first floe's centroid (a few ulps of the pair's extent). This
+/// relative part is far above that.
 const GAP_ROUND_OFF: f64 = 1e-9;
+
+/// Absolute allowance on that distance, in ulps of the floes' coordinates:
+/// the positions themselves are rounded at every drift, and the
+/// displacement test compares positions as large as the basin (an ulp is
+/// 1.2e-10 m at 1e6 m).
+const GAP_ROUND_OFF_ULPS: f64 = 64.0;
 
 impl BroadPhase {
     /// An empty broad phase with the given skin (m) and
@@ -162,7 +168,9 @@ impl BroadPhase {
 
     /// Sets [`BroadPhase::max_rotation_rad`] (> 0, or `f64::INFINITY` for
     /// bounding circles alone) and forgets the list, which was built for the
-    /// old value: the next [`BroadPhase::update`] rebuilds it.
+    /// old value: the next [`BroadPhase::update`] rebuilds it. Not part of
+    /// a checkpoint (results do not depend on it): a resumed world starts
+    /// with [`MAX_ROTATION_RAD`].
     pub fn set_max_rotation_rad(&mut self, rad: f64) -> Result<(), DemError> {
         if rad.is_nan() || rad <= 0.0 {
             return Err(DemError::InvalidParameter {
@@ -198,7 +206,7 @@ impl BroadPhase {
             || (floes.position.par_iter(), floes.angle.par_iter())
                 .into_par_iter()
                 .enumerate()
-                .any(|(i, (&p, &angle))| self.displaced_far(i, p, angle, periodic))
+                .any(|(i, (&p, &angle))| self.moved_beyond_allowance(i, p, angle, periodic))
     }
 
     /// Number of floes the candidate list was built for.
@@ -213,7 +221,7 @@ impl BroadPhase {
     /// anyway (the world's drift) ask this per floe instead of calling
     /// [`BroadPhase::update`].
     #[inline]
-    pub fn displaced_far(
+    pub fn moved_beyond_allowance(
         &self,
         i: usize,
         position: Vec2,
@@ -238,6 +246,12 @@ impl BroadPhase {
     pub fn rebuild(&mut self, floes: &Floes, trig: &[(f64, f64)], periodic: Periodicity) {
         let (position, radius) = (&floes.position[..], &floes.radius_m[..]);
         assert_eq!(trig.len(), position.len(), "one (sin, cos) per floe");
+        debug_assert!(
+            trig.iter()
+                .zip(&floes.angle)
+                .all(|(&t, a)| t == a.sin_cos()),
+            "trig must be the floes' (sin, cos) of their angles"
+        );
         self.rebuilds += 1;
         self.positions_at_build.clear();
         self.positions_at_build.extend_from_slice(position);
@@ -352,10 +366,24 @@ impl BroadPhase {
                     if !max_rotation.is_finite() {
                         return true;
                     }
+                    // Near half a period apart, another image of `j` may
+                    // become the nearest before the next rebuild (each floe
+                    // moves at most half the skin), and the bound below
+                    // measures only this one: keep the pair.
+                    let near_half_period = |delta: f64, period: Option<Period>| {
+                        period.is_some_and(|q| {
+                            delta.abs() >= 0.5 * q.length_m - skin * (1.0 + GAP_ROUND_OFF)
+                        })
+                    };
+                    if near_half_period(d.x, periodic.x) || near_half_period(d.y, periodic.y) {
+                        return true;
+                    }
                     // Each floe's vertices move at most half the skin plus
                     // its radius times the rotation allowed before a rebuild.
+                    let coordinates = p.abs().max_element().max(position[j].abs().max_element());
                     let reachable = (skin + max_rotation * circles) * (1.0 + GAP_ROUND_OFF)
-                        + GAP_ROUND_OFF * (distance + circles);
+                        + GAP_ROUND_OFF * (distance + circles)
+                        + GAP_ROUND_OFF_ULPS * f64::EPSILON * coordinates;
                     let n_other = place(j, d, other);
                     separation_lower_bound(&near[..n_near], &other[..n_other]) <= reachable
                 };

@@ -401,7 +401,7 @@ impl<F: ExternalForces> World<F> {
                 *x = periodicity.wrap(*x + *v * dt);
                 *theta += *omega * dt;
                 *trig = theta.sin_cos();
-                bp.displaced_far(i, *x, *theta, periodicity)
+                bp.moved_beyond_allowance(i, *x, *theta, periodicity)
             })
             .reduce(|| false, |a, b| a || b);
         // Ghost floes (a subdomain's copies of its neighbours' floes) are
@@ -409,7 +409,7 @@ impl<F: ExternalForces> World<F> {
         let mut moved_far = moved_far || bp.built_for() != n;
         for i in owned..n {
             self.trig[i] = f.angle[i].sin_cos();
-            moved_far |= bp.displaced_far(i, f.position[i], f.angle[i], periodicity);
+            moved_far |= bp.moved_beyond_allowance(i, f.position[i], f.angle[i], periodicity);
         }
         self.time_s += dt;
         self.steps += 1;

@@ -14,13 +14,18 @@ use crate::Vec2;
 /// The largest gap between `a` and `b` along the outward normal of an edge
 /// of either: for an edge of `a` (counter-clockwise, so the interior is on
 /// its left), how far every vertex of `b` lies beyond the edge's line, the
-/// nearest vertex deciding; then the same with the roles swapped. Both
-/// polygons convex, counter-clockwise, in one frame; m.
+/// nearest vertex deciding, less how far any vertex of `a` itself lies
+/// beyond it; then the same with the roles swapped. Both polygons
+/// counter-clockwise, in one frame; m.
 ///
-/// It is at most the Euclidean distance between the polygons: `a` lies on
-/// the inner side of each of its edge lines, so any point of `b` is at least
-/// its distance beyond that line away from `a`, and over the convex `b`
-/// that distance is least at a vertex. It equals the distance where the
+/// It is at most the Euclidean distance between the polygons: `a` lies
+/// within its farthest vertex of each of its edge lines (on the inner side
+/// for a convex polygon, its vertices then adding nothing), so any point of
+/// `b` is at least its distance beyond that line, less that, away from
+/// `a`; and over `b` that distance is least at a vertex. Allowing for `a`'s
+/// own vertices keeps the bound for floes that are convex only to the
+/// tolerance that `FloeShape` accepts, where a vertex beside a very short
+/// edge may lie beyond that edge's line. It equals the distance where the
 /// nearest features are an edge and a vertex, and is negative when the
 /// floes overlap.
 pub fn separation_lower_bound(a: &[Vec2], b: &[Vec2]) -> f64 {
@@ -28,17 +33,25 @@ pub fn separation_lower_bound(a: &[Vec2], b: &[Vec2]) -> f64 {
 }
 
 /// The largest, over the edges of `p`, of the least distance of a vertex of
-/// `q` beyond that edge's line.
+/// `q` beyond that edge's line, less the greatest of a vertex of `p`.
 fn beyond_edges(p: &[Vec2], q: &[Vec2]) -> f64 {
+    let outward = |dir: Vec2, s: Vec2, v: Vec2| -cross(dir, v - s);
     let mut best = f64::NEG_INFINITY;
     for (k, &s) in p.iter().enumerate() {
         let e = p[(k + 1) % p.len()];
         let dir = e - s;
         let nearest = q
             .iter()
-            .map(|&v| -cross(dir, v - s))
+            .map(|&v| outward(dir, s, v))
             .fold(f64::INFINITY, f64::min);
-        best = best.max(nearest / dir.length());
+        let length = dir.length();
+        // `own` (>= 0) can only lower this edge's gap: skip it where the
+        // gap could not win anyway (most edges of a pair that touches).
+        if nearest / length <= best {
+            continue;
+        }
+        let own = p.iter().map(|&v| outward(dir, s, v)).fold(0.0, f64::max);
+        best = best.max((nearest - own) / length);
     }
     best
 }
@@ -101,6 +114,35 @@ mod tests {
         // Vertex neighbours touch at a point.
         let vertex = separation_lower_bound(&cell(Vec2::ZERO), &cell(a1 + a2));
         assert!(vertex.abs() < 1e-15, "{vertex}");
+    }
+
+    #[test]
+    fn a_vertex_beyond_a_tiny_edge_of_a_nearly_convex_floe_is_allowed_for() {
+        // A 2 m x 1 m floe whose top right corner doubles back by 4e-13 m:
+        // a reflex turn of -8e-13 m^2, which FloeShape accepts (it allows
+        // -1e-12 extent^2, extent 1 m here). The tiny edge points straight down, so its line
+        // is x = 2 with the floe itself beyond it. Measured from that line
+        // alone, the neighbour 0.01 m above the floe would seem 0.5 m away.
+        let floe = [
+            Vec2::new(0.0, 0.0),
+            Vec2::new(2.0, 0.0),
+            Vec2::new(2.0, 1.0),
+            Vec2::new(2.0, 1.0 - 4e-13),
+            Vec2::new(0.0, 1.0),
+        ];
+        assert!(crate::geometry::FloeShape::from_world(0, &floe).is_ok());
+        let neighbour = [
+            Vec2::new(0.5, 1.01),
+            Vec2::new(1.5, 1.01),
+            Vec2::new(1.5, 2.0),
+            Vec2::new(0.5, 2.0),
+        ];
+        for bound in [
+            separation_lower_bound(&floe, &neighbour),
+            separation_lower_bound(&neighbour, &floe),
+        ] {
+            assert!(bound <= 0.01 + 1e-12, "bound {bound}");
+        }
     }
 
     proptest::proptest! {
