@@ -760,69 +760,77 @@ impl<F: ExternalForces> World<F> {
         // phase's pair list, which a resume rebuilds differently, and a
         // resumed run drifted from the uninterrupted one by an ulp.) The
         // velocities they read are the walls', which the kick leaves alone.
-        // They run beside the adjacency build, whose passes are sequential
-        // (about 0.15 ms of a 5 ms two-thread step at 1e4 floes), and which
-        // is skipped where the contact list is the one it was built for
-        // (`index_current`, kept by `update_contacts`).
-        let rebuild = !self.index_current || a_start.len() != n + 1;
-        self.index_builds += u64::from(rebuild);
-        rayon::join(
-            || {
-                if rebuild {
-                    build_adjacency(contacts, n, keys, start, a_start, adjacency);
-                }
-            },
-            || {
-                contacts
-                    .par_chunks(ENERGY_CHUNK)
-                    .map(|block| {
-                        let mut power = ContactPower::default();
-                        for c in block {
-                            power.add(c, f);
-                        }
-                        power
-                    })
-                    .collect_into_vec(energy_partials);
-            },
-        );
-        self.index_current = true;
+        let power_sums = || {
+            contacts
+                .par_chunks(ENERGY_CHUNK)
+                .map(|block| {
+                    let mut power = ContactPower::default();
+                    for c in block {
+                        power.add(c, f);
+                    }
+                    power
+                })
+                .collect_into_vec(energy_partials);
+        };
         let (forcing, t) = (&self.forcing, self.time_s);
-        let (start, adjacency, a_start) = (&self.adjacency_start, &self.adjacency, &self.a_start);
         let (force, torque) = (&mut self.force, &mut self.torque);
         let (external_force, external_torque) =
             (&mut self.external_force, &mut self.external_torque);
-        (force, torque, (external_force, external_torque))
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(i, (force, torque, (ext_f, ext_t)))| {
-                let (ef, et) = if f.is_free(i) {
-                    forcing.force_and_torque(t, f, i)
-                } else {
-                    (Vec2::ZERO, 0.0)
-                };
-                *ext_f = ef;
-                *ext_t = et;
-                let (mut fsum, mut tsum) = (ef, et);
-                let as_b = adjacency[start[i] as usize..start[i + 1] as usize]
-                    .iter()
-                    .map(|&k| &contacts[k as usize]);
-                let as_a = &contacts[a_start[i] as usize..a_start[i + 1] as usize];
-                // Each contact is visited from both its floes; each visit
-                // computes only its own floe's torque (the expressions of
-                // `force_and_torques`, so the same bits).
-                for c in as_b {
-                    let fb = contact_force_on_b(c);
-                    fsum += fb;
-                    tsum += cross(c.point - (f.position[i] + c.image_offset), fb);
-                }
-                for c in as_a {
-                    let fb = contact_force_on_b(c);
-                    fsum -= fb;
-                    tsum += cross(c.point - f.position[i], -fb);
-                }
-                *force = fsum;
-                *torque = tsum;
-            });
+        // External and contact forces per floe, from the per-floe index.
+        let gather = |start: &[u32], adjacency: &[u32], a_start: &[u32]| {
+            (force, torque, (external_force, external_torque))
+                .into_par_iter()
+                .enumerate()
+                .for_each(|(i, (force, torque, (ext_f, ext_t)))| {
+                    let (ef, et) = if f.is_free(i) {
+                        forcing.force_and_torque(t, f, i)
+                    } else {
+                        (Vec2::ZERO, 0.0)
+                    };
+                    *ext_f = ef;
+                    *ext_t = et;
+                    let (mut fsum, mut tsum) = (ef, et);
+                    let as_b = adjacency[start[i] as usize..start[i + 1] as usize]
+                        .iter()
+                        .map(|&k| &contacts[k as usize]);
+                    let as_a = &contacts[a_start[i] as usize..a_start[i + 1] as usize];
+                    // Each contact is visited from both its floes; each visit
+                    // computes only its own floe's torque (the expressions of
+                    // `force_and_torques`, so the same bits).
+                    for c in as_b {
+                        let fb = contact_force_on_b(c);
+                        fsum += fb;
+                        tsum += cross(c.point - (f.position[i] + c.image_offset), fb);
+                    }
+                    for c in as_a {
+                        let fb = contact_force_on_b(c);
+                        fsum -= fb;
+                        tsum += cross(c.point - f.position[i], -fb);
+                    }
+                    *force = fsum;
+                    *torque = tsum;
+                });
+        };
+        // The power sums run beside whatever else reads the contacts: the
+        // adjacency build, whose passes are sequential (about 0.15 ms of a
+        // 5 ms two-thread step at 1e4 floes), where the contact list is not
+        // the one the index was built for (`index_current`, kept by
+        // `update_contacts`), else the gathering itself. At 1e3 floes the
+        // power sums are one block on one thread (9 us) and the gathering
+        // no faster on two threads than on one (10 us): one after the
+        // other, they were 8 % of a 0.3 ms two-thread step.
+        let rebuild = !self.index_current || a_start.len() != n + 1;
+        self.index_builds += u64::from(rebuild);
+        if rebuild {
+            rayon::join(
+                || build_adjacency(contacts, n, keys, start, a_start, adjacency),
+                power_sums,
+            );
+            gather(start, adjacency, a_start);
+        } else {
+            rayon::join(power_sums, || gather(start, adjacency, a_start));
+        }
+        self.index_current = true;
     }
 
     /// The second kick, and the work of forcing and walls and the
