@@ -49,10 +49,10 @@ fn bits(w: &World<NoForcing>) -> Vec<u64> {
 }
 
 /// What a run with the default allowance and one with circles alone
-/// report: the state's bits after each of `steps`, the most contacts seen,
-/// candidate pairs after the first step, and rebuilds.
+/// report: the first step after which their states' bits differ, the most
+/// contacts seen, candidate pairs after the first step, and rebuilds.
 struct Runs {
-    /// Steps at which the two runs' states first differ, if any.
+    /// Step after which the two runs' states first differ, if any.
     first_difference: Option<usize>,
     most_contacts: usize,
     pairs_default: usize,
@@ -87,6 +87,14 @@ fn run_both(make: impl Fn() -> World<NoForcing>, steps: usize) -> Runs {
     runs.rebuilds_default = kept.broad_phase().rebuilds;
     runs.rebuilds_circles = circles.broad_phase().rebuilds;
     runs
+}
+
+/// `floes` with the default contact model, unforced, stepped at half the
+/// stable step.
+fn world(floes: Floes, periodic: Periodicity) -> World<NoForcing> {
+    let model = ContactModel::default();
+    let dt = 0.5 * stable_time_step(&floes, &model).0;
+    World::new(floes, model, NoForcing, periodic, dt).unwrap()
 }
 
 fn bar(center: Vec2, length: f64, width: f64) -> Vec<Vec2> {
@@ -206,9 +214,7 @@ fn a_floe_turning_into_a_neighbour_left_out_of_the_list_meets_it_as_if_kept() {
         ];
         let mut floes = Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap();
         floes.angular_velocity[0] = 0.5;
-        let model = ContactModel::default();
-        let dt = 0.5 * stable_time_step(&floes, &model).0;
-        World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap()
+        world(floes, Periodicity::default())
     };
     let w = make();
     let steps = (1.2 / (0.5 * w.dt_s)).ceil() as usize; // 0.6 rad of turning
@@ -273,8 +279,6 @@ fn shaken(mut floes: Floes, speed: f64, spreading: f64, spin: f64) -> World<NoFo
             + Vec2::new(rng.gen_range(-speed..speed), rng.gen_range(-speed..speed));
         floes.angular_velocity[i] = rng.gen_range(-spin..spin);
     }
-    let model = ContactModel::default();
-    let dt = 0.5 * stable_time_step(&floes, &model).0;
     let periodic = Periodicity {
         x: Some(Period {
             min_m: 0.0,
@@ -282,7 +286,7 @@ fn shaken(mut floes: Floes, speed: f64, spreading: f64, spin: f64) -> World<NoFo
         }),
         y: None,
     };
-    World::new(floes, model, NoForcing, periodic, dt).unwrap()
+    world(floes, periodic)
 }
 
 /// The lattice edge to edge, pulled apart and shaken: floes (the slivers
@@ -370,8 +374,6 @@ fn a_pair_whose_nearest_image_can_switch_in_a_narrow_period_is_kept() {
         ];
         let mut floes = Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap();
         floes.velocity[1] = Vec2::new(-0.5, 0.0);
-        let model = ContactModel::default();
-        let dt = 0.5 * stable_time_step(&floes, &model).0;
         let periodic = Periodicity {
             x: Some(Period {
                 min_m: -0.5 * period,
@@ -379,7 +381,7 @@ fn a_pair_whose_nearest_image_can_switch_in_a_narrow_period_is_kept() {
             }),
             y: None,
         };
-        World::new(floes, model, NoForcing, periodic, dt).unwrap()
+        world(floes, periodic)
     };
     let w = make();
     let steps = (2.0 / (0.5 * w.dt_s)).ceil() as usize; // 2 m of drift

@@ -817,8 +817,8 @@ impl<F: ExternalForces> World<F> {
         // the one the index was built for (`index_current`, kept by
         // `update_contacts`), else the gathering itself. At 1e3 floes the
         // power sums are one block on one thread (9 us) and the gathering
-        // no faster on two threads than on one (10 us): one after the
-        // other, they were 8 % of a 0.3 ms two-thread step.
+        // slower on two threads than on one (14 against 10 us): one after
+        // the other, they were 8 % of a 0.3 ms two-thread step.
         let rebuild = !self.index_current || a_start.len() != n + 1;
         self.index_builds += u64::from(rebuild);
         if rebuild {
