@@ -7,11 +7,12 @@
 //! two threads; figures in docs/performance.md.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use floe_dem::broad_phase::{Period, Periodicity};
-use floe_dem::contacts::ContactModel;
+use floe_dem::contact_model::ContactModel;
 use floe_dem::floes::Floes;
+use floe_dem::forcing::NoForcing;
+use floe_dem::periodicity::{Period, Periodicity};
 use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
-use floe_dem::world::{stable_time_step, NoForcing, World};
+use floe_dem::world::{stable_time_step, World};
 use floe_dem::Vec2;
 use floe_friction::{Amontons, Law};
 
@@ -44,7 +45,7 @@ pub fn sheared_channel_with(n: usize, model: ContactModel) -> World<NoForcing> {
     let mut floes = Floes::from_polygons(&t.polygons, &t.thickness_m, 917.0).expect("floes");
     for i in 0..floes.len() {
         let y = floes.position[i].y / width - 0.5;
-        floes.velocity[i] = Vec2::new(0.1 * y, -0.001 * y);
+        floes.set_velocity(i, Vec2::new(0.1 * y, -0.001 * y), floes.angular_velocity[i]);
     }
     let dt = 0.5 * stable_time_step(&floes, &model).0;
     let periodic = Periodicity {
@@ -95,17 +96,17 @@ fn full_step(c: &mut Criterion) {
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let mut w = pool.install(|| sheared_channel_with(n, model));
+            let mut w = pool.install(|| sheared_channel_with(n, model.clone()));
             // The contact count still climbs over the first steps (20,035 to
             // 29,891 at 1e4 floes between steps 20 and 40); from here on it
             // holds within a few per cent over a cycle (printed below).
             pool.install(|| (0..SETTLE).for_each(|_| w.step()));
             let saved = w.state();
-            let (model, periodicity, dt) = (w.model, w.periodicity, w.dt_s);
+            let (model, periodicity) = (w.model().clone(), w.periodicity());
             // The world at the saved state, stepped once untimed so that its
             // step buffers exist (first touch of fresh pages is not a step's cost).
             let restored = || {
-                let mut w = World::resume(saved.clone(), model, NoForcing, periodicity, dt)
+                let mut w = World::resume(saved.clone(), model.clone(), NoForcing, periodicity)
                     .expect("resume");
                 pool.install(|| w.step());
                 w
@@ -116,7 +117,7 @@ fn full_step(c: &mut Criterion) {
             let (mut contact_steps, mut fewest, mut most) = (0, usize::MAX, 0);
             for _ in 0..CYCLE {
                 pool.install(|| probe.step());
-                let n = probe.contacts.len();
+                let n = probe.contacts().len();
                 contact_steps += n as u64;
                 (fewest, most) = (fewest.min(n), most.max(n));
             }
@@ -124,7 +125,7 @@ fn full_step(c: &mut Criterion) {
             g.throughput(Throughput::Elements(mean_contacts));
             eprintln!(
                 "{law}: n = {} floes, {} contacts on average over a cycle of {CYCLE} steps ({fewest}-{most}), {} threads",
-                w.floes.len(),
+                w.floes().len(),
                 mean_contacts,
                 threads
             );

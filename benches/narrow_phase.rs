@@ -25,9 +25,9 @@ fn narrow_phase(c: &mut Criterion) {
     for _ in 0..30 {
         w.step();
     }
-    let f = &w.floes;
+    let f = &w.floes();
     let pairs: Vec<Pair> = w
-        .contacts
+        .contacts()
         .iter()
         .map(|c| Pair {
             a: c.a as usize,

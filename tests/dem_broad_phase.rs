@@ -4,19 +4,22 @@
 //! the default rotation allowance and with an infinite one (circles alone)
 //! and compare every bit.
 
-use floe_dem::broad_phase::{BroadPhase, Period, Periodicity, MAX_ROTATION_RAD};
-use floe_dem::contacts::ContactModel;
+use floe_dem::contact_model::ContactModel;
 use floe_dem::floes::Floes;
+use floe_dem::forcing::NoForcing;
 use floe_dem::geometry::{overlap, ClipScratch};
+use floe_dem::periodicity::{Period, Periodicity};
+use floe_dem::pipeline::broad_phase::{BroadPhase, MAX_ROTATION_RAD};
 use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
-use floe_dem::world::{stable_time_step, NoForcing, World};
+use floe_dem::world::{stable_time_step, World};
 use floe_dem::Vec2;
+use floe_friction::rate_state::THETA;
 
 const RHO_ICE: f64 = 917.0;
 
 /// Every bit of the floes' state, the contacts and the energy ledger.
 fn bits(w: &World<NoForcing>) -> Vec<u64> {
-    let f = &w.floes;
+    let f = &w.floes();
     let mut out = Vec::new();
     for i in 0..f.len() {
         out.extend([
@@ -28,18 +31,18 @@ fn bits(w: &World<NoForcing>) -> Vec<u64> {
             f.angular_velocity[i],
         ]);
     }
-    for c in &w.contacts {
+    for c in w.contacts() {
         out.extend([
             f64::from(c.a),
             f64::from(c.b),
             c.normal_force_n,
             c.friction.tangential_force_n,
-            c.friction.theta,
+            c.friction.law_state[THETA],
             c.normal_energy_j,
             c.tangential_energy_j,
         ]);
     }
-    let e = w.energy;
+    let e = w.energy();
     out.extend([
         e.friction_dissipation_j,
         e.damping_dissipation_j,
@@ -79,7 +82,7 @@ fn run_both(make: impl Fn() -> World<NoForcing>, steps: usize) -> Runs {
             runs.pairs_default = kept.broad_phase().pairs.len();
             runs.pairs_circles = circles.broad_phase().pairs.len();
         }
-        runs.most_contacts = runs.most_contacts.max(circles.contacts.len());
+        runs.most_contacts = runs.most_contacts.max(circles.contacts().len());
         if runs.first_difference.is_none() && bits(&kept) != bits(&circles) {
             runs.first_difference = Some(step);
         }
@@ -166,10 +169,8 @@ fn kept_exactly_when_it_could_touch(skin: f64, upper_length: f64) {
     // lower bar turned counter-clockwise and the upper one clockwise (their
     // right-hand tips towards each other), each by the allowance.
     let (shift, turn) = (0.5 * skin * (1.0 - 1e-9), MAX_ROTATION_RAD * (1.0 - 1e-9));
-    floes.position[0].y += shift;
-    floes.position[1].y -= shift;
-    floes.angle[0] = turn;
-    floes.angle[1] = -turn;
+    floes.set_pose(0, floes.position[0] + Vec2::new(0.0, shift), turn);
+    floes.set_pose(1, floes.position[1] - Vec2::new(0.0, shift), -turn);
     assert!(
         !bp.is_stale(&floes, Periodicity::default()),
         "{case}: within the allowance"
@@ -188,9 +189,13 @@ fn kept_exactly_when_it_could_touch(skin: f64, upper_length: f64) {
     let (_, fresh) = pairs_at(0.99 * bound);
     let start = bars_apart(0.99 * bound, upper_length);
     let mut shifted = start.clone();
-    shifted.position[1].y -= 0.5 * skin * 1.01;
+    shifted.set_pose(
+        1,
+        shifted.position[1] - Vec2::new(0.0, 0.5 * skin * 1.01),
+        shifted.angle[1],
+    );
     let mut turned = start.clone();
-    turned.angle[1] = -MAX_ROTATION_RAD * 1.01;
+    turned.set_pose(1, turned.position[1], -MAX_ROTATION_RAD * 1.01);
     for (what, floes) in [("moved", shifted), ("turned", turned)] {
         assert!(
             fresh.is_stale(&floes, Periodicity::default()),
@@ -213,11 +218,11 @@ fn a_floe_turning_into_a_neighbour_left_out_of_the_list_meets_it_as_if_kept() {
             bar(Vec2::new(0.0, 3.0), 10.0, 1.0),
         ];
         let mut floes = Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap();
-        floes.angular_velocity[0] = 0.5;
+        floes.set_velocity(0, floes.velocity[0], 0.5);
         world(floes, Periodicity::default())
     };
     let w = make();
-    let steps = (1.2 / (0.5 * w.dt_s)).ceil() as usize; // 0.6 rad of turning
+    let steps = (1.2 / (0.5 * w.dt_s())).ceil() as usize; // 0.6 rad of turning
     let runs = run_both(make, steps);
     assert_eq!(runs.pairs_circles, 1);
     assert_eq!(runs.pairs_default, 0, "the far pair is left out at first");
@@ -275,9 +280,13 @@ fn shaken(mut floes: Floes, speed: f64, spreading: f64, spin: f64) -> World<NoFo
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
     let centre = Vec2::new(750.0, 600.0);
     for i in 0..floes.len() {
-        floes.velocity[i] = (floes.position[i] - centre) * spreading
-            + Vec2::new(rng.gen_range(-speed..speed), rng.gen_range(-speed..speed));
-        floes.angular_velocity[i] = rng.gen_range(-spin..spin);
+        floes.set_velocity(
+            i,
+            (floes.position[i] - centre) * spreading
+                + Vec2::new(rng.gen_range(-speed..speed), rng.gen_range(-speed..speed)),
+            floes.angular_velocity[i],
+        );
+        floes.set_velocity(i, floes.velocity[i], rng.gen_range(-spin..spin));
     }
     let periodic = Periodicity {
         x: Some(Period {
@@ -296,7 +305,7 @@ fn shaken(mut floes: Floes, speed: f64, spreading: f64, spin: f64) -> World<NoFo
 #[test]
 fn leaving_far_pairs_out_changes_no_result_in_a_shaken_spreading_lattice() {
     let make = || shaken(lattice(1.0, true), 0.3, 2e-3, 0.02);
-    let steps = (20.0 / make().dt_s).ceil() as usize;
+    let steps = (20.0 / make().dt_s()).ceil() as usize;
     let runs = run_both(make, steps);
     assert!(runs.most_contacts > 100, "contacts: {}", runs.most_contacts);
     assert!(
@@ -322,7 +331,7 @@ fn leaving_far_pairs_out_changes_no_result_in_a_shaken_spreading_lattice() {
 #[test]
 fn leaving_far_pairs_out_changes_no_result_in_a_lattice_of_spinning_floes() {
     let make = || shaken(lattice(0.7, false), 0.01, 0.0, 0.02);
-    let steps = (100.0 / make().dt_s).ceil() as usize;
+    let steps = (100.0 / make().dt_s()).ceil() as usize;
     let runs = run_both(make, steps);
     assert!(runs.most_contacts > 20, "contacts: {}", runs.most_contacts);
     // The circle run rebuilds once more at its start (the allowance was
@@ -373,7 +382,7 @@ fn a_pair_whose_nearest_image_can_switch_in_a_narrow_period_is_kept() {
             trapezoid(Vec2::new(0.5 * period - 1.45, 0.0), true),
         ];
         let mut floes = Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap();
-        floes.velocity[1] = Vec2::new(-0.5, 0.0);
+        floes.set_velocity(1, Vec2::new(-0.5, 0.0), floes.angular_velocity[1]);
         let periodic = Periodicity {
             x: Some(Period {
                 min_m: -0.5 * period,
@@ -384,7 +393,7 @@ fn a_pair_whose_nearest_image_can_switch_in_a_narrow_period_is_kept() {
         world(floes, periodic)
     };
     let w = make();
-    let steps = (2.0 / (0.5 * w.dt_s)).ceil() as usize; // 2 m of drift
+    let steps = (2.0 / (0.5 * w.dt_s())).ceil() as usize; // 2 m of drift
     let runs = run_both(make, steps);
     assert_eq!(runs.pairs_circles, 1);
     assert_eq!(runs.pairs_default, 0, "left out at first: 3 m apart");

@@ -1,11 +1,11 @@
 //! A run continued from a saved state is bitwise the uninterrupted run.
 
-use floe_dem::broad_phase::Periodicity;
-use floe_dem::checkpoint::WorldState;
-use floe_dem::contacts::ContactModel;
-use floe_dem::floes::{Floes, Motion};
+use floe_dem::contact_model::ContactModel;
+use floe_dem::floes::{Floe, Floes};
 use floe_dem::forcing::{Forcing, VelocityField};
 use floe_dem::geometry::FloeShape;
+use floe_dem::periodicity::Periodicity;
+use floe_dem::state::WorldState;
 use floe_dem::world::{stable_time_step, World};
 use floe_dem::Vec2;
 use floe_friction::experiments::Preset;
@@ -36,16 +36,9 @@ fn setup() -> (WorldState, ContactModel, Forcing, f64) {
     let thickness: Vec<f64> = (0..n).map(|i| 1.0 + 0.05 * i as f64).collect();
     let mut floes = Floes::from_polygons(&polys, &thickness, 917.0).unwrap();
     let (wall, c) = FloeShape::from_world(0, &square(Vec2::new(900.0, 200.0), 400.0)).unwrap();
-    floes.push(
-        999,
-        &wall,
-        c,
-        1.0,
-        917.0,
-        Motion::Prescribed {
-            velocity: Vec2::new(0.0, 0.01),
-        },
-    );
+    floes
+        .insert(Floe::new(999, &wall, c, 1.0, 917.0).prescribed(Vec2::new(0.0, 0.01)))
+        .unwrap();
     let model = ContactModel {
         law: Law::RateState(RateState::new(
             Preset::Tank.params(),
@@ -60,16 +53,23 @@ fn setup() -> (WorldState, ContactModel, Forcing, f64) {
         ..Forcing::default()
     };
     let dt = 0.5 * stable_time_step(&floes, &model).0;
-    let world = World::new(floes, model, forcing.clone(), Periodicity::default(), dt).unwrap();
-    (world.state(), model, forcing, dt)
+    let world = World::new(
+        floes,
+        model.clone(),
+        forcing.clone(),
+        Periodicity::default(),
+        dt,
+    )
+    .unwrap();
+    (world.state().clone(), model, forcing, dt)
 }
 
 #[test]
 fn resuming_from_a_saved_state_is_bitwise_the_uninterrupted_run() {
-    let (start, model, forcing, dt) = setup();
+    let (start, model, forcing, _) = setup();
     let n = 4000;
     let resume = |s: WorldState| {
-        World::resume(s, model, forcing.clone(), Periodicity::default(), dt).unwrap()
+        World::resume(s, model.clone(), forcing.clone(), Periodicity::default()).unwrap()
     };
     let mut straight = resume(start.clone());
     for _ in 0..2 * n {
@@ -79,7 +79,7 @@ fn resuming_from_a_saved_state_is_bitwise_the_uninterrupted_run() {
     for _ in 0..n {
         first.step();
     }
-    let saved = first.state();
+    let saved = first.state().clone();
     assert!(
         !saved.contacts.is_empty(),
         "the pack is in contact at the save"
@@ -109,8 +109,14 @@ fn resuming_from_a_saved_state_is_bitwise_the_uninterrupted_run() {
 fn a_resumed_world_that_recomputed_forces_would_differ() {
     // The reason the forces are saved: re-evaluating them at the end-of-step
     // velocity (what a naive resume would do) changes the drag.
-    let (start, model, forcing, dt) = setup();
-    let mut w = World::resume(start, model, forcing.clone(), Periodicity::default(), dt).unwrap();
+    let (start, model, forcing, _) = setup();
+    let mut w = World::resume(
+        start,
+        model.clone(),
+        forcing.clone(),
+        Periodicity::default(),
+    )
+    .unwrap();
     for _ in 0..500 {
         w.step();
     }
@@ -120,7 +126,7 @@ fn a_resumed_world_that_recomputed_forces_would_differ() {
         model,
         forcing,
         Periodicity::default(),
-        dt,
+        saved.dt_s,
     )
     .unwrap();
     let differs = saved
@@ -136,9 +142,9 @@ fn a_resumed_world_that_recomputed_forces_would_differ() {
 
 #[test]
 fn a_damaged_state_is_refused() {
-    let (mut s, model, forcing, dt) = setup();
+    let (mut s, model, forcing, _) = setup();
     s.torque.pop();
-    let err = World::resume(s, model, forcing, Periodicity::default(), dt)
+    let err = World::resume(s, model, forcing, Periodicity::default())
         .err()
         .unwrap();
     assert!(err.to_string().contains("torque"), "{err}");

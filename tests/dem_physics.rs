@@ -1,14 +1,16 @@
 //! Physics of the DEM engine: conservation in collisions, determinism,
 //! energy budget, and the double-shear experiment against the spring-slider.
 
-use floe_dem::broad_phase::Periodicity;
-use floe_dem::contacts::ContactModel;
-use floe_dem::floes::{Floes, Motion};
+use floe_dem::contact_model::ContactModel;
+use floe_dem::floes::{Floe, FloeColumns, Floes};
+use floe_dem::forcing::{ExternalForces, NoForcing};
 use floe_dem::geometry::FloeShape;
-use floe_dem::world::{ExternalForces, NoForcing, World};
+use floe_dem::periodicity::Periodicity;
+use floe_dem::world::World;
 use floe_dem::Vec2;
 use floe_friction::experiments::Preset;
 use floe_friction::protocol::{Protocol, Segment};
+use floe_friction::rate_state::THETA;
 use floe_friction::spring_slider::{Apparatus, SpringSlider};
 use floe_friction::{Amontons, Form, Law, RateState, StateLaw};
 
@@ -33,7 +35,7 @@ fn frictionless_elastic() -> ContactModel {
 }
 
 fn momentum(w: &World<impl ExternalForces>) -> (Vec2, f64, f64) {
-    let f = &w.floes;
+    let f = &w.floes();
     let (mut p, mut l, mut ke) = (Vec2::ZERO, 0.0, 0.0);
     for i in 0..f.len() {
         p += f.velocity[i] * f.mass_kg[i];
@@ -53,9 +55,9 @@ fn a_glancing_collision_conserves_momentum_and_without_damping_or_friction_kinet
         rect(Vec2::new(160.0, 40.0), 120.0, 60.0),
     ];
     let mut floes = Floes::from_polygons(&polys, &[1.0, 1.5], RHO_ICE).unwrap();
-    floes.angle[1] = 0.5;
-    floes.velocity[0] = Vec2::new(1.0, 0.0);
-    floes.angular_velocity[0] = 0.002;
+    floes.set_pose(1, floes.position[1], 0.5);
+    floes.set_velocity(0, Vec2::new(1.0, 0.0), floes.angular_velocity[0]);
+    floes.set_velocity(0, floes.velocity[0], 0.002);
     let model = frictionless_elastic();
     let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
     let mut w = World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap();
@@ -63,7 +65,7 @@ fn a_glancing_collision_conserves_momentum_and_without_damping_or_friction_kinet
     let mut touched = false;
     for _ in 0..200_000 {
         w.step();
-        touched |= !w.contacts.is_empty();
+        touched |= !w.contacts().is_empty();
         let (p, l, _) = momentum(&w);
         assert!(
             (p - p0).length() <= 1e-12 * p0.length(),
@@ -74,12 +76,12 @@ fn a_glancing_collision_conserves_momentum_and_without_damping_or_friction_kinet
             (l - l0).abs() <= 1e-10 * l0.abs().max(1.0) * 1e3,
             "angular momentum {l} vs {l0}"
         );
-        if touched && w.contacts.is_empty() {
+        if touched && w.contacts().is_empty() {
             break;
         }
     }
     assert!(
-        touched && w.contacts.is_empty(),
+        touched && w.contacts().is_empty(),
         "the floes collided and separated"
     );
     let (_, _, ke) = momentum(&w);
@@ -88,7 +90,7 @@ fn a_glancing_collision_conserves_momentum_and_without_damping_or_friction_kinet
         "kinetic energy after {ke} vs before {ke0}"
     );
     assert!(
-        w.floes.velocity[1].length() > 0.1,
+        w.floes().velocity[1].length() > 0.1,
         "momentum was transferred"
     );
 }
@@ -116,8 +118,12 @@ fn sheared_box_dt(law: Law, seed: u64, dt_fraction: f64) -> World<NoForcing> {
     let n = polys.len();
     let mut floes = Floes::from_polygons(&polys, &vec![1.0; n], RHO_ICE).unwrap();
     for i in 0..n {
-        floes.velocity[i] = Vec2::new(rng.gen_range(-0.05..0.05), rng.gen_range(-0.05..0.05));
-        floes.angular_velocity[i] = rng.gen_range(-1e-3..1e-3);
+        floes.set_velocity(
+            i,
+            Vec2::new(rng.gen_range(-0.05..0.05), rng.gen_range(-0.05..0.05)),
+            floes.angular_velocity[i],
+        );
+        floes.set_velocity(i, floes.velocity[i], rng.gen_range(-1e-3..1e-3));
     }
     // Walls: a fixed floor and a lid moving in x and closing, 1 m clear of
     // the floes at the start (no initial overlap anywhere).
@@ -134,26 +140,12 @@ fn sheared_box_dt(law: Law, seed: u64, dt_fraction: f64) -> World<NoForcing> {
     };
     let (floor, c0) = wall(-101.0);
     let (lid, c1) = wall(ny as f64 * s + 101.0);
-    floes.push(
-        1000,
-        &floor,
-        c0,
-        1.0,
-        RHO_ICE,
-        Motion::Prescribed {
-            velocity: Vec2::ZERO,
-        },
-    );
-    floes.push(
-        1001,
-        &lid,
-        c1,
-        1.0,
-        RHO_ICE,
-        Motion::Prescribed {
-            velocity: Vec2::new(0.2, -0.02),
-        },
-    );
+    floes
+        .insert(Floe::new(1000, &floor, c0, 1.0, RHO_ICE).prescribed(Vec2::ZERO))
+        .unwrap();
+    floes
+        .insert(Floe::new(1001, &lid, c1, 1.0, RHO_ICE).prescribed(Vec2::new(0.2, -0.02)))
+        .unwrap();
     let model = ContactModel {
         law,
         ..ContactModel::default()
@@ -183,11 +175,11 @@ fn results_are_bitwise_identical_for_one_and_two_threads() {
                 w.step();
             }
             (
-                w.floes.position.clone(),
-                w.floes.velocity.clone(),
-                w.floes.angular_velocity.clone(),
-                w.contacts.iter().map(|c| c.friction).collect::<Vec<_>>(),
-                w.energy,
+                w.floes().position.clone(),
+                w.floes().velocity.clone(),
+                w.floes().angular_velocity.clone(),
+                w.contacts().iter().map(|c| c.friction).collect::<Vec<_>>(),
+                *w.energy(),
             )
         })
     };
@@ -225,15 +217,19 @@ fn energy_budget_closes_over_a_wall_driven_shear_run() {
     ] {
         let mut errors = Vec::new();
         for fraction in [0.5, 0.125] {
-            let mut w = sheared_box_dt(law, 3, fraction);
+            let mut w = sheared_box_dt(law.clone(), 3, fraction);
             let stored = |w: &World<NoForcing>| {
-                momentum(w).2 + w.contacts.iter().map(|c| c.elastic_energy_j()).sum::<f64>()
+                momentum(w).2
+                    + w.contacts()
+                        .iter()
+                        .map(|c| c.elastic_energy_j())
+                        .sum::<f64>()
             };
             let e0 = stored(&w);
             for _ in 0..(10_000.0 / fraction) as usize {
                 w.step();
             }
-            let e = &w.energy;
+            let e = &w.energy();
             let change = stored(&w) - e0;
             let supplied = e.boundary_work_j + e.forcing_work_j
                 - e.friction_dissipation_j
@@ -283,13 +279,13 @@ impl Pusher {
         }
         x
     }
-    fn force(&self, t: f64, floes: &Floes) -> f64 {
+    fn force(&self, t: f64, floes: &FloeColumns) -> f64 {
         self.k * (self.load_point(t) - (floes.position[self.floe].x - self.x0))
     }
 }
 
 impl ExternalForces for Pusher {
-    fn force_and_torque(&self, t: f64, floes: &Floes, i: usize) -> (Vec2, f64) {
+    fn force_and_torque(&self, t: f64, floes: &FloeColumns, i: usize) -> (Vec2, f64) {
         if i == self.floe {
             (Vec2::new(self.force(t, floes), 0.0), 0.0)
         } else {
@@ -336,19 +332,12 @@ fn double_shear_peak_error(density: f64, side_load: f64, k_pusher: f64, h: f64) 
     let mut floes = Floes::from_polygons(&[rect(Vec2::ZERO, 2.0, 2.0)], &[h], density).unwrap();
     for (id, y) in [(1u64, 1.0 + 5.0 - depth), (2, -1.0 - 5.0 + depth)] {
         let (shape, c) = FloeShape::from_world(0, &rect(Vec2::new(0.0, y), 40.0, 10.0)).unwrap();
-        floes.push(
-            id,
-            &shape,
-            c,
-            h,
-            931.0,
-            Motion::Prescribed {
-                velocity: Vec2::ZERO,
-            },
-        );
+        floes
+            .insert(Floe::new(id, &shape, c, h, 931.0).prescribed(Vec2::ZERO))
+            .unwrap();
     }
     let (v1, v2) = (1e-3, 1e-2);
-    floes.velocity[0] = Vec2::new(v1, 0.0);
+    floes.set_velocity(0, Vec2::new(v1, 0.0), floes.angular_velocity[0]);
     let segments = vec![(v1, 200.0), (v2, 5.0)];
     let pusher = Pusher {
         floe: 0,
@@ -357,7 +346,7 @@ fn double_shear_peak_error(density: f64, side_load: f64, k_pusher: f64, h: f64) 
         segments: segments.clone(),
     };
     let dt = 1e-3;
-    let mut w = World::new(floes, model, pusher, Periodicity::default(), dt).unwrap();
+    let mut w = World::new(floes, model.clone(), pusher, Periodicity::default(), dt).unwrap();
     // Series stiffness: the pusher, then the two contact springs in parallel.
     let k_t = kappa * 2.0 / (2.0 * (1.0 + model.poisson_ratio));
     let k_series = 1.0 / (1.0 / k_pusher + 1.0 / (2.0 * k_t));
@@ -366,12 +355,12 @@ fn double_shear_peak_error(density: f64, side_load: f64, k_pusher: f64, h: f64) 
     let steps = (205.0 / dt) as usize;
     for _ in 0..steps {
         w.step();
-        if w.time_s >= 199.0 {
-            dem.push((w.time_s, w.forcing.force(w.time_s, &w.floes) / n_eff));
+        if w.time_s() >= 199.0 {
+            dem.push((w.time_s(), w.forcing().force(w.time_s(), w.floes()) / n_eff));
         }
     }
-    assert_eq!(w.contacts.len(), 2);
-    let normal: f64 = w.contacts.iter().map(|c| c.normal_force_n).sum();
+    assert_eq!(w.contacts().len(), 2);
+    let normal: f64 = w.contacts().iter().map(|c| c.normal_force_n).sum();
     assert!(
         (normal - n_eff).abs() < 1e-3 * n_eff,
         "normal load {normal}"
@@ -442,14 +431,14 @@ fn one_floe_drifts_freely_to_the_analytic_steady_velocity() {
         for _ in 0..(5.0 * 86400.0 / 4.0) as usize {
             w.step();
         }
-        let v = w.floes.velocity[0];
+        let v = w.floes().velocity[0];
         eprintln!("{coriolis:?}: drift {v} vs analytic {expected}");
         assert!(
             (v - expected).length() < 1e-6 * expected.length(),
             "{coriolis:?}: {v} vs {expected}"
         );
         assert!(
-            w.floes.angular_velocity[0].abs() < 1e-12,
+            w.floes().angular_velocity[0].abs() < 1e-12,
             "no spin without vorticity"
         );
     }
@@ -468,7 +457,7 @@ fn mean_stress_of_a_pressed_pair_is_force_times_branch_over_area() {
         law: Law::Amontons(Amontons { mu: 0.3 }),
         ..ContactModel::default()
     };
-    let w = World::new(floes, model, NoForcing, Periodicity::default(), 0.1).unwrap();
+    let w = World::new(floes, model.clone(), NoForcing, Periodicity::default(), 0.1).unwrap();
     let o = w.observables(1e4);
     let kappa = model.youngs_modulus_pa * 1.0 * 1.0 / (1.0 * 100.0 + 1.0 * 100.0);
     let force = kappa * 100.0; // overlap 1 m x 100 m
@@ -489,7 +478,7 @@ fn mean_stress_of_a_pressed_pair_is_force_times_branch_over_area() {
 
 #[test]
 fn floes_touch_across_a_periodic_boundary() {
-    use floe_dem::broad_phase::Period;
+    use floe_dem::periodicity::Period;
     // Two squares at opposite ends of a periodic channel, moving towards each
     // other through the boundary: they must collide (and bounce) there.
     let period = Period {
@@ -501,8 +490,8 @@ fn floes_touch_across_a_periodic_boundary() {
         rect(Vec2::new(945.0, 0.0), 100.0, 100.0),
     ];
     let mut floes = Floes::from_polygons(&polys, &[1.0, 1.0], RHO_ICE).unwrap();
-    floes.velocity[0] = Vec2::new(-0.5, 0.0);
-    floes.velocity[1] = Vec2::new(0.5, 0.0);
+    floes.set_velocity(0, Vec2::new(-0.5, 0.0), floes.angular_velocity[0]);
+    floes.set_velocity(1, Vec2::new(0.5, 0.0), floes.angular_velocity[1]);
     let model = frictionless_elastic();
     let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
     let mut w = World::new(
@@ -519,19 +508,19 @@ fn floes_touch_across_a_periodic_boundary() {
     let mut touched = false;
     for _ in 0..100_000 {
         w.step();
-        touched |= !w.contacts.is_empty();
-        for p in &w.floes.position {
+        touched |= !w.contacts().is_empty();
+        for p in &w.floes().position {
             assert!((0.0..1000.0).contains(&p.x), "positions stay wrapped: {p}");
         }
-        if touched && w.contacts.is_empty() {
+        if touched && w.contacts().is_empty() {
             break;
         }
     }
     assert!(touched, "the floes met across the boundary");
     assert!(
-        w.floes.velocity[0].x > 0.4 && w.floes.velocity[1].x < -0.4,
+        w.floes().velocity[0].x > 0.4 && w.floes().velocity[1].x < -0.4,
         "they bounced: {:?}",
-        w.floes.velocity
+        w.floes().velocity
     );
 }
 
@@ -566,33 +555,33 @@ fn a_diamond_tessellation_starts_without_overlap_and_stays_at_rest() {
         let model = ContactModel::default();
         let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
         let mut w = World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap();
-        for c in &w.contacts {
+        for c in w.contacts() {
             eprintln!(
                 "contact {} {}: area {:e} m2, length {:e} m, floe areas {:e} {:e}, force {:e} N",
                 c.a,
                 c.b,
                 c.overlap_m2,
                 c.length_m,
-                w.floes.area_m2[c.a as usize],
-                w.floes.area_m2[c.b as usize],
+                w.floes().area_m2[c.a as usize],
+                w.floes().area_m2[c.b as usize],
                 c.normal_force_n
             );
         }
         assert!(
-            w.contacts.is_empty(),
+            w.contacts().is_empty(),
             "{} contacts in a fresh tessellation at {origin}",
-            w.contacts.len()
+            w.contacts().len()
         );
-        let start = w.floes.position.clone();
+        let start = w.floes().position.clone();
         for _ in 0..200 {
             w.step();
         }
-        assert!(w.contacts.is_empty());
+        assert!(w.contacts().is_empty());
         assert!(
-            w.floes.velocity.iter().all(|v| *v == Vec2::ZERO)
-                && w.floes.angular_velocity.iter().all(|&o| o == 0.0)
+            w.floes().velocity.iter().all(|v| *v == Vec2::ZERO)
+                && w.floes().angular_velocity.iter().all(|&o| o == 0.0)
         );
-        assert_eq!(w.floes.position, start);
+        assert_eq!(w.floes().position, start);
         assert!(n > 200, "{n} floes");
     }
 }
@@ -666,14 +655,14 @@ fn dropping_clipped_slivers_restores_the_diamond_time_step_and_accounts_the_area
         0.5 * dt_trimmed,
     )
     .unwrap();
-    assert!(w.contacts.is_empty());
+    assert!(w.contacts().is_empty());
 }
 
 /// A constant push on one floe (N).
 struct Push(usize, Vec2);
 
 impl ExternalForces for Push {
-    fn force_and_torque(&self, _t: f64, _floes: &Floes, i: usize) -> (Vec2, f64) {
+    fn force_and_torque(&self, _t: f64, _floes: &FloeColumns, i: usize) -> (Vec2, f64) {
         if i == self.0 {
             (self.1, 0.0)
         } else {
@@ -694,17 +683,10 @@ fn a_contact_that_breaks_and_reforms_resumes_its_state_only_with_memory() {
                 .unwrap();
         let (floor, c) =
             FloeShape::from_world(0, &rect(Vec2::new(0.0, -100.0), 4000.0, 200.0)).unwrap();
-        floes.push(
-            9,
-            &floor,
-            c,
-            1.0,
-            RHO_ICE,
-            Motion::Prescribed {
-                velocity: Vec2::ZERO,
-            },
-        );
-        floes.velocity[0] = Vec2::new(0.5, -0.05);
+        floes
+            .insert(Floe::new(9, &floor, c, 1.0, RHO_ICE).prescribed(Vec2::ZERO))
+            .unwrap();
+        floes.set_velocity(0, Vec2::new(0.5, -0.05), floes.angular_velocity[0]);
         let push = Push(0, Vec2::new(0.0, -floes.mass_kg[0] * 0.002));
         let model = ContactModel {
             memory_s,
@@ -716,16 +698,20 @@ fn a_contact_that_breaks_and_reforms_resumes_its_state_only_with_memory() {
         let mut w = World::new(floes, model, push, Periodicity::default(), dt).unwrap();
         let (mut theta_at_break, mut had_contact) = (None, false);
         for _ in 0..400_000 {
-            let before = w.contacts.first().map(|c| c.friction.theta);
+            let before = w.contacts().first().map(|c| c.friction.law_state[THETA]);
             w.step();
-            match (had_contact, w.contacts.first()) {
+            match (had_contact, w.contacts().first()) {
                 (true, None) => theta_at_break = before,
                 (false, Some(c)) if theta_at_break.is_some() => {
-                    return (theta_at_break.unwrap(), c.friction.theta, w.broken.len())
+                    return (
+                        theta_at_break.unwrap(),
+                        c.friction.law_state[THETA],
+                        w.broken_contacts().len(),
+                    )
                 }
                 _ => {}
             }
-            had_contact = !w.contacts.is_empty();
+            had_contact = !w.contacts().is_empty();
         }
         panic!("no re-formed contact");
     };

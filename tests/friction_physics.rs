@@ -3,6 +3,7 @@
 
 use floe_friction::experiments::{hold_test, late_oscillation_amplitude, velocity_step, Preset};
 use floe_friction::protocol::{Protocol, Segment};
+use floe_friction::rate_state::SOLVER_TREND;
 use floe_friction::reference::friction_series;
 use floe_friction::spring_slider::{Apparatus, SpringSlider};
 use floe_friction::*;
@@ -115,7 +116,7 @@ fn rigid_velocity_step_jumps_by_a_ln_ratio_and_decays_over_l() {
 fn velocity_step_experiment_reaches_the_new_steady_state() {
     for form in FORMS {
         let law = rate_state(Preset::Lab.params(), form, StateLaw::Slip);
-        let r = velocity_step(law, Preset::Lab.apparatus(1e-3), 1e-4, 1e-3);
+        let r = velocity_step(law.clone(), Preset::Lab.apparatus(1e-3), 1e-4, 1e-3);
         assert!(
             (r.mu_ss_after - r.mu_ss_after_analytic).abs() < 1e-6,
             "{form:?} {r:?}"
@@ -193,7 +194,7 @@ fn stick_slip_below_critical_stiffness_and_steady_sliding_above() {
         let law = rate_state(p, form, StateLaw::Slip);
         let amplitude = |ratio: f64| {
             let apparatus = Apparatus::new(ratio * k_c, n, 1e-3).unwrap();
-            late_oscillation_amplitude(law, apparatus, 1e-4, 600.0)
+            late_oscillation_amplitude(law.clone(), apparatus, 1e-4, 600.0)
         };
         let (unstable, stable) = (amplitude(0.7), amplitude(1.5));
         eprintln!("{form:?}: amplitude at 0.7 k_c {unstable:.3e}, at 1.5 k_c {stable:.3e}");
@@ -268,7 +269,15 @@ fn hold_tests_show_what_each_form_and_state_law_predicts() {
         let law = rate_state(preset.params(), form, state_law);
         holds
             .iter()
-            .map(|&h| hold_test(law, preset.apparatus(1e-3), preset.speed_m_per_s(), h).delta_mu)
+            .map(|&h| {
+                hold_test(
+                    law.clone(),
+                    preset.apparatus(1e-3),
+                    preset.speed_m_per_s(),
+                    h,
+                )
+                .delta_mu
+            })
             .collect()
     };
     let published_slip = run(Form::Published, StateLaw::Slip);
@@ -378,7 +387,7 @@ fn the_extrapolated_start_saves_evaluations_and_changes_no_result() {
                 };
                 for _ in 0..(duration / apparatus.dt_s).round() as usize {
                     if !extrapolate {
-                        state.solver_trend = 0.0;
+                        state.law_state[SOLVER_TREND] = 0.0;
                     }
                     let out = law.step(&mut state, &load, apparatus.dt_s);
                     mu.push(out.mu);

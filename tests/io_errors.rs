@@ -4,6 +4,7 @@
 #[path = "io_support/mod.rs"]
 mod support;
 
+use floe_friction::FrictionLaw;
 use std::path::Path;
 
 use floe_io::{IoError, OutputOptions, RunFile, RunWriter};
@@ -12,11 +13,12 @@ use support::{metadata, pack};
 fn new_run(path: &Path, checkpoint: bool) {
     let (mut world, _) = pack();
     let mut w =
-        RunWriter::create(path, &metadata(), &world.floes, &OutputOptions::default()).unwrap();
+        RunWriter::create(path, &metadata(), world.floes(), &OutputOptions::default()).unwrap();
     w.write_snapshot(&world).unwrap();
     world.step();
     if checkpoint {
-        w.write_checkpoint(&world.state()).unwrap();
+        w.write_checkpoint(world.state(), world.model().law.state_slots())
+            .unwrap();
     }
 }
 
@@ -38,7 +40,7 @@ fn creating_over_an_existing_file_is_refused_and_leaves_it_alone() {
     let path = dir.path().join("precious.h5");
     std::fs::write(&path, b"precious").unwrap();
     let (world, _) = pack();
-    let e = RunWriter::create(&path, &metadata(), &world.floes, &OutputOptions::default())
+    let e = RunWriter::create(&path, &metadata(), world.floes(), &OutputOptions::default())
         .err()
         .expect("refused");
     assert!(matches!(e, IoError::AlreadyExists { .. }), "{e}");
@@ -53,7 +55,9 @@ fn a_missing_file_is_not_found() {
     let e = RunFile::open(&path).err().expect("missing");
     assert!(matches!(e, IoError::NotFound { .. }), "{e}");
     names(&e, &path);
-    let e = RunWriter::reopen_for_resume(&path).err().expect("missing");
+    let e = RunWriter::reopen_for_resume(&path, || None)
+        .err()
+        .expect("missing");
     assert!(matches!(e, IoError::NotFound { .. }), "{e}");
 }
 
@@ -70,7 +74,9 @@ fn a_file_that_is_not_hdf5_is_named_as_such() {
         let e = RunFile::open(&path).err().expect("not HDF5");
         assert!(matches!(e, IoError::NotHdf5 { .. }), "{e}");
         assert!(names(&e, &path).contains("not an HDF5 file"));
-        let e = RunWriter::reopen_for_resume(&path).err().expect("not HDF5");
+        let e = RunWriter::reopen_for_resume(&path, || None)
+            .err()
+            .expect("not HDF5");
         assert!(matches!(e, IoError::NotHdf5 { .. }), "{e}");
         assert_eq!(std::fs::read(&path).unwrap(), bytes, "left as it was");
     }
@@ -105,7 +111,7 @@ fn an_hdf5_file_not_written_by_floe_is_refused() {
             .write_scalar(&"halmd".parse::<hdf5::types::VarLenUnicode>().unwrap())
             .unwrap();
     }
-    let e = RunWriter::reopen_for_resume(&other)
+    let e = RunWriter::reopen_for_resume(&other, || None)
         .err()
         .expect("not floe");
     assert!(names(&e, &other).contains("halmd"), "{e}");
@@ -118,9 +124,9 @@ fn a_file_without_checkpoint_cannot_be_resumed() {
     new_run(&path, false);
     let f = RunFile::open(&path).unwrap();
     assert_eq!(f.checkpoint().unwrap(), None);
-    assert_eq!(f.checkpoint_state().unwrap(), None);
+    assert_eq!(f.checkpoint_state(|| None).unwrap(), None);
     drop(f);
-    let e = RunWriter::reopen_for_resume(&path)
+    let e = RunWriter::reopen_for_resume(&path, || None)
         .err()
         .expect("no checkpoint");
     assert!(matches!(e, IoError::NoCheckpoint { .. }), "{e}");
@@ -134,7 +140,7 @@ fn a_damaged_checkpoint_is_detected_by_its_checksum() {
     new_run(&path, true);
     assert!(RunFile::open(&path)
         .unwrap()
-        .checkpoint_state()
+        .checkpoint_state(|| None)
         .unwrap()
         .is_some());
     // Flip one byte of the state (past the header) in the valid slot.
@@ -145,7 +151,9 @@ fn a_damaged_checkpoint_is_detected_by_its_checksum() {
         bytes[100] ^= 0x10;
         ds.write_raw(&bytes).unwrap();
     }
-    let e = RunWriter::reopen_for_resume(&path).err().expect("damaged");
+    let e = RunWriter::reopen_for_resume(&path, || None)
+        .err()
+        .expect("damaged");
     assert!(matches!(e, IoError::CorruptCheckpoint { .. }), "{e}");
     let text = names(&e, &path);
     assert!(
@@ -154,7 +162,7 @@ fn a_damaged_checkpoint_is_detected_by_its_checksum() {
     );
     let e = RunFile::open(&path)
         .unwrap()
-        .checkpoint_state()
+        .checkpoint_state(|| None)
         .expect_err("damaged");
     assert!(e.to_string().contains("checksum"), "{e}");
     // The step and time (slot attributes) are still there to report.
@@ -196,9 +204,9 @@ fn a_truncated_or_scrambled_file_is_an_error_not_a_panic() {
             for n in f.observable_names()? {
                 f.observable(&n)?;
             }
-            f.checkpoint_state()?;
+            f.checkpoint_state(|| None)?;
             drop(f);
-            RunWriter::reopen_for_resume(&p)?;
+            RunWriter::reopen_for_resume(&p, || None)?;
             Ok(())
         })();
         let e = outcome
@@ -214,7 +222,7 @@ fn an_unwritable_place_is_one_error_naming_the_file() {
     let dir = tempfile::tempdir().unwrap();
     let (world, _) = pack();
     let create = |p: &Path| {
-        RunWriter::create(p, &metadata(), &world.floes, &OutputOptions::default())
+        RunWriter::create(p, &metadata(), world.floes(), &OutputOptions::default())
             .err()
             .expect("cannot create")
     };
@@ -254,13 +262,19 @@ fn requests_that_do_not_fit_the_file_are_errors() {
         "lists the names: {e}"
     );
     drop(f);
-    // A world with another floe count than the file's.
-    let (mut w, _, _) = RunWriter::reopen_for_resume(&path).unwrap();
-    let (mut world, parts) = pack();
-    world.floes.owned -= 1;
+    // A world with other floes than the file's: one taken out, or one
+    // taken out and another put in its place.
+    let (mut w, _, _) = RunWriter::reopen_for_resume(&path, || None).unwrap();
+    let (mut world, _) = pack();
+    let mut taken = world.remove_floe(3).unwrap();
     let e = w.write_snapshot(&world).expect_err("floe count");
     assert!(names(&e, &path).contains("floes"), "{e}");
-    let _ = parts;
+    taken.floe.id = 1000;
+    taken.contacts.clear();
+    taken.broken.clear();
+    world.insert_detached(taken).unwrap();
+    let e = w.write_snapshot(&world).expect_err("floe ids");
+    assert!(names(&e, &path).contains("floes"), "{e}");
 }
 
 #[test]
@@ -271,8 +285,8 @@ fn checkpoint_bytes_that_pass_the_checksum_but_lie_are_refused_without_panic() {
         world.step();
     }
     let state = world.state();
-    let good = encode(&state, &OutputCounts::default());
-    let (back, _) = decode(&good).unwrap();
+    let good = encode(state, &OutputCounts::default(), 3);
+    let (back, _) = decode(&good, || None).unwrap();
     assert_eq!(format!("{back:?}"), format!("{state:?}"));
     // Re-sign a damaged payload so that only the structural checks remain.
     let resign = |mut b: Vec<u8>| {
@@ -283,21 +297,23 @@ fn checkpoint_bytes_that_pass_the_checksum_but_lie_are_refused_without_panic() {
         b
     };
     for cut in [HEADER_LEN, HEADER_LEN + 9, good.len() / 2, good.len() - 1] {
-        let e = decode(&resign(good[..cut].to_vec())).expect_err("truncated");
+        let e = decode(&resign(good[..cut].to_vec()), || None).expect_err("truncated");
         assert!(e.contains("truncated") || e.contains("exceeds"), "{e}");
     }
     // A vector length of 2^60 (the floe count, after the three counts).
     let mut huge = good.clone();
     huge[HEADER_LEN + 24..HEADER_LEN + 32].copy_from_slice(&(1u64 << 60).to_le_bytes());
-    assert!(decode(&resign(huge)).is_err());
+    assert!(decode(&resign(huge), || None).is_err());
     // Every byte of the payload in turn set to 0xff: errors or a state, never a panic.
     for at in (HEADER_LEN..good.len()).step_by(7) {
         let mut b = good.clone();
         b[at] = 0xff;
-        let _ = decode(&resign(b));
+        let _ = decode(&resign(b), || None);
     }
     // The checksum itself.
     let mut b = good.clone();
     b[good.len() - 3] ^= 1;
-    assert!(decode(&b).expect_err("checksum").contains("checksum"));
+    assert!(decode(&b, || None)
+        .expect_err("checksum")
+        .contains("checksum"));
 }

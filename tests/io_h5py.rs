@@ -6,6 +6,7 @@
 #[path = "io_support/mod.rs"]
 mod support;
 
+use floe_friction::FrictionLaw;
 use std::process::Command;
 
 use floe_io::{OutputOptions, RunWriter};
@@ -37,19 +38,20 @@ fn the_documented_h5py_snippet_reads_a_run_and_draws_it() {
     let path = dir.path().join("run.h5");
     let (mut world, _) = pack();
     let mut w =
-        RunWriter::create(&path, &metadata(), &world.floes, &OutputOptions::default()).unwrap();
+        RunWriter::create(&path, &metadata(), world.floes(), &OutputOptions::default()).unwrap();
     w.write_snapshot(&world).unwrap();
     for _ in 0..3 {
         for _ in 0..100 {
             world.step();
-            if world.steps.is_multiple_of(20) {
-                w.write_observables(world.steps, &world.observables(domain_area()))
+            if world.steps().is_multiple_of(20) {
+                w.write_observables(world.steps(), &world.observables(domain_area()))
                     .unwrap();
             }
         }
         w.write_snapshot(&world).unwrap();
     }
-    w.write_checkpoint(&world.state()).unwrap();
+    w.write_checkpoint(world.state(), world.model().law.state_slots())
+        .unwrap();
     w.set_status("completed").unwrap();
     drop(w);
     let script = dir.path().join("snippet.py");
@@ -75,7 +77,7 @@ fn the_documented_h5py_snippet_reads_a_run_and_draws_it() {
     assert!(bytes.len() > 5_000, "a picture, not an empty canvas");
     // The snippet prints what it read: the last snapshot's step and the floe count.
     assert!(
-        stdout.contains(&format!("step {}", world.steps)) && stdout.contains("31 floes"),
+        stdout.contains(&format!("step {}", world.steps())) && stdout.contains("31 floes"),
         "{stdout}"
     );
 }

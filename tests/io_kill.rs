@@ -9,6 +9,7 @@
 #[path = "io_support/mod.rs"]
 mod support;
 
+use floe_friction::FrictionLaw;
 use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
@@ -34,7 +35,7 @@ fn writer_child() {
     let mut w = RunWriter::create(
         Path::new(&path),
         &metadata(),
-        &world.floes,
+        world.floes(),
         &OutputOptions::default(),
     )
     .unwrap();
@@ -43,19 +44,21 @@ fn writer_child() {
     w.write_snapshot(&world).unwrap();
     w.write_observables(0, &world.observables(domain_area()))
         .unwrap();
-    w.write_checkpoint(&world.state()).unwrap();
+    w.write_checkpoint(world.state(), world.model().law.state_slots())
+        .unwrap();
     writeln!(out, "CHECKPOINT 0").unwrap();
     out.flush().unwrap();
-    while world.steps < STEPS {
+    while world.steps() < STEPS {
         world.step();
-        w.write_observables(world.steps, &world.observables(domain_area()))
+        w.write_observables(world.steps(), &world.observables(domain_area()))
             .unwrap();
-        if world.steps.is_multiple_of(SNAPSHOT_EVERY) {
+        if world.steps().is_multiple_of(SNAPSHOT_EVERY) {
             w.write_snapshot(&world).unwrap();
         }
-        if world.steps.is_multiple_of(CHECKPOINT_EVERY) {
-            w.write_checkpoint(&world.state()).unwrap();
-            writeln!(out, "CHECKPOINT {}", world.steps).unwrap();
+        if world.steps().is_multiple_of(CHECKPOINT_EVERY) {
+            w.write_checkpoint(world.state(), world.model().law.state_slots())
+                .unwrap();
+            writeln!(out, "CHECKPOINT {}", world.steps()).unwrap();
             out.flush().unwrap();
         }
     }
@@ -92,18 +95,15 @@ fn kill_9_at_any_moment_leaves_a_file_that_resumes_bitwise() {
     let (mut world, parts) = pack();
     let mut states = HashMap::new();
     let mut positions = HashMap::new();
-    states.insert(0, fingerprint(&world.state()));
-    positions.insert(0, vec2_bits(&world.floes.position[..world.floes.owned]));
-    while world.steps < STEPS {
+    states.insert(0, fingerprint(world.state()));
+    positions.insert(0, vec2_bits(&world.floes().position));
+    while world.steps() < STEPS {
         world.step();
-        if world.steps.is_multiple_of(SNAPSHOT_EVERY) {
-            positions.insert(
-                world.steps,
-                vec2_bits(&world.floes.position[..world.floes.owned]),
-            );
+        if world.steps().is_multiple_of(SNAPSHOT_EVERY) {
+            positions.insert(world.steps(), vec2_bits(&world.floes().position));
         }
-        if world.steps.is_multiple_of(CHECKPOINT_EVERY) {
-            states.insert(world.steps, fingerprint(&world.state()));
+        if world.steps().is_multiple_of(CHECKPOINT_EVERY) {
+            states.insert(world.steps(), fingerprint(world.state()));
         }
     }
 
@@ -137,7 +137,7 @@ fn kill_9_at_any_moment_leaves_a_file_that_resumes_bitwise() {
             early += 1;
             continue;
         }
-        match RunWriter::reopen_for_resume(&path) {
+        match RunWriter::reopen_for_resume(&path, || None) {
             Ok((mut w, state, info)) => {
                 if let Some(r) = reported {
                     // The checkpoint after the last reported one may have
@@ -170,7 +170,8 @@ fn kill_9_at_any_moment_leaves_a_file_that_resumes_bitwise() {
                     world.step();
                 }
                 w.write_snapshot(&world).unwrap();
-                w.write_checkpoint(&world.state()).unwrap();
+                w.write_checkpoint(world.state(), world.model().law.state_slots())
+                    .unwrap();
                 drop(w);
                 let f = RunFile::open(&path).unwrap();
                 assert_eq!(
@@ -180,7 +181,7 @@ fn kill_9_at_any_moment_leaves_a_file_that_resumes_bitwise() {
                 // (The reference ends at STEPS; a kill after the writer
                 // finished resumes from its last checkpoint, at STEPS.)
                 if let Some(next) = states.get(&(info.step + CHECKPOINT_EVERY)) {
-                    let state = f.checkpoint_state().unwrap().unwrap();
+                    let state = f.checkpoint_state(|| None).unwrap().unwrap();
                     assert!(&fingerprint(&state) == next, "{context}: continued state");
                 }
                 steps_seen.push(info.step);

@@ -6,6 +6,8 @@ mod support;
 
 use floe_dem::forcing::Forcing;
 use floe_dem::world::World;
+use floe_friction::rate_state::THETA;
+use floe_friction::FrictionLaw;
 use floe_io::{OutputOptions, RunFile, RunWriter};
 use support::{bits, bits2, domain_area, fingerprint, metadata, pack, vec2_bits};
 
@@ -18,7 +20,7 @@ struct Expected {
 }
 
 fn observe(w: &mut RunWriter, world: &World<Forcing>) {
-    w.write_observables(world.steps, &world.observables(domain_area()))
+    w.write_observables(world.steps(), &world.observables(domain_area()))
         .unwrap();
 }
 
@@ -28,7 +30,7 @@ fn everything_written_reads_back_bitwise() {
     let path = dir.path().join("run.h5");
     let (mut world, parts) = pack();
     let mut w =
-        RunWriter::create(&path, &metadata(), &world.floes, &OutputOptions::default()).unwrap();
+        RunWriter::create(&path, &metadata(), world.floes(), &OutputOptions::default()).unwrap();
     assert_eq!(w.path(), path.as_path());
     w.set_status("running").unwrap();
     let mut expected = Vec::new();
@@ -36,24 +38,25 @@ fn everything_written_reads_back_bitwise() {
     let snap = |w: &mut RunWriter, world: &World<Forcing>, expected: &mut Vec<Expected>| {
         w.write_snapshot(world).unwrap();
         expected.push(Expected {
-            step: world.steps,
-            time_s: world.time_s,
-            world_floes: world.floes.clone(),
-            contacts: world.contacts.clone(),
+            step: world.steps(),
+            time_s: world.time_s(),
+            world_floes: world.floes().clone(),
+            contacts: world.contacts().to_vec(),
         });
     };
     snap(&mut w, &world, &mut expected);
     for round in 0..4 {
         for _ in 0..150 {
             world.step();
-            if world.steps.is_multiple_of(30) {
+            if world.steps().is_multiple_of(30) {
                 observe(&mut w, &world);
-                observables.push((world.steps, world.observables(domain_area())));
+                observables.push((world.steps(), world.observables(domain_area())));
             }
         }
         snap(&mut w, &world, &mut expected);
         if round % 2 == 1 {
-            w.write_checkpoint(&world.state()).unwrap();
+            w.write_checkpoint(world.state(), world.model().law.state_slots())
+                .unwrap();
         }
     }
     let saved = world.state();
@@ -68,10 +71,10 @@ fn everything_written_reads_back_bitwise() {
     assert_eq!(file.status().unwrap(), "completed");
     assert_eq!(file.metadata().unwrap(), metadata());
 
-    // Fixed floe properties: owned floes only (the wall is owned here).
+    // Fixed floe properties, the wall's included.
     let sf = file.static_floes().unwrap();
     let f = &expected[0].world_floes;
-    let n = f.owned;
+    let n = f.len();
     assert_eq!(sf.len(), n);
     assert_eq!(sf.id, f.id[..n]);
     assert_eq!(sf.vertex_offsets, f.vertex_start[..=n]);
@@ -115,7 +118,7 @@ fn everything_written_reads_back_bitwise() {
             cs.iter().map(|c| g(c).to_bits()).collect()
         };
         assert_eq!(c.pair, cs.iter().map(|c| [c.a, c.b]).collect::<Vec<_>>());
-        assert_eq!(bits(&c.theta), col(|c| c.friction.theta));
+        assert_eq!(bits(&c.theta), col(|c| c.friction.law_state[THETA]));
         assert_eq!(bits(&c.mu), col(|c| c.mu()));
         assert_eq!(bits(&c.normal_force_n), col(|c| c.normal_force_n));
         assert_eq!(bits(&c.tangential_force_n), col(|c| c.tangential_force_n()));
@@ -189,14 +192,14 @@ fn everything_written_reads_back_bitwise() {
         (info.step, info.time_s.to_bits()),
         (saved.steps, saved.time_s.to_bits())
     );
-    let state = file.checkpoint_state().unwrap().unwrap();
-    assert_eq!(fingerprint(&state), fingerprint(&saved));
+    let state = file.checkpoint_state(|| None).unwrap().unwrap();
+    assert_eq!(fingerprint(&state), fingerprint(saved));
     let mut resumed = parts.resume(state);
     for _ in 0..300 {
         world.step();
         resumed.step();
     }
-    assert_eq!(fingerprint(&resumed.state()), fingerprint(&world.state()));
+    assert_eq!(fingerprint(resumed.state()), fingerprint(world.state()));
 }
 
 /// Writes the reference run: snapshots every 100 steps, observables every
@@ -204,16 +207,17 @@ fn everything_written_reads_back_bitwise() {
 /// closing anything cleanly (as a crash would), after extra output past
 /// the last checkpoint.
 fn run(path: &std::path::Path, world: &mut World<Forcing>, w: &mut RunWriter, until: u64) {
-    while world.steps < until {
+    while world.steps() < until {
         world.step();
-        if world.steps.is_multiple_of(25) {
+        if world.steps().is_multiple_of(25) {
             observe(w, world);
         }
-        if world.steps.is_multiple_of(100) {
+        if world.steps().is_multiple_of(100) {
             w.write_snapshot(world).unwrap();
         }
-        if world.steps.is_multiple_of(200) {
-            w.write_checkpoint(&world.state()).unwrap();
+        if world.steps().is_multiple_of(200) {
+            w.write_checkpoint(world.state(), world.model().law.state_slots())
+                .unwrap();
         }
     }
     let _ = path;
@@ -242,8 +246,8 @@ fn assert_same_file(a: &std::path::Path, b: &std::path::Path) {
         assert_eq!(bits(&oa.value), bits(&ob.value), "{name}");
     }
     assert_eq!(
-        fingerprint(&fa.checkpoint_state().unwrap().unwrap()),
-        fingerprint(&fb.checkpoint_state().unwrap().unwrap())
+        fingerprint(&fa.checkpoint_state(|| None).unwrap().unwrap()),
+        fingerprint(&fb.checkpoint_state(|| None).unwrap().unwrap())
     );
 }
 
@@ -254,13 +258,13 @@ fn a_resumed_file_drops_what_followed_the_checkpoint_and_ends_as_the_uninterrupt
     let opts = OutputOptions::default();
 
     let (mut world, _) = pack();
-    let mut w = RunWriter::create(&whole, &metadata(), &world.floes, &opts).unwrap();
+    let mut w = RunWriter::create(&whole, &metadata(), world.floes(), &opts).unwrap();
     w.write_snapshot(&world).unwrap();
     run(&whole, &mut world, &mut w, 1000);
     drop(w);
 
     let (mut world, parts) = pack();
-    let mut w = RunWriter::create(&parts_path, &metadata(), &world.floes, &opts).unwrap();
+    let mut w = RunWriter::create(&parts_path, &metadata(), world.floes(), &opts).unwrap();
     w.write_snapshot(&world).unwrap();
     // Up to step 700: the last checkpoint is at 600, followed by a snapshot
     // at 700 and observables at 625..700, which the resume must drop.
@@ -272,7 +276,7 @@ fn a_resumed_file_drops_what_followed_the_checkpoint_and_ends_as_the_uninterrupt
         assert_eq!(f.checkpoint().unwrap().unwrap().step, 600);
         assert_eq!(f.observable("mean_mu").unwrap().step.len(), 28);
     }
-    let (mut w, state, info) = RunWriter::reopen_for_resume(&parts_path).unwrap();
+    let (mut w, state, info) = RunWriter::reopen_for_resume(&parts_path, || None).unwrap();
     assert_eq!(info.step, 600);
     {
         let f = RunFile::open(&parts_path).unwrap();

@@ -74,7 +74,7 @@ fn edit(from: &str, to: &str) -> String {
 #[test]
 fn the_base_scenario_builds() {
     let s = Scenario::from_text(BASE, Path::new("base.toml")).unwrap();
-    assert_eq!(s.build().unwrap().world.floes.len(), 4);
+    assert_eq!(s.build().unwrap().world.floes().len(), 4);
 }
 
 #[test]

@@ -2,12 +2,12 @@
 //! tests, and helpers to compare states bitwise.
 #![allow(dead_code)]
 
-use floe_dem::broad_phase::Periodicity;
-use floe_dem::checkpoint::WorldState;
-use floe_dem::contacts::ContactModel;
-use floe_dem::floes::{Floes, Motion};
+use floe_dem::contact_model::ContactModel;
+use floe_dem::floes::{Floe, Floes};
 use floe_dem::forcing::{Forcing, VelocityField};
 use floe_dem::geometry::FloeShape;
+use floe_dem::periodicity::Periodicity;
+use floe_dem::state::WorldState;
 use floe_dem::world::{stable_time_step, World};
 use floe_dem::Vec2;
 use floe_io::{DomainBox, RunMetadata};
@@ -32,12 +32,16 @@ pub struct Parts {
 
 impl Parts {
     pub fn resume(&self, state: WorldState) -> World<Forcing> {
+        assert_eq!(
+            state.dt_s.to_bits(),
+            self.dt.to_bits(),
+            "the checkpoint's dt"
+        );
         World::resume(
             state,
-            self.model,
+            self.model.clone(),
             self.forcing.clone(),
             Periodicity::default(),
-            self.dt,
         )
         .expect("resumable state")
     }
@@ -57,16 +61,9 @@ pub fn pack() -> (World<Forcing>, Parts) {
     let thickness: Vec<f64> = (0..polys.len()).map(|i| 1.0 + 0.05 * i as f64).collect();
     let mut floes = Floes::from_polygons(&polys, &thickness, 917.0).unwrap();
     let (wall, c) = FloeShape::from_world(0, &square(Vec2::new(900.0, 200.0), 400.0)).unwrap();
-    floes.push(
-        999,
-        &wall,
-        c,
-        1.0,
-        917.0,
-        Motion::Prescribed {
-            velocity: Vec2::new(0.0, 0.01),
-        },
-    );
+    floes
+        .insert(Floe::new(999, &wall, c, 1.0, 917.0).prescribed(Vec2::new(0.0, 0.01)))
+        .unwrap();
     let model = ContactModel {
         memory_s: 50.0,
         ..ContactModel::default()
@@ -76,7 +73,14 @@ pub fn pack() -> (World<Forcing>, Parts) {
         ..Forcing::default()
     };
     let dt = 0.5 * stable_time_step(&floes, &model).0;
-    let world = World::new(floes, model, forcing.clone(), Periodicity::default(), dt).unwrap();
+    let world = World::new(
+        floes,
+        model.clone(),
+        forcing.clone(),
+        Periodicity::default(),
+        dt,
+    )
+    .unwrap();
     (world, Parts { model, forcing, dt })
 }
 

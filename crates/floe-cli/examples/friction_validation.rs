@@ -83,7 +83,7 @@ fn steady_state(md: &mut String) -> Result<(), Box<dyn std::error::Error>> {
         let mut row = format!("| {v:.0e} |");
         for (k, form) in [Form::Published, Form::Regularized].into_iter().enumerate() {
             let l = law(p, form, StateLaw::Slip);
-            let mut s = SpringSlider::new(l, apparatus, v / 3.0);
+            let mut s = SpringSlider::new(l.clone(), apparatus, v / 3.0);
             s.run(
                 &Protocol::new(vec![Segment::constant(v, 60.0 * p.critical_slip_m / v)])?,
                 |_| {},
@@ -137,7 +137,8 @@ fn holds(md: &mut String) -> Result<(), Box<dyn std::error::Error>> {
                 .map(|&h| {
                     (
                         h.log10(),
-                        hold_test(l, preset.apparatus(1e-3), preset.speed_m_per_s(), h).delta_mu,
+                        hold_test(l.clone(), preset.apparatus(1e-3), preset.speed_m_per_s(), h)
+                            .delta_mu,
                     )
                 })
                 .collect();

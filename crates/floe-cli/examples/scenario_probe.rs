@@ -4,6 +4,7 @@
 //! steps run inside a rayon pool, as in `floe run`: stepping from outside
 //! the pool costs a thread hand-off per parallel loop (~0.1 ms per step).
 
+use floe_friction::FrictionLaw;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -45,7 +46,7 @@ fn probe(path: &std::path::Path, max_steps: Option<u64>) {
         println!("{line}");
     }
     let mut world = setup.world;
-    let total = ((scenario.duration_s() / world.dt_s).round() as u64).max(1);
+    let total = ((scenario.duration_s() / world.dt_s()).round() as u64).max(1);
     let steps = max_steps.map_or(total, |m| m.min(total));
     let area = scenario.domain().area_m2();
     let report_every = (steps / 10).max(1);
@@ -54,15 +55,17 @@ fn probe(path: &std::path::Path, max_steps: Option<u64>) {
         world.step();
         if k % report_every == 0 || k == steps {
             let o = world.observables(area);
-            let vmax = world.floes.velocity[..world.floes.owned]
+            let vmax = world
+                .floes()
+                .velocity
                 .iter()
-                .zip(&world.floes.motion)
+                .zip(&world.floes().motion)
                 .filter(|(_, m)| matches!(m, floe_dem::floes::Motion::Free))
                 .map(|(v, _)| v.length())
                 .fold(0.0, f64::max);
             println!(
                 "t = {:.1} s: KE {:.3e} J, {} contacts, sliding {:.2}, mean mu {:.3}, max speed {:.3e} m/s, stress xx {:.3e} yy {:.3e} N/m",
-                world.time_s,
+                world.time_s(),
                 o.kinetic_translational_j + o.kinetic_rotational_j,
                 o.contacts,
                 o.sliding_fraction,
@@ -75,13 +78,13 @@ fn probe(path: &std::path::Path, max_steps: Option<u64>) {
     }
     let run_s = started.elapsed().as_secs_f64();
     if std::env::var_os("PROBE_CONTACTS").is_some() {
-        for c in &world.contacts {
+        for c in world.contacts() {
             println!(
                 "contact {}-{}: overlap {:.4e} m^2, length {:.4} m, normal [{:.3}, {:.3}], F_n {:.4e} N, F_t {:.4e} N, slip {:.4e} m/s, theta {:.4}",
-                c.a, c.b, c.overlap_m2, c.length_m, c.normal.x, c.normal.y, c.normal_force_n, c.tangential_force_n(), c.slip_rate_m_per_s, c.friction.theta
+                c.a, c.b, c.overlap_m2, c.length_m, c.normal.x, c.normal.y, c.normal_force_n, c.tangential_force_n(), c.slip_rate_m_per_s, world.model().law.theta(&c.friction)
             );
         }
-        let f = &world.floes;
+        let f = &world.floes();
         for i in 0..f.len() {
             println!(
                 "floe {i}: x [{:.6}, {:.6}] v [{:.4e}, {:.4e}] angle {:.3e} omega {:.3e}",

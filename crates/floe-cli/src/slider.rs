@@ -72,7 +72,7 @@ pub fn hold(options: &ExperimentOptions, holds_s: &[f64]) -> Result<Vec<HoldLine
     Ok(holds_s
         .iter()
         .map(|&h| {
-            let r = hold_test(law, apparatus, options.preset.speed_m_per_s(), h);
+            let r = hold_test(law.clone(), apparatus, options.preset.speed_m_per_s(), h);
             HoldLine {
                 hold_s: r.hold_s,
                 mu_ss: r.mu_ss,
@@ -160,7 +160,11 @@ pub struct RunSummary {
 
 /// Runs a protocol; returns all recorded samples and the summary.
 pub fn simulate(setup: &SliderSetup) -> (Vec<Sample>, RunSummary) {
-    let mut slider = SpringSlider::new(setup.law, setup.apparatus, setup.initial_slip_rate_m_per_s);
+    let mut slider = SpringSlider::new(
+        setup.law.clone(),
+        setup.apparatus,
+        setup.initial_slip_rate_m_per_s,
+    );
     let mu_initial = slider.sample().mu;
     let every = setup.every_s;
     let mut samples = vec![slider.sample()];
@@ -203,7 +207,7 @@ pub fn simulate(setup: &SliderSetup) -> (Vec<Sample>, RunSummary) {
     let summary = RunSummary {
         protocol_file: setup.source.path.clone(),
         floe_version: env!("CARGO_PKG_VERSION"),
-        law: setup.law,
+        law: setup.law.clone(),
         apparatus: setup.apparatus,
         initial_slip_rate_m_per_s: setup.initial_slip_rate_m_per_s,
         mu_initial,

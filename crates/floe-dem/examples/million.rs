@@ -34,21 +34,21 @@ fn main() {
     let step_s = t1.elapsed().as_secs_f64() / steps as f64;
     let (rss, peak) = (status_mb("VmRSS:"), status_mb("VmHWM:"));
     let record = std::mem::size_of::<floe_dem::contacts::ContactRecord>();
-    let per_floe = |bytes: f64| bytes / w.floes.len() as f64;
+    let per_floe = |bytes: f64| bytes / w.floes().len() as f64;
     println!(
         "{} floes, {} contacts: build + 20 steps {:.2} s, {:.2} s/step, RSS {:.0} MB = {:.0} B/floe, \
          peak RSS {:.0} MB = {:.0} B/floe \
          (floe arrays {:.0} B/floe, contact records {:.0} B/floe at {} B each)",
-        w.floes.len(),
-        w.contacts.len(),
+        w.floes().len(),
+        w.contacts().len(),
         build_s,
         step_s,
         rss,
         per_floe(rss * 1048576.0),
         peak,
         per_floe(peak * 1048576.0),
-        per_floe(w.floes.heap_bytes() as f64),
-        per_floe((w.contacts.capacity() * record) as f64),
+        per_floe(w.floes().heap_bytes() as f64),
+        per_floe((w.state().contacts.capacity() * record) as f64),
         record
     );
 }

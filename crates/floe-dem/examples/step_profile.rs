@@ -7,6 +7,8 @@
 #[allow(dead_code)]
 mod bench;
 
+use floe_friction::rate_state::{SOLVER_GUESS, SOLVER_TREND, THETA};
+
 fn main() {
     if std::env::args().nth(1).as_deref() == Some("full") {
         full_scenario();
@@ -17,7 +19,7 @@ fn main() {
         let law = std::env::args().nth(2).unwrap_or_default();
         let model = match law.as_str() {
             "amontons" => bench::amontons_model(),
-            _ => floe_dem::contacts::ContactModel::default(),
+            _ => floe_dem::contact_model::ContactModel::default(),
         };
         eprintln!("rayon threads in use: {}", rayon::current_num_threads());
         let mut w = bench::sheared_channel_with(n, model);
@@ -30,23 +32,23 @@ fn main() {
         let per_step = t.elapsed().as_secs_f64() / steps as f64;
         println!(
             "{} floes, {} contacts, {} candidate pairs, {} rebuilds in {steps} steps, {:.2} ms/step, {:.0} ns per contact",
-            w.floes.len(),
-            w.contacts.len(),
+            w.floes().len(),
+            w.contacts().len(),
             w.broad_phase().pairs.len(),
             w.broad_phase().rebuilds - r0,
             per_step * 1e3,
-            per_step * 1e9 / w.contacts.len() as f64
+            per_step * 1e9 / w.contacts().len() as f64
         );
         // Bit pattern of the final state, to check that a speed change left
         // the numbers unchanged (compare across code versions and thread counts).
         println!("state fingerprint {:016x}", fingerprint(&w));
         // Cost of one broad-phase rebuild, against the step it would add to.
-        let mut bp = floe_dem::broad_phase::BroadPhase::new(w.broad_phase().skin_m);
-        let trig: Vec<(f64, f64)> = w.floes.angle.iter().map(|a| a.sin_cos()).collect();
+        let mut bp = floe_dem::pipeline::broad_phase::BroadPhase::new(w.broad_phase().skin_m);
+        let trig: Vec<(f64, f64)> = w.floes().angle.iter().map(|a| a.sin_cos()).collect();
         let t = std::time::Instant::now();
         let reps = 5;
         for _ in 0..reps {
-            bp.rebuild(&w.floes, &trig, w.periodicity);
+            bp.rebuild(w.floes(), &trig, w.periodicity());
         }
         let rebuild = t.elapsed().as_secs_f64() / reps as f64;
         println!(
@@ -54,8 +56,8 @@ fn main() {
             rebuild * 1e3,
             100.0 * rebuild / per_step,
             bp.skin_m,
-            w.dt_s,
-            0.5 * bp.skin_m / (0.1 * w.dt_s)
+            w.dt_s(),
+            0.5 * bp.skin_m / (0.1 * w.dt_s())
         );
     });
 }
@@ -78,14 +80,14 @@ fn pool_of(threads: usize) -> rayon::ThreadPool {
 
 /// FNV-1a over the bits of every floe's position, velocity, angle and
 /// angular velocity, and every contact's forces and friction state.
-fn fingerprint<F: floe_dem::world::ExternalForces>(w: &floe_dem::world::World<F>) -> u64 {
+fn fingerprint<F: floe_dem::forcing::ExternalForces>(w: &floe_dem::world::World<F>) -> u64 {
     let mut h = 0xcbf2_9ce4_8422_2325_u64;
     let mut mix = |x: f64| {
         for b in x.to_bits().to_le_bytes() {
             h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
         }
     };
-    let f = &w.floes;
+    let f = &w.floes();
     for i in 0..f.len() {
         mix(f.position[i].x);
         mix(f.position[i].y);
@@ -94,16 +96,16 @@ fn fingerprint<F: floe_dem::world::ExternalForces>(w: &floe_dem::world::World<F>
         mix(f.angle[i]);
         mix(f.angular_velocity[i]);
     }
-    for c in &w.contacts {
+    for c in w.contacts() {
         mix(c.normal_force_n);
         mix(c.friction.tangential_force_n);
-        mix(c.friction.theta);
-        mix(c.friction.solver_guess);
-        mix(c.friction.solver_trend);
+        mix(c.friction.law_state[THETA]);
+        mix(c.friction.law_state[SOLVER_GUESS]);
+        mix(c.friction.law_state[SOLVER_TREND]);
         mix(c.normal_energy_j);
         mix(c.tangential_energy_j);
     }
-    mix(w.energy.friction_dissipation_j);
+    mix(w.energy().friction_dissipation_j);
     h
 }
 
@@ -119,10 +121,10 @@ fn fingerprint<F: floe_dem::world::ExternalForces>(w: &floe_dem::world::World<F>
 /// change meant to leave results alone does so on these code paths, not
 /// the physics.
 fn full_scenario() {
-    use floe_dem::broad_phase::{Period, Periodicity};
-    use floe_dem::contacts::ContactModel;
+    use floe_dem::contact_model::ContactModel;
     use floe_dem::floes::{Floes, Motion};
     use floe_dem::forcing::{Coriolis, Forcing, VelocityField};
+    use floe_dem::periodicity::{Period, Periodicity};
     use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
     use floe_dem::world::{stable_time_step, World};
     use floe_dem::Vec2;
@@ -156,11 +158,10 @@ fn full_scenario() {
                 // tenth column of the lattice, so that contacts break
                 // (and are remembered) as well as form.
                 let x = floes.position[i].x;
-                floes.velocity[i] = Vec2::new(if (x / side) as i64 % 10 < 5 { -0.2 } else { 0.2 }, 0.0);
+                floes.set_velocity(i, Vec2::new(if (x / side) as i64 % 10 < 5 { -0.2 } else { 0.2 }, 0.0), floes.angular_velocity[i]);
                 continue;
             };
-            floes.motion[i] = Motion::Prescribed { velocity };
-            floes.velocity[i] = velocity;
+            floes.set_motion(i, Motion::Prescribed { velocity });
         }
         let model = ContactModel {
             memory_s: 1.0,
@@ -190,13 +191,13 @@ fn full_scenario() {
                 h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
             }
         };
-        for c in &w.broken {
+        for c in w.broken_contacts() {
             mix(f64::from(c.a));
             mix(f64::from(c.b));
-            mix(c.friction.theta);
+            mix(c.friction.law_state[THETA]);
             mix(c.broke_at_s);
         }
-        let e = w.energy;
+        let e = w.energy();
         for x in [
             e.forcing_work_j,
             e.friction_dissipation_j,
@@ -208,12 +209,12 @@ fn full_scenario() {
         }
         println!(
             "full scenario: {} floes, {} contacts, {} broken remembered, {:.0} s in steps of {:.3} s, {:?}, {} threads; fingerprint {h:016x}",
-            w.floes.len(),
-            w.contacts.len(),
-            w.broken.len(),
-            w.time_s,
-            w.dt_s,
-            w.energy,
+            w.floes().len(),
+            w.contacts().len(),
+            w.broken_contacts().len(),
+            w.time_s(),
+            w.dt_s(),
+            w.energy(),
             rayon::current_num_threads()
         );
     });

@@ -17,9 +17,10 @@
 //!   tangential velocity at the contact point as the load-point velocity
 //!   and the normal force as the normal load.
 
-use floe_friction::{BatchItem, ContactLoad};
+use floe_friction::{BatchItem, ContactLoad, ContactState};
 
-use crate::contacts::{ContactModel, ContactRecord};
+use crate::contact_model::ContactModel;
+use crate::contacts::ContactRecord;
 use crate::geometry::{cross, perp, Overlap};
 use crate::Vec2;
 
@@ -61,13 +62,15 @@ impl ContactRecord {
     /// The record of a contact that has just formed between `a` and `b`
     /// (the second at `image_offset`), holding what
     /// [`contact_before_friction`] carries into its first step: the new
-    /// contact's friction state ([`ContactModel::new_contact_state`]), and
+    /// contact's friction state `friction`
+    /// ([`crate::pipeline::friction::new_contact_state`]), and
     /// as stored energy that of a strip overlap, `F_el^2 / (2 kappa l)`:
     /// exact for edge-to-edge overlaps and negligible for any contact that
     /// forms during a run (it forms at a tiny overlap); it matters only for
     /// floes placed overlapping at the start.
     pub fn new_contact(
         model: &ContactModel,
+        friction: ContactState,
         ov: &Overlap,
         a: &Body,
         b: &Body,
@@ -81,7 +84,7 @@ impl ContactRecord {
             a: a_handle,
             b: b_handle,
             image_offset,
-            friction: model.new_contact_state(),
+            friction,
             age_steps: 0,
             overlap_m2: 0.0,
             point: Vec2::ZERO,

@@ -2,94 +2,25 @@
 //! friction law's state (tangential spring and `theta`) for as long as the
 //! two floes touch.
 //!
-//! Records are kept sorted by the pair's floe handles `(a, b)`, `a < b`, so
-//! the order (and hence every sum over contacts) does not depend on thread
-//! count. Each record names its floes' global ids through the floe arrays,
-//! which is what a subdomain would match a neighbour's records by.
+//! Records are kept sorted by the pair's floe handles `(a, b)`, `a < b`.
+//! The floe set is sorted by id, so this is the order of the pairs' ids:
+//! the order (and hence every sum over contacts) depends neither on the
+//! thread count nor on which other floes are present.
 //!
 //! A new contact (a pair that did not touch at the end of the previous step)
 //! starts with no tangential force and the state of steady sliding at the
-//! reference slip rate of [`ContactModel::new_contact_slip_rate_m_per_s`].
-//! A contact that breaks is remembered for [`ContactModel::memory_s`]
+//! reference slip rate of
+//! [`ContactModel::new_contact_slip_rate_m_per_s`](crate::contact_model::ContactModel::new_contact_slip_rate_m_per_s).
+//! A contact that breaks is remembered for
+//! [`ContactModel::memory_s`](crate::contact_model::ContactModel::memory_s)
 //! seconds: if the pair touches again within that time, the contact resumes
 //! the `theta` it had when it broke (its spring starts unloaded: the floes
 //! separated). After that, or with `memory_s = 0` (the default), it starts
 //! afresh by the first rule.
 
-use floe_friction::{ContactState, FrictionLaw, Law, RateDependent, RateState, RateStateParams};
+use floe_friction::ContactState;
 
 use crate::Vec2;
-
-/// Parameters of the floe-floe contact.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactModel {
-    /// Young's modulus `E` of the elastic overlap force, Pa. Default 6e6 Pa,
-    /// Subzero.jl's (Manucharyan & Montemuro 2022). This is a contact
-    /// stiffness parameter, orders below the ~6e9 Pa of intact ice, chosen so
-    /// that dt of seconds is stable.
-    pub youngs_modulus_pa: f64,
-    /// Poisson's ratio, setting the tangential stiffness `k_t = k_n / (2 (1 + nu))`. Default 0.3.
-    pub poisson_ratio: f64,
-    /// Coefficient of restitution of the normal dashpot, in (0, 1]. 1: no damping. Default 0.5.
-    pub restitution: f64,
-    /// Friction law of every contact.
-    pub law: Law,
-    /// Slip rate whose steady state a new contact starts in, m/s. Default 1e-3 m/s.
-    pub new_contact_slip_rate_m_per_s: f64,
-    /// A contact slips (for the sliding fraction) when its slip rate exceeds this, m/s. Default 1e-6 m/s.
-    pub sliding_threshold_m_per_s: f64,
-    /// How long a broken contact's state is remembered, s. Default 0: forgotten at once.
-    pub memory_s: f64,
-}
-
-impl Default for ContactModel {
-    fn default() -> Self {
-        Self {
-            youngs_modulus_pa: 6e6,
-            poisson_ratio: 0.3,
-            restitution: 0.5,
-            law: Law::RateState(RateState::new(
-                RateStateParams::lishman_2011_tank(),
-                floe_friction::Form::Regularized,
-                floe_friction::StateLaw::Slip,
-            )),
-            new_contact_slip_rate_m_per_s: 1e-3,
-            sliding_threshold_m_per_s: 1e-6,
-            memory_s: 0.0,
-        }
-    }
-}
-
-impl ContactModel {
-    /// The friction state of a contact that has just formed.
-    pub fn new_contact_state(&self) -> ContactState {
-        let mut s = self
-            .law
-            .steady_state(self.new_contact_slip_rate_m_per_s, 0.0);
-        s.tangential_force_n = 0.0;
-        s
-    }
-
-    /// Damping ratio of the normal dashpot for the coefficient of restitution
-    /// `e` of a linear spring-dashpot: `zeta = -ln e / sqrt(pi^2 + ln^2 e)`.
-    pub fn damping_ratio(&self) -> f64 {
-        let e = self.restitution.clamp(1e-12, 1.0);
-        let l = e.ln();
-        -l / (std::f64::consts::PI.powi(2) + l * l).sqrt()
-    }
-
-    /// A rate-dependent law with Lishman's parameters, for comparisons.
-    pub fn with_law(self, law: Law) -> Self {
-        Self { law, ..self }
-    }
-
-    /// The rate-dependent counterpart of Lishman's law (eq. 2), for comparisons.
-    pub fn lishman_rate_law() -> Law {
-        Law::RateDependent(RateDependent::lishman_2011(
-            floe_friction::params::LISHMAN_A - floe_friction::params::LISHMAN_B,
-        ))
-    }
-}
 
 /// One touching pair and what the contact did over the last step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -154,7 +85,7 @@ impl ContactRecord {
     }
 }
 
-/// The state of a contact that broke, kept for [`ContactModel::memory_s`].
+/// The state of a contact that broke, kept for [`ContactModel::memory_s`](crate::contact_model::ContactModel::memory_s).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BrokenContact {
     /// First floe.

@@ -23,6 +23,22 @@ pub enum DemError {
         /// What is wrong.
         reason: String,
     },
+    /// A floe cannot be added, removed or changed as asked (a duplicate or
+    /// unknown id, a floe the engine cannot step, a partner missing).
+    #[error("floe id {id}: {reason}")]
+    FloeEdit {
+        /// Global id of the floe.
+        id: u64,
+        /// What is wrong.
+        reason: String,
+    },
+    /// Floe arrays that do not make a set (lengths differ, ids not
+    /// strictly increasing, bad vertex offsets).
+    #[error("invalid floe arrays: {reason}")]
+    InvalidFloeColumns {
+        /// What is wrong.
+        reason: String,
+    },
     /// The time step is above the stability limit of the explicit integrator.
     #[error("dt = {dt_s} s is above the stable limit {limit_s:.3e} s ({reason})")]
     UnstableTimeStep {

@@ -5,21 +5,35 @@
 //! spring limited by a friction law from `floe-friction`, driven by wind and
 //! ocean drag, Coriolis and boundaries. No I/O: the HDF5 writer and the
 //! scenario files live in other crates.
+//!
+//! * [`world`]: the [`World`](world::World): state, stages, edits;
+//! * [`state`]: what a checkpoint holds; [`floes`], [`contacts`],
+//!   [`energy_ledger`]: its parts;
+//! * [`pipeline`]: the stages of a step (broad phase, narrow phase,
+//!   friction, force gathering, integrator, energy accounting);
+//! * [`contact_model`], [`contact_kernel`]: the contact's parameters and
+//!   force formulas; [`forcing`]: wind, ocean, Coriolis;
+//!   [`periodicity`]: periodic axes; [`geometry`], [`tessellation`]: floe
+//!   shapes and how to make a pack of them; [`observables`]: assembly
+//!   diagnostics.
 #![deny(missing_docs)]
 
+pub mod contact_kernel;
+pub mod contact_model;
+pub mod contacts;
+pub mod energy_ledger;
 pub mod error;
+pub mod floes;
 pub mod forcing;
+pub mod geometry;
+pub mod observables;
+pub mod periodicity;
+pub mod pipeline;
+pub mod state;
 pub mod tessellation;
+pub mod world;
 
 pub use error::DemError;
 
 /// The 2-D vector type of the engine (glam's `DVec2`, as used by parry).
 pub use parry2d_f64::math::Vector as Vec2;
-pub mod broad_phase;
-pub mod checkpoint;
-pub mod contact_kernel;
-pub mod contacts;
-pub mod floes;
-pub mod geometry;
-pub mod observables;
-pub mod world;

@@ -1,16 +1,18 @@
 //! Whole-assembly diagnostics: energies, stress, contact statistics.
 
 use crate::contact_kernel::force_and_torques;
-use crate::world::{EnergyLedger, ExternalForces, World};
+use crate::energy_ledger::EnergyLedger;
+use crate::forcing::ExternalForces;
+use crate::world::World;
 
 /// A snapshot of assembly-wide quantities.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Observables {
     /// Simulated time, s.
     pub time_s: f64,
-    /// Translational kinetic energy of the owned free floes, J.
+    /// Translational kinetic energy of the free floes, J.
     pub kinetic_translational_j: f64,
-    /// Rotational kinetic energy of the owned free floes, J.
+    /// Rotational kinetic energy of the free floes, J.
     pub kinetic_rotational_j: f64,
     /// Elastic energy held by the contacts, J.
     pub contact_energy_j: f64,
@@ -33,21 +35,22 @@ pub struct Observables {
 impl<F: ExternalForces> World<F> {
     /// Assembly diagnostics; `domain_area_m2` normalises the stress.
     pub fn observables(&self, domain_area_m2: f64) -> Observables {
-        let f = &self.floes;
+        let f = self.floes();
+        let contacts = self.contacts();
         let mut o = Observables {
-            time_s: self.time_s,
-            ledger: self.energy,
-            contacts: self.contacts.len(),
+            time_s: self.time_s(),
+            ledger: *self.energy(),
+            contacts: contacts.len(),
             ..Default::default()
         };
-        for i in 0..f.owned {
+        for i in 0..f.len() {
             if f.is_free(i) {
                 o.kinetic_translational_j += 0.5 * f.mass_kg[i] * f.velocity[i].length_squared();
                 o.kinetic_rotational_j += 0.5 * f.inertia_kg_m2[i] * f.angular_velocity[i].powi(2);
             }
         }
         let (mut sliding, mut mu_weighted, mut normal_sum) = (0usize, 0.0, 0.0);
-        for c in &self.contacts {
+        for c in contacts {
             o.contact_energy_j += c.elastic_energy_j();
             let (pa, pb) = (
                 f.position[c.a as usize],
@@ -60,7 +63,7 @@ impl<F: ExternalForces> World<F> {
             o.mean_stress_n_per_m[1] += force.x * l.y;
             o.mean_stress_n_per_m[2] += force.y * l.x;
             o.mean_stress_n_per_m[3] += force.y * l.y;
-            if c.slip_rate_m_per_s.abs() > self.model.sliding_threshold_m_per_s {
+            if c.slip_rate_m_per_s.abs() > self.model().sliding_threshold_m_per_s {
                 sliding += 1;
             }
             mu_weighted += c.tangential_force_n().abs();
@@ -69,8 +72,8 @@ impl<F: ExternalForces> World<F> {
         for s in &mut o.mean_stress_n_per_m {
             *s /= domain_area_m2;
         }
-        if !self.contacts.is_empty() {
-            o.sliding_fraction = sliding as f64 / self.contacts.len() as f64;
+        if !contacts.is_empty() {
+            o.sliding_fraction = sliding as f64 / contacts.len() as f64;
         }
         if normal_sum > 0.0 {
             o.mean_mu = mu_weighted / normal_sum;

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::law::{released, ContactLoad, ContactState, FrictionLaw, StepOutcome};
+use crate::law::{released, sign, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 
 /// Constant friction coefficient, applied as Coulomb friction on a tangential
 /// spring: the contact sticks while `|F| <= mu N` and slides at `|F| = mu N`.
@@ -23,6 +23,10 @@ impl FrictionLaw for Amontons {
             tangential_force_n: self.mu * n.max(0.0) * sign(v),
             ..ContactState::default()
         }
+    }
+
+    fn state_slots(&self) -> usize {
+        0
     }
 
     #[inline]
@@ -53,17 +57,5 @@ impl FrictionLaw for Amontons {
             mu: force / n,
             iterations: 0,
         }
-    }
-}
-
-/// `+1`, `-1` or `0` (unlike `f64::signum`, which gives `+1` for `+0`).
-#[inline]
-pub(crate) fn sign(x: f64) -> f64 {
-    if x > 0.0 {
-        1.0
-    } else if x < 0.0 {
-        -1.0
-    } else {
-        0.0
     }
 }

@@ -3,7 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::law::{FrictionLaw, Law};
+use crate::any_law::Law;
+use crate::law::FrictionLaw;
 use crate::params::RateStateParams;
 use crate::protocol::{Protocol, Segment};
 use crate::spring_slider::{Apparatus, SpringSlider};
@@ -159,7 +160,7 @@ pub fn velocity_step(
     to_m_per_s: f64,
 ) -> StepResult {
     let l = transient_slip_m(&law);
-    let mut slider = SpringSlider::new(law, apparatus, from_m_per_s);
+    let mut slider = SpringSlider::new(law.clone(), apparatus, from_m_per_s);
     let pre = Protocol::new(vec![Segment::constant(
         from_m_per_s,
         SETTLE_SLIPS * l / from_m_per_s,

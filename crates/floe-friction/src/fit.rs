@@ -28,8 +28,8 @@ use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
 use serde::{Deserialize, Serialize};
 
 use crate::amontons::Amontons;
+use crate::any_law::Law;
 use crate::error::{finite, positive, FrictionError};
-use crate::law::Law;
 use crate::params::RateStateParams;
 use crate::protocol::Protocol;
 use crate::rate_dependent::RateDependent;
@@ -186,7 +186,7 @@ pub fn predict(law: &Law, experiment: &Experiment, t_s: &[f64]) -> Result<Vec<f6
 fn simulate_at(law: &Law, experiment: &Experiment, t_s: &[f64], out: &mut Vec<f64>) {
     out.clear();
     let mut slider = SpringSlider::new(
-        *law,
+        law.clone(),
         experiment.apparatus,
         experiment.initial_velocity_m_per_s,
     );

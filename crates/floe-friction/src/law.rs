@@ -9,31 +9,23 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::amontons::Amontons;
-use crate::rate_dependent::RateDependent;
-use crate::rate_state::RateState;
+/// Slots of law state a [`ContactState`] holds. A law uses the first
+/// [`FrictionLaw::state_slots`] of them (LAMMPS's `size_history`); run
+/// files and checkpoints store that many per contact, length-prefixed, so a
+/// law with more state needs this raised, not a new file format.
+pub const LAW_STATE_SLOTS: usize = 3;
 
 /// What persists on a contact between steps. 32 bytes, `Copy`, no heap.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct ContactState {
     /// Tangential spring force in N (signed: positive resists positive slip).
     pub tangential_force_n: f64,
-    /// Rate-and-state state variable `theta` (dimensionless, Lishman's log-state).
-    /// Unused by the laws without state.
-    pub theta: f64,
-    /// The solver's unknown `q = ln(|V|/V*)` at the end of the last step
-    /// (rate-and-state and rate-dependent laws).
-    pub solver_guess: f64,
-    /// How much the rate-and-state solver's unknown changed over the last
-    /// step, limited to `±1` (a factor `e` in slip rate): the next step
-    /// starts its iteration at `solver_guess + solver_trend`. A contact's
-    /// slip rate changes smoothly from step to step, so this linear
-    /// extrapolation starts the solve about ten times closer to the root
-    /// than the last root does, and the solve then mostly takes a single
-    /// evaluation (docs/performance.md). Zero for a new contact and after a
-    /// step without a solve. It steers only where the solve starts, not
-    /// what it converges to.
-    pub solver_trend: f64,
+    /// The law's own state, in the slots it declares
+    /// ([`FrictionLaw::state_slots`]); the rest stay zero. The
+    /// rate-and-state law keeps `theta`, the solver's last root and its
+    /// last change ([`crate::rate_state::THETA`] and the constants beside
+    /// it).
+    pub law_state: [f64; LAW_STATE_SLOTS],
 }
 
 /// What is imposed on a contact over one step.
@@ -62,7 +54,7 @@ pub struct StepOutcome {
     pub iterations: u32,
 }
 
-/// One contact of a batch update ([`Law::step_batch`]): its state, advanced
+/// One contact of a batch update ([`crate::Law::step_batch`]): its state, advanced
 /// in place, the load over the step, and what the step produced.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BatchItem {
@@ -83,7 +75,7 @@ pub trait FrictionLaw {
     fn mu_steady(&self, slip_rate_m_per_s: f64) -> f64;
 
     /// Contact state in steady sliding at slip rate `v` (m/s, signed) under
-    /// normal load `N` (N): spring force `mu_ss(v) N sign(v)`, steady `theta`.
+    /// normal load `N` (N): spring force `mu_ss(v) N sign(v)`, steady state.
     fn steady_state(&self, slip_rate_m_per_s: f64, normal_load_n: f64) -> ContactState;
 
     /// Advances `state` over `dt_s` seconds under `load` and reports the slip.
@@ -94,72 +86,25 @@ pub trait FrictionLaw {
     /// spring is released (`F_new = 0`), the slider follows the load point and
     /// the state evolves at that slip rate.
     fn step(&self, state: &mut ContactState, load: &ContactLoad, dt_s: f64) -> StepOutcome;
-}
 
-/// Any of the crate's laws, chosen at run time (e.g. from a scenario file).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
-pub enum Law {
-    /// Constant friction coefficient (Coulomb with a tangential spring).
-    Amontons(Amontons),
-    /// Rate-dependent friction, eq. 2.
-    #[serde(rename = "rate")]
-    RateDependent(RateDependent),
-    /// Rate-and-state friction, eqs. 3a/3b.
-    #[serde(rename = "rate-state")]
-    RateState(RateState),
-}
+    /// How many slots of [`ContactState::law_state`] the law uses (at most
+    /// [`LAW_STATE_SLOTS`]).
+    fn state_slots(&self) -> usize;
 
-impl FrictionLaw for Law {
-    fn mu_steady(&self, v: f64) -> f64 {
-        match self {
-            Law::Amontons(l) => l.mu_steady(v),
-            Law::RateDependent(l) => l.mu_steady(v),
-            Law::RateState(l) => l.mu_steady(v),
-        }
+    /// The state variable `theta` of a contact, for output (the run files'
+    /// `theta`); 0 for laws without one.
+    fn theta(&self, _state: &ContactState) -> f64 {
+        0.0
     }
 
-    fn steady_state(&self, v: f64, n: f64) -> ContactState {
-        match self {
-            Law::Amontons(l) => l.steady_state(v, n),
-            Law::RateDependent(l) => l.steady_state(v, n),
-            Law::RateState(l) => l.steady_state(v, n),
-        }
-    }
-
-    #[inline]
-    fn step(&self, state: &mut ContactState, load: &ContactLoad, dt_s: f64) -> StepOutcome {
-        match self {
-            Law::Amontons(l) => l.step(state, load, dt_s),
-            Law::RateDependent(l) => l.step(state, load, dt_s),
-            Law::RateState(l) => l.step(state, load, dt_s),
-        }
-    }
-}
-
-impl Law {
-    /// Advances every item over `dt_s`: bitwise what [`FrictionLaw::step`]
-    /// gives each item in turn. The rate-and-state law iterates several
-    /// contacts' solves side by side ([`RateState::step_batch`]); the
-    /// others, which need at most a cheap solve, step one by one.
-    pub fn step_batch(&self, items: &mut [BatchItem], dt_s: f64) {
-        match self {
-            Law::RateState(l) => l.step_batch(items, dt_s),
-            _ => {
-                for item in items {
-                    item.outcome = self.step(&mut item.state, &item.load, dt_s);
-                }
-            }
-        }
-    }
-
-    /// Short name used on the command line and in file names:
-    /// `amontons`, `rate` or `rate-state`.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Law::Amontons(_) => "amontons",
-            Law::RateDependent(_) => "rate",
-            Law::RateState(_) => "rate-state",
+    /// The state of a contact that forms again within the contact memory:
+    /// `fresh` is a new contact's state, `remembered` the state the pair had
+    /// when it broke. By default the remembered law state with the fresh
+    /// (unloaded) spring.
+    fn reformed(&self, remembered: &ContactState, fresh: ContactState) -> ContactState {
+        ContactState {
+            law_state: remembered.law_state,
+            ..fresh
         }
     }
 }
@@ -169,4 +114,16 @@ impl Law {
 pub(crate) fn released(state: &mut ContactState, load: &ContactLoad) -> f64 {
     state.tangential_force_n = 0.0;
     load.load_point_velocity_m_per_s
+}
+
+/// `+1`, `-1` or `0` (unlike `f64::signum`, which gives `+1` for `+0`).
+#[inline]
+pub(crate) fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
 }

@@ -3,8 +3,8 @@
 //! Friction laws for sea-ice contacts, after Lishman, Sammonds & Feltham
 //! (2011), *A rate and state friction law for saline ice*, JGR 116, C05011.
 //!
-//! * [`law`]: the [`FrictionLaw`] trait, the per-contact [`ContactState`] and
-//!   the run-time choice of law, [`Law`];
+//! * [`law`]: the [`FrictionLaw`] trait and the per-contact [`ContactState`];
+//!   [`any_law`]: the run-time choice of law, [`Law`];
 //! * [`amontons`], [`rate_dependent`], [`rate_state`]: the three laws;
 //!   [`state_evolution`]: slip and aging evolution of the state variable;
 //! * [`params`]: parameter sets and the published presets;
@@ -18,6 +18,7 @@
 #![deny(missing_docs)]
 
 pub mod amontons;
+pub mod any_law;
 pub mod error;
 pub mod fit;
 pub mod law;
@@ -29,8 +30,9 @@ mod root;
 pub mod state_evolution;
 
 pub use amontons::Amontons;
+pub use any_law::{CustomLaw, Law};
 pub use error::FrictionError;
-pub use law::{BatchItem, ContactLoad, ContactState, FrictionLaw, Law, StepOutcome};
+pub use law::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome, LAW_STATE_SLOTS};
 pub use params::RateStateParams;
 pub use rate_dependent::RateDependent;
 pub use rate_state::{Form, RateState};

@@ -2,8 +2,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::amontons::sign;
-use crate::law::{released, ContactLoad, ContactState, FrictionLaw, StepOutcome};
+use crate::law::{
+    released, sign, ContactLoad, ContactState, FrictionLaw, StepOutcome, LAW_STATE_SLOTS,
+};
+use crate::rate_state::SOLVER_GUESS;
 use crate::root::{solve, Eval};
 
 /// Rate-dependent friction on a tangential spring.
@@ -55,12 +57,19 @@ impl FrictionLaw for RateDependent {
     }
 
     fn steady_state(&self, v: f64, n: f64) -> ContactState {
+        let mut law_state = [0.0; LAW_STATE_SLOTS];
+        law_state[SOLVER_GUESS] = (v.abs().max(self.v_floor_m_per_s) / self.v_star_m_per_s).ln();
         ContactState {
             tangential_force_n: self.mu_at(v) * n.max(0.0) * sign(v),
-            theta: 0.0,
-            solver_guess: (v.abs().max(self.v_floor_m_per_s) / self.v_star_m_per_s).ln(),
-            solver_trend: 0.0,
+            law_state,
         }
+    }
+
+    /// The solver's last root, in the rate-and-state law's slot for it
+    /// (slot 0 unused), so that both laws' checkpoints of format 2 map
+    /// onto the slots unchanged.
+    fn state_slots(&self) -> usize {
+        SOLVER_GUESS + 1
     }
 
     #[inline]
@@ -121,7 +130,7 @@ impl FrictionLaw for RateDependent {
         );
         let s = root.payload;
         state.tangential_force_n = sign(trial) * (trial_abs - kdt * s);
-        state.solver_guess = root.x;
+        state.law_state[SOLVER_GUESS] = root.x;
         StepOutcome {
             slip_rate_m_per_s: sign(trial) * s,
             mu: state.tangential_force_n / n,

@@ -16,7 +16,7 @@
 //! `-inf`/`+inf` at the ends of the `q` axis, so a root always exists; it is
 //! not always monotone (when `V dt > L` and `B > A`), which is why the solver
 //! brackets. It starts from the last step's root extrapolated by its last
-//! change ([`ContactState::solver_trend`]), and ends with a fourth-order
+//! change ([`SOLVER_TREND`]), and ends with a fourth-order
 //! correction computed from the residual's first three derivatives, so that
 //! a contact whose slip rate changes smoothly is solved by one evaluation.
 //! The scheme is first order in `dt` (backward Euler in the slip)
@@ -25,8 +25,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::amontons::sign;
-use crate::law::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
+use crate::law::{sign, BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 use crate::params::RateStateParams;
 use crate::root::{solve, Eval, Root, Solver};
 use crate::state_evolution::{evolve, Evolved, SlipMeasure, StateLaw};
@@ -47,6 +46,21 @@ pub enum Form {
     #[default]
     Regularized,
 }
+
+/// Slot of [`ContactState::law_state`] holding `theta`.
+pub const THETA: usize = 0;
+/// Slot holding the solver's unknown `q = ln(|V|/V*)` at the end of the
+/// last step (also the rate-dependent law's).
+pub const SOLVER_GUESS: usize = 1;
+/// Slot holding how much the solver's unknown changed over the last step,
+/// limited to `±1` (a factor `e` in slip rate): the next step starts its
+/// iteration at `q + trend`. A contact's slip rate changes smoothly from
+/// step to step, so this linear extrapolation starts the solve about ten
+/// times closer to the root than the last root does, and the solve then
+/// mostly takes a single evaluation (docs/performance.md). Zero for a new
+/// contact and after a step without a solve. It steers only where the
+/// solve starts, not what it converges to.
+pub const SOLVER_TREND: usize = 2;
 
 /// Relative solver tolerance on the solver unknown `ln(|V|/V*)`.
 const TOLERANCE: f64 = 1e-12;
@@ -197,23 +211,37 @@ impl FrictionLaw for RateState {
         if v == 0.0 {
             // No steady state at rest (theta_ss is infinite): take the state of
             // steady sliding at V*, unloaded.
-            return ContactState {
-                tangential_force_n: 0.0,
-                theta: 0.0,
-                solver_guess: 0.0,
-                solver_trend: 0.0,
-            };
+            return ContactState::default();
         }
         let dir = match self.form {
             Form::Published => 1.0,
             Form::Regularized => sign(v),
         };
+        let mut law_state = [0.0; crate::law::LAW_STATE_SLOTS];
+        law_state[THETA] = self.params.theta_steady(v);
+        law_state[SOLVER_GUESS] = self.unknown_for_slip_rate(v);
         ContactState {
             tangential_force_n: dir * self.mu_steady(v) * n.max(0.0),
-            theta: self.params.theta_steady(v),
-            solver_guess: self.unknown_for_slip_rate(v),
-            solver_trend: 0.0,
+            law_state,
         }
+    }
+
+    fn state_slots(&self) -> usize {
+        3
+    }
+
+    #[inline]
+    fn theta(&self, state: &ContactState) -> f64 {
+        state.law_state[THETA]
+    }
+
+    /// The remembered `theta` and solver root; the solver's trend starts
+    /// afresh (the floes separated and met again: no trend to extrapolate).
+    fn reformed(&self, remembered: &ContactState, fresh: ContactState) -> ContactState {
+        let mut s = fresh;
+        s.law_state[THETA] = remembered.law_state[THETA];
+        s.law_state[SOLVER_GUESS] = remembered.law_state[SOLVER_GUESS];
+        s
     }
 
     #[inline]
@@ -224,7 +252,7 @@ impl FrictionLaw for RateState {
                 let root = solve(
                     |q| self.residual(q, &setup.constants),
                     EndOfStep::advanced,
-                    state.solver_guess + state.solver_trend,
+                    state.law_state[SOLVER_GUESS] + state.law_state[SOLVER_TREND],
                     TOLERANCE,
                     setup.residual_tolerance,
                 );
@@ -252,9 +280,10 @@ impl SolveSetup {
         let end = root.payload;
         let v = self.direction * end.speed;
         state.tangential_force_n = self.trial_force - self.kdt * v;
-        state.theta = end.theta;
-        state.solver_trend = (root.x - state.solver_guess).clamp(-MAX_TREND, MAX_TREND);
-        state.solver_guess = root.x;
+        state.law_state[THETA] = end.theta;
+        state.law_state[SOLVER_TREND] =
+            (root.x - state.law_state[SOLVER_GUESS]).clamp(-MAX_TREND, MAX_TREND);
+        state.law_state[SOLVER_GUESS] = root.x;
         StepOutcome {
             slip_rate_m_per_s: v,
             mu: state.tangential_force_n * self.inv_n,
@@ -316,7 +345,8 @@ impl RateState {
                         Prepared::Done(outcome) => item.outcome = outcome,
                         Prepared::Solve(s) => {
                             solver[l] = Solver::new(
-                                item.state.solver_guess + item.state.solver_trend,
+                                item.state.law_state[SOLVER_GUESS]
+                                    + item.state.law_state[SOLVER_TREND],
                                 TOLERANCE,
                                 s.residual_tolerance,
                             );
@@ -481,17 +511,17 @@ impl RateState {
                 Form::Regularized => v_lp,
             };
             state.tangential_force_n = 0.0;
-            state.theta = self.evolve_at(state.theta, v, dt);
-            state.solver_trend = 0.0;
+            state.law_state[THETA] = self.evolve_at(state.law_state[THETA], v, dt);
+            state.law_state[SOLVER_TREND] = 0.0;
             if v != 0.0 {
-                state.solver_guess = self.unknown_for_slip_rate(v);
+                state.law_state[SOLVER_GUESS] = self.unknown_for_slip_rate(v);
             }
             // At rest and unloaded there is no friction to report (the
             // published form's ln V would give -inf).
             let mu = if v == 0.0 {
                 0.0
             } else {
-                self.mu_at(v, state.theta)
+                self.mu_at(v, state.law_state[THETA])
             };
             return Prepared::Done(StepOutcome {
                 slip_rate_m_per_s: v,
@@ -508,8 +538,8 @@ impl RateState {
         if direction == 0.0 {
             // Regularised form with no force on the spring: no slip this step.
             state.tangential_force_n = 0.0;
-            state.theta = self.evolve_at(state.theta, 0.0, dt);
-            state.solver_trend = 0.0;
+            state.law_state[THETA] = self.evolve_at(state.law_state[THETA], 0.0, dt);
+            state.law_state[SOLVER_TREND] = 0.0;
             return Prepared::Done(StepOutcome {
                 slip_rate_m_per_s: 0.0,
                 mu: 0.0,
@@ -527,7 +557,7 @@ impl RateState {
             },
             trial_mu: trial_force * inv_n,
             kappa: kdt * inv_n,
-            theta: state.theta,
+            theta: state.law_state[THETA],
         };
         Prepared::Solve(SolveSetup {
             constants,
@@ -602,8 +632,8 @@ mod tests {
         Recheck {
             out,
             state,
-            theta: law.evolve_at(before.theta, v, dt),
-            mu: law.mu_at(v, state.theta),
+            theta: law.evolve_at(before.law_state[THETA], v, dt),
+            mu: law.mu_at(v, state.law_state[THETA]),
         }
     }
 
@@ -643,7 +673,7 @@ mod tests {
             // the fourth-order correction do.
             let scale = if small { 1e-3 } else { 1.0 };
             let mut state = law.steady_state(v0, n);
-            state.solver_guess += 0.01 * scale * guess;
+            state.law_state[SOLVER_GUESS] += 0.01 * scale * guess;
             let load = ContactLoad {
                 load_point_velocity_m_per_s: v0 * (scale * change).exp(),
                 stiffness_n_per_m: k,
@@ -653,14 +683,14 @@ mod tests {
             let v = out.slip_rate_m_per_s;
             prop_assume!(v.abs() > 1e-290 && out.iterations > 0);
             prop_assert!(
-                (state.theta - theta).abs() <= 1e-10 * (1.0 + theta.abs()),
-                "theta carried {} vs evolved {theta}, {out:?}", state.theta
+                (state.law_state[THETA] - theta).abs() <= 1e-10 * (1.0 + theta.abs()),
+                "theta carried {} vs evolved {theta}, {out:?}", state.law_state[THETA]
             );
             // The law against F/N: their difference is the residual, whose
             // slope in q includes the spring's k dt V / N, so an error in q
             // of a few ulps (and of the solver's 1e-12 |q|) shows up
             // multiplied by it.
-            let q = state.solver_guess;
+            let q = state.law_state[SOLVER_GUESS];
             let spring = k * dt / n * v.abs();
             prop_assert!(
                 (mu - out.mu).abs() <= 1e-10 * (1.0 + mu.abs()) + 1e-11 * (1.0 + q.abs()) * spring,
@@ -698,7 +728,7 @@ mod tests {
         for (form, l, dt, n, v0, offset) in cases {
             let law = RateState::new(RateStateParams::lishman_2011(l), form, StateLaw::Slip);
             let mut state = law.steady_state(v0, n);
-            state.solver_guess += offset;
+            state.law_state[SOLVER_GUESS] += offset;
             let load = ContactLoad {
                 load_point_velocity_m_per_s: v0,
                 stiffness_n_per_m: 100.0,
@@ -713,11 +743,11 @@ mod tests {
             eprintln!(
                 "{form:?}: {} evaluations, theta {:.1e}, mu {:.1e}",
                 out.iterations,
-                state.theta - theta,
+                state.law_state[THETA] - theta,
                 mu - out.mu
             );
             assert!(
-                (state.theta - theta).abs() <= 1e-10 * (1.0 + theta.abs()),
+                (state.law_state[THETA] - theta).abs() <= 1e-10 * (1.0 + theta.abs()),
                 "{form:?}: {out:?}"
             );
             assert!(

@@ -6,8 +6,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::any_law::Law;
 use crate::error::{positive, FrictionError};
-use crate::law::{ContactLoad, ContactState, FrictionLaw, Law};
+use crate::law::{ContactLoad, ContactState, FrictionLaw};
 use crate::protocol::Protocol;
 
 /// The loading apparatus: spring, normal load and time step.
@@ -47,7 +48,7 @@ pub struct Sample {
     pub slider_m: f64,
     /// Slider slip rate over the last step, m/s.
     pub slip_rate_m_per_s: f64,
-    /// State variable `theta`.
+    /// State variable `theta` (0 for laws without one).
     pub theta: f64,
     /// Friction coefficient `F / N`.
     pub mu: f64,
@@ -73,7 +74,7 @@ impl SpringSlider {
             load_point_m: 0.0,
             slider_m: -state.tangential_force_n / apparatus.stiffness_n_per_m,
             slip_rate_m_per_s: initial_velocity_m_per_s,
-            theta: state.theta,
+            theta: law.theta(&state),
             mu: state.tangential_force_n / apparatus.normal_load_n,
         };
         Self {
@@ -120,7 +121,7 @@ impl SpringSlider {
         s.load_point_m += load_point_displacement_m;
         s.slider_m += out.slip_rate_m_per_s * dt;
         s.slip_rate_m_per_s = out.slip_rate_m_per_s;
-        s.theta = self.state.theta;
+        s.theta = self.law.theta(&self.state);
         s.mu = out.mu;
         *s
     }

@@ -6,11 +6,12 @@
 
 use std::time::Instant;
 
-use floe_dem::broad_phase::{Period, Periodicity};
-use floe_dem::contacts::ContactModel;
+use floe_dem::contact_model::ContactModel;
 use floe_dem::floes::Floes;
+use floe_dem::forcing::NoForcing;
+use floe_dem::periodicity::{Period, Periodicity};
 use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
-use floe_dem::world::{stable_time_step, NoForcing, World};
+use floe_dem::world::{stable_time_step, World};
 use floe_dem::Vec2;
 use floe_io::{DomainBox, OutputOptions, RunMetadata, RunWriter};
 
@@ -34,7 +35,7 @@ fn channel(n: usize) -> (World<NoForcing>, DomainBox) {
     let mut floes = Floes::from_polygons(&t.polygons, &t.thickness_m, 917.0).expect("floes");
     for i in 0..floes.len() {
         let y = floes.position[i].y / width - 0.5;
-        floes.velocity[i] = Vec2::new(0.1 * y, -0.001 * y);
+        floes.set_velocity(i, Vec2::new(0.1 * y, -0.001 * y), floes.angular_velocity[i]);
     }
     let model = ContactModel::default();
     let dt = 0.5 * stable_time_step(&floes, &model).0;
@@ -68,7 +69,7 @@ fn main() {
         for _ in 0..20 {
             world.step();
         }
-        let n = world.floes.owned;
+        let n = world.floes().len();
         let meta = RunMetadata {
             scenario_toml: String::new(),
             scenario_path: "io_size".into(),
@@ -81,7 +82,7 @@ fn main() {
         };
         let path = dir.join(format!("deflate{}.h5", opts.deflate_level));
         let _ = std::fs::remove_file(&path);
-        let mut w = RunWriter::create(&path, &meta, &world.floes, &opts).expect("create");
+        let mut w = RunWriter::create(&path, &meta, world.floes(), &opts).expect("create");
         let area = domain.size_m[0] * domain.size_m[1];
         let (snapshots, steps_between) = (40, 10);
         let (mut t_snap, mut t_obs, mut t_ckpt, mut contacts) = (0.0, 0.0, 0.0, 0);
@@ -93,10 +94,10 @@ fn main() {
                 world.step();
                 let o = world.observables(area);
                 let t = Instant::now();
-                w.write_observables(world.steps, &o).expect("observables");
+                w.write_observables(world.steps(), &o).expect("observables");
                 t_obs += t.elapsed().as_secs_f64();
             }
-            contacts += world.contacts.len();
+            contacts += world.contacts().len();
             let t = Instant::now();
             w.write_snapshot(&world).expect("snapshot");
             t_snap += t.elapsed().as_secs_f64();
@@ -104,7 +105,7 @@ fn main() {
         let size1 = std::fs::metadata(&path).expect("size").len();
         let state = world.state();
         let t = Instant::now();
-        w.write_checkpoint(&state).expect("checkpoint");
+        w.write_checkpoint(state, 3).expect("checkpoint");
         t_ckpt += t.elapsed().as_secs_f64();
         drop(w);
         let f = hdf5::File::open(&path).expect("open");
@@ -148,7 +149,7 @@ fn main() {
             1e3 * t_snap / snapshots as f64,
             1e3 * t_obs / (snapshots * steps_between) as f64,
             1e3 * t_ckpt,
-            floe_io::checkpoint_blob::encode(&state, &Default::default()).len()
+            floe_io::checkpoint_blob::encode(state, &Default::default(), 3).len()
         );
     }
     let _ = std::fs::remove_dir_all(&dir);

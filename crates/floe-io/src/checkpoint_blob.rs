@@ -15,25 +15,29 @@
 //! The payload holds the output counts at the checkpoint (snapshots,
 //! contact rows, samples per observable), then every field of the state in
 //! declaration order; a vector is its length (u64) then its elements.
-//! Bytes after the payload are ignored (a slot is reused for smaller states
-//! without shrinking).
+//! A contact's friction state is its spring force and the law's state
+//! slots: each list of contacts is preceded by the number of slots (u32,
+//! the law's `FrictionLaw::state_slots`), so a law with other state needs
+//! no new format. Bytes after the payload are ignored (a slot is reused
+//! for smaller states without shrinking).
 //!
-//! Version 2 added the friction solver's trend to every contact state
-//! (`ContactState::solver_trend`, after `solver_guess`). Version 1
-//! checkpoints are still read, with a zero trend: the run resumes as if
-//! every contact's solve started from its last root once.
+//! Version 3 (written now) added the time step and the slot counts, and
+//! dropped the count of owned floes. Versions 1 and 2 are still read: their
+//! friction state is the force then three slots (`theta`, the solver's
+//! root, and from version 2 its trend; version 1 resumes with zero trends),
+//! and their time step comes from the caller (the scenario).
 
-use floe_dem::checkpoint::WorldState;
 use floe_dem::contacts::{BrokenContact, ContactRecord};
-use floe_dem::floes::{Floes, Motion};
-use floe_dem::world::EnergyLedger;
+use floe_dem::energy_ledger::EnergyLedger;
+use floe_dem::floes::{FloeColumns, Floes, Motion};
+use floe_dem::state::WorldState;
 use floe_dem::Vec2;
-use floe_friction::ContactState;
+use floe_friction::{ContactState, LAW_STATE_SLOTS};
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
 /// Version of the encoding written.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 /// The oldest version read; older and newer ones are refused.
 pub const OLDEST_READABLE_VERSION: u32 = 1;
 /// Bytes before the payload.
@@ -61,8 +65,9 @@ pub fn fnv1a64(bytes: &[u8]) -> u64 {
     h
 }
 
-/// The payload being written, and the format version it follows.
-struct Enc(Vec<u8>, u32);
+/// The payload being written, the format version it follows and the law
+/// state slots written per friction state.
+struct Enc(Vec<u8>, u32, usize);
 
 impl Enc {
     fn u8(&mut self, v: u8) {
@@ -95,15 +100,20 @@ impl Enc {
     fn friction(&mut self, s: &ContactState) {
         let ContactState {
             tangential_force_n,
-            theta,
-            solver_guess,
-            solver_trend,
+            law_state,
         } = *s;
         self.f64(tangential_force_n);
-        self.f64(theta);
-        self.f64(solver_guess);
-        if self.1 >= 2 {
-            self.f64(solver_trend);
+        let slots = match self.1 {
+            1 => 2,
+            2 => 3,
+            _ => self.2,
+        };
+        law_state[..slots].iter().for_each(|&x| self.f64(x));
+    }
+    /// The slot count that precedes a list of friction states (version 3).
+    fn slots(&mut self) {
+        if self.1 >= 3 {
+            self.u32(self.2 as u32);
         }
     }
     fn str(&mut self, s: &str) {
@@ -112,14 +122,30 @@ impl Enc {
     }
 }
 
-/// The checkpoint bytes of `state` with the output `counts`.
-pub fn encode(state: &WorldState, counts: &OutputCounts) -> Vec<u8> {
-    encode_version(state, counts, FORMAT_VERSION)
+/// The checkpoint bytes of `state` with the output `counts`, each friction
+/// state with `law_state_slots` slots of law state (the law's
+/// `FrictionLaw::state_slots`, at most `LAW_STATE_SLOTS`).
+pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize) -> Vec<u8> {
+    encode_version(state, counts, law_state_slots, FORMAT_VERSION)
 }
 
-/// [`encode`] in an older layout (for the tests of reading one).
-fn encode_version(state: &WorldState, counts: &OutputCounts, version: u32) -> Vec<u8> {
-    let mut e = Enc(Vec::with_capacity(estimate_len(state)), version);
+/// [`encode`] in the layout of `version` (older ones for the tests of
+/// reading them).
+pub fn encode_version(
+    state: &WorldState,
+    counts: &OutputCounts,
+    law_state_slots: usize,
+    version: u32,
+) -> Vec<u8> {
+    assert!(
+        law_state_slots <= LAW_STATE_SLOTS,
+        "at most {LAW_STATE_SLOTS} slots"
+    );
+    let mut e = Enc(
+        Vec::with_capacity(estimate_len(state)),
+        version,
+        law_state_slots,
+    );
     e.u64(counts.snapshots);
     e.u64(counts.contact_rows);
     e.len(counts.observables.len());
@@ -135,13 +161,14 @@ fn encode_version(state: &WorldState, counts: &OutputCounts, version: u32) -> Ve
         broken,
         time_s,
         steps,
+        dt_s,
         energy,
         force,
         torque,
         external_force,
         external_torque,
     } = state;
-    let Floes {
+    let FloeColumns {
         id,
         position,
         angle,
@@ -156,8 +183,7 @@ fn encode_version(state: &WorldState, counts: &OutputCounts, version: u32) -> Ve
         motion,
         vertex_start,
         vertices,
-        owned,
-    } = floes;
+    } = floes.columns();
     e.len(id.len());
     id.iter().for_each(|&v| e.u64(v));
     e.v2s(position);
@@ -183,7 +209,10 @@ fn encode_version(state: &WorldState, counts: &OutputCounts, version: u32) -> Ve
     e.len(vertex_start.len());
     vertex_start.iter().for_each(|&v| e.u32(v));
     e.v2s(vertices);
-    e.len(*owned);
+    if version < 3 {
+        e.len(id.len()); // every floe owned
+    }
+    e.slots();
     e.len(contacts.len());
     for c in contacts {
         let ContactRecord {
@@ -227,6 +256,7 @@ fn encode_version(state: &WorldState, counts: &OutputCounts, version: u32) -> Ve
             e.f64(v);
         }
     }
+    e.slots();
     e.len(broken.len());
     for c in broken {
         let BrokenContact {
@@ -242,6 +272,9 @@ fn encode_version(state: &WorldState, counts: &OutputCounts, version: u32) -> Ve
     }
     e.f64(*time_s);
     e.u64(*steps);
+    if version >= 3 {
+        e.f64(*dt_s);
+    }
     let EnergyLedger {
         forcing_work_j,
         friction_dissipation_j,
@@ -354,13 +387,34 @@ impl<'a> Dec<'a> {
     fn v2s(&mut self) -> DecResult<Vec<Vec2>> {
         self.vec(16, Self::v2)
     }
-    fn friction(&mut self) -> DecResult<ContactState> {
+    /// A friction state of `slots` law-state slots (the rest zero).
+    fn friction(&mut self, slots: usize) -> DecResult<ContactState> {
+        let tangential_force_n = self.f64()?;
+        let mut law_state = [0.0; LAW_STATE_SLOTS];
+        for x in &mut law_state[..slots] {
+            *x = self.f64()?;
+        }
         Ok(ContactState {
-            tangential_force_n: self.f64()?,
-            theta: self.f64()?,
-            solver_guess: self.f64()?,
-            solver_trend: if self.version >= 2 { self.f64()? } else { 0.0 },
+            tangential_force_n,
+            law_state,
         })
+    }
+    /// The slot count before a list of friction states: stored from
+    /// version 3, implied before.
+    fn slots(&mut self) -> DecResult<usize> {
+        match self.version {
+            1 => Ok(2),
+            2 => Ok(3),
+            _ => {
+                let n = self.u32()? as usize;
+                if n > LAW_STATE_SLOTS {
+                    return Err(format!(
+                        "{n} law state slots per contact; this floe holds at most {LAW_STATE_SLOTS}"
+                    ));
+                }
+                Ok(n)
+            }
+        }
     }
     fn str(&mut self) -> DecResult<String> {
         let n = self.len(1)?;
@@ -410,8 +464,13 @@ fn version_of(bytes: &[u8]) -> u32 {
 }
 
 /// The state and counts of checkpoint `bytes`, after checking the header,
-/// the checksum and the state's consistency.
-pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
+/// the checksum and the state's consistency. Versions before 3 do not
+/// store the time step: `fallback_dt_s` gives it (the scenario's), and is
+/// not called for version 3.
+pub fn decode(
+    bytes: &[u8],
+    fallback_dt_s: impl FnOnce() -> Option<f64>,
+) -> DecResult<(WorldState, OutputCounts)> {
     let payload = verify(bytes)?;
     let d = &mut Dec {
         buf: payload,
@@ -426,7 +485,7 @@ pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
         contact_rows,
         observables,
     };
-    let floes = Floes {
+    let columns = FloeColumns {
         id: d.vec(8, Dec::u64)?,
         position: d.v2s()?,
         angle: d.f64s()?,
@@ -445,14 +504,24 @@ pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
         })?,
         vertex_start: d.vec(4, Dec::u32)?,
         vertices: d.v2s()?,
-        owned: d.u64()? as usize,
     };
+    if d.version < 3 {
+        let owned = d.u64()?;
+        if owned != columns.id.len() as u64 {
+            return Err(format!(
+                "{owned} owned floes of {}: a subdomain's checkpoint",
+                columns.id.len()
+            ));
+        }
+    }
+    let floes = Floes::from_columns(columns).map_err(|e| e.to_string())?;
+    let slots = d.slots()?;
     let contacts = d.vec(8, |d| {
         Ok(ContactRecord {
             a: d.u32()?,
             b: d.u32()?,
             image_offset: d.v2()?,
-            friction: d.friction()?,
+            friction: d.friction(slots)?,
             age_steps: d.u64()?,
             overlap_m2: d.f64()?,
             point: d.v2()?,
@@ -467,16 +536,27 @@ pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
             tangential_energy_j: d.f64()?,
         })
     })?;
+    let slots = d.slots()?;
     let broken = d.vec(8, |d| {
         Ok(BrokenContact {
             a: d.u32()?,
             b: d.u32()?,
-            friction: d.friction()?,
+            friction: d.friction(slots)?,
             broke_at_s: d.f64()?,
         })
     })?;
     let time_s = d.f64()?;
     let steps = d.u64()?;
+    let dt_s = if d.version >= 3 {
+        d.f64()?
+    } else {
+        fallback_dt_s().ok_or_else(|| {
+            format!(
+                "format version {} does not store the time step, and none was given",
+                d.version
+            )
+        })?
+    };
     let energy = EnergyLedger {
         forcing_work_j: d.f64()?,
         friction_dissipation_j: d.f64()?,
@@ -490,6 +570,7 @@ pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
         broken,
         time_s,
         steps,
+        dt_s,
         energy,
         force: d.v2s()?,
         torque: d.f64s()?,
@@ -502,58 +583,24 @@ pub fn decode(bytes: &[u8]) -> DecResult<(WorldState, OutputCounts)> {
             payload.len() - d.pos
         ));
     }
-    check_floes(&state.floes)?;
     state.validate().map_err(|e| e.to_string())?;
     Ok((state, counts))
-}
-
-/// The floe arrays agree in length and the vertex offsets are in range, so
-/// that stepping a decoded state cannot index out of bounds.
-fn check_floes(f: &Floes) -> DecResult<()> {
-    let n = f.id.len();
-    for (name, len) in [
-        ("position", f.position.len()),
-        ("angle", f.angle.len()),
-        ("velocity", f.velocity.len()),
-        ("angular_velocity", f.angular_velocity.len()),
-        ("thickness", f.thickness_m.len()),
-        ("mass", f.mass_kg.len()),
-        ("inertia", f.inertia_kg_m2.len()),
-        ("area", f.area_m2.len()),
-        ("radius", f.radius_m.len()),
-        ("r3_moment", f.r3_moment_m5.len()),
-        ("motion", f.motion.len()),
-    ] {
-        if len != n {
-            return Err(format!("floe {name} has {len} entries for {n} floes"));
-        }
-    }
-    if f.vertex_start.len() != n + 1
-        || f.vertex_start.first() != Some(&0)
-        || f.vertex_start
-            .windows(2)
-            .any(|w| w[1].saturating_sub(w[0]) < 3)
-        || f.vertex_start.last().map(|&v| v as usize) != Some(f.vertices.len())
-    {
-        return Err("floe vertex offsets do not describe the stored vertices".into());
-    }
-    if f.owned > n {
-        return Err(format!("{} owned floes of {n}", f.owned));
-    }
-    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use floe_dem::broad_phase::Periodicity;
-    use floe_dem::contacts::ContactModel;
-    use floe_dem::world::{stable_time_step, NoForcing, World};
+    use floe_dem::contact_model::ContactModel;
+    use floe_dem::forcing::NoForcing;
+    use floe_dem::periodicity::Periodicity;
+    use floe_dem::world::{stable_time_step, World};
+    use floe_friction::rate_state::SOLVER_TREND;
+    use floe_friction::{Amontons, FrictionLaw, Law};
 
     /// A 4 x 4 grid of squares pressed into each other and let go, a few
     /// steps in: its contacts slip at changing rates, so their friction
     /// states carry non-zero trends.
-    fn springing_pack() -> WorldState {
+    fn springing_pack(model: ContactModel) -> WorldState {
         let polys: Vec<Vec<Vec2>> = (0..16)
             .map(|k| {
                 let c = Vec2::new(
@@ -566,48 +613,101 @@ mod tests {
             })
             .collect();
         let floes = Floes::from_polygons(&polys, &[1.0; 16], 917.0).unwrap();
-        let model = ContactModel::default();
         let dt = 0.5 * stable_time_step(&floes, &model).0;
         let mut world = World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap();
         for _ in 0..3 {
             world.step();
         }
-        world.state()
+        world.state().clone()
     }
 
+    /// Checkpoints of versions 1 and 2 (the rate-and-state law's three
+    /// slots, no time step) are read with the time step given; version 1
+    /// with zero trends. Without a time step they are refused.
     #[test]
-    fn a_version_1_checkpoint_is_read_with_zero_trends() {
-        let state = springing_pack();
+    fn checkpoints_of_versions_1_and_2_are_read_with_the_given_time_step() {
+        let state = springing_pack(ContactModel::default());
         let trends = state
             .contacts
             .iter()
-            .filter(|c| c.friction.solver_trend != 0.0)
+            .filter(|c| c.friction.law_state[SOLVER_TREND] != 0.0)
             .count();
         assert!(trends > 0, "no contact with a trend to lose");
         let counts = OutputCounts::default();
-        let (v1, v2) = (encode_version(&state, &counts, 1), encode(&state, &counts));
-        // Version 1 is version 2 without the trend's 8 bytes per friction state.
-        assert_eq!(
-            v2.len() - v1.len(),
-            8 * (state.contacts.len() + state.broken.len())
-        );
+        let [v1, v2, v3] = [1, 2, 3].map(|v| encode_version(&state, &counts, 3, v));
+        // Version 1 is version 2 without the trend's 8 bytes per friction
+        // state; version 3 adds the time step and two slot counts, and drops
+        // the owned-floe count.
+        let frictions = state.contacts.len() + state.broken.len();
+        assert_eq!(v2.len() - v1.len(), 8 * frictions);
+        assert_eq!(v3.len() + 8, v2.len() + 8 + 2 * 4);
         let mut expected = state.clone();
         expected
             .contacts
             .iter_mut()
-            .for_each(|c| c.friction.solver_trend = 0.0);
+            .for_each(|c| c.friction.law_state[SOLVER_TREND] = 0.0);
         expected
             .broken
             .iter_mut()
-            .for_each(|c| c.friction.solver_trend = 0.0);
-        let (back, _) = decode(&v1).unwrap();
+            .for_each(|c| c.friction.law_state[SOLVER_TREND] = 0.0);
+        let dt = || Some(state.dt_s);
+        let (back, _) = decode(&v1, dt).unwrap();
         assert_eq!(format!("{back:?}"), format!("{expected:?}"));
-        let (back, _) = decode(&v2).unwrap();
+        for old in [&v1, &v2] {
+            let e = decode(old, || None).expect_err("no time step");
+            assert!(e.contains("does not store the time step"), "{e}");
+        }
+        let (back, _) = decode(&v2, dt).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{state:?}"));
+        let (back, _) = decode(&v3, || panic!("version 3 stores dt")).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
         // A version from the future is refused, by name.
-        let mut v3 = v2.clone();
-        v3[8..12].copy_from_slice(&3u32.to_le_bytes());
-        let e = decode(&v3).expect_err("version 3");
-        assert!(e.contains("format version 3"), "{e}");
+        let mut v4 = v3.clone();
+        v4[8..12].copy_from_slice(&4u32.to_le_bytes());
+        let e = decode(&v4, dt).expect_err("version 4");
+        assert!(e.contains("format version 4"), "{e}");
+    }
+
+    /// Each law's friction states take its own number of slots: Amontons
+    /// none, 8 bytes less per slot and contact than the rate-and-state law.
+    #[test]
+    fn a_law_stores_the_slots_it_declares() {
+        let law = Law::Amontons(Amontons { mu: 0.6 });
+        let slots = law.state_slots();
+        assert_eq!(slots, 0);
+        let state = springing_pack(ContactModel::default().with_law(law));
+        let counts = OutputCounts::default();
+        let (none, three) = (encode(&state, &counts, slots), encode(&state, &counts, 3));
+        let frictions = state.contacts.len() + state.broken.len();
+        assert!(frictions > 0);
+        assert_eq!(three.len() - none.len(), 3 * 8 * frictions);
+        let (back, _) = decode(&none, || None).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{state:?}"));
+        // More slots than a contact state holds is refused.
+        let mut bad = encode(&state, &counts, 0);
+        let at = bad.len() - payload_tail(&state);
+        bad[at..at + 4].copy_from_slice(&((LAW_STATE_SLOTS + 1) as u32).to_le_bytes());
+        let payload = bad[HEADER_LEN..].to_vec();
+        bad[24..32].copy_from_slice(&fnv1a64(&payload).to_le_bytes());
+        let e = decode(&bad, || None).expect_err("too many slots");
+        assert!(e.contains("law state slots"), "{e}");
+    }
+
+    /// Bytes from the slot count before the contacts to the end of the
+    /// payload, for a state whose friction states have no slots.
+    fn payload_tail(state: &WorldState) -> usize {
+        let n = state.floes.len();
+        let contact = 4 + 4 + 16 + 8 + 8 + 13 * 8;
+        4 + 8
+            + state.contacts.len() * contact
+            + 4
+            + 8
+            + state.broken.len() * (4 + 4 + 8 + 8)
+            + 8
+            + 8
+            + 8
+            + 5 * 8
+            + 4 * 8
+            + n * (16 + 8 + 16 + 8)
     }
 }

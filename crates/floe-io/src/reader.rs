@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use floe_dem::checkpoint::WorldState;
+use floe_dem::state::WorldState;
 use hdf5::Dataset;
 
 use crate::appendable::read_rows;
@@ -411,8 +411,13 @@ impl RunFile {
     }
 
     /// The state stored in the valid checkpoint, if any, after checking it.
-    pub fn checkpoint_state(&self) -> Result<Option<WorldState>, IoError> {
-        Ok(read_checkpoint(&self.file, &self.path)?.map(|(_, state, _)| state))
+    /// A checkpoint of format 1 or 2 does not store the time step:
+    /// `fallback_dt_s` gives it (the scenario's; see `Scenario::engine_parts`).
+    pub fn checkpoint_state(
+        &self,
+        fallback_dt_s: impl FnOnce() -> Option<f64>,
+    ) -> Result<Option<WorldState>, IoError> {
+        Ok(read_checkpoint(&self.file, &self.path, fallback_dt_s)?.map(|(_, state, _)| state))
     }
 }
 
@@ -440,6 +445,7 @@ fn valid_slot(file: &hdf5::File, path: &Path) -> Result<Option<usize>, IoError> 
 pub(crate) fn read_checkpoint(
     file: &hdf5::File,
     path: &Path,
+    fallback_dt_s: impl FnOnce() -> Option<f64>,
 ) -> Result<Option<(usize, WorldState, OutputCounts)>, IoError> {
     let Some(slot) = valid_slot(file, path)? else {
         return Ok(None);
@@ -460,7 +466,7 @@ pub(crate) fn read_checkpoint(
         Ok((read_rows::<u8>(&ds, 0..len)?, step))
     })()
     .map_err(|e| corrupt(e.to_string()))?;
-    let (state, counts) = checkpoint_blob::decode(&bytes).map_err(corrupt)?;
+    let (state, counts) = checkpoint_blob::decode(&bytes, fallback_dt_s).map_err(corrupt)?;
     if state.steps != step {
         return Err(corrupt(format!(
             "the state is at step {} but the slot says {step}",

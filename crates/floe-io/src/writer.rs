@@ -4,10 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
-use floe_dem::checkpoint::WorldState;
 use floe_dem::floes::Floes;
+use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
-use floe_dem::world::{ExternalForces, World};
+use floe_dem::state::WorldState;
+use floe_dem::world::World;
+use floe_friction::FrictionLaw;
 use hdf5::Group;
 
 use crate::appendable::{Appendable, Storage};
@@ -108,7 +110,8 @@ impl ContactTables {
 pub struct RunWriter {
     path: PathBuf,
     file: hdf5::File,
-    n_floes: usize,
+    /// Ids of the floes the file holds, in its row order.
+    ids: Vec<u64>,
     /// In [`layout::FLOE_ELEMENTS`] order.
     elements: Vec<Element>,
     contacts: ContactTables,
@@ -169,7 +172,7 @@ impl RunWriter {
             }
             Ok(_) => {}
         }
-        if floes.owned == 0 {
+        if floes.is_empty() {
             return Err(cannot("there are no floes to write".into()));
         }
         let file = h5::create_file(path).map_err(|e| {
@@ -197,7 +200,7 @@ impl RunWriter {
         floes: &Floes,
         opts: &OutputOptions,
     ) -> Result<Self, IoError> {
-        let n = floes.owned;
+        let n = floes.len();
         let at = |what: &str| {
             let what = what.to_string();
             move || format!("writing {what}")
@@ -385,7 +388,7 @@ impl RunWriter {
         Ok(Self {
             path: path.to_path_buf(),
             file,
-            n_floes: n,
+            ids: floes.id.clone(),
             elements,
             contacts,
             observables,
@@ -403,18 +406,19 @@ impl RunWriter {
     /// angular velocity) and of the contacts between them, at the world's
     /// step and time, and flushes.
     pub fn write_snapshot<F: ExternalForces>(&mut self, world: &World<F>) -> Result<(), IoError> {
-        let f = &world.floes;
-        let n = f.owned;
-        if n != self.n_floes {
+        let f = world.floes();
+        let n = f.len();
+        if f.id != self.ids {
             return Err(invalid(
                 &self.path,
                 format!(
-                    "the world has {n} floes but the file was created for {}",
-                    self.n_floes
+                    "the world's {n} floes are not the {} the file was created for \
+                     (a run file holds a fixed set of floes)",
+                    self.ids.len()
                 ),
             ));
         }
-        let (step, time) = (world.steps, world.time_s);
+        let (step, time) = (world.steps(), world.time_s());
         let xy = |v: &[floe_dem::Vec2]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y]).collect() };
         let values = [
             xy(&f.position[..n]),
@@ -430,9 +434,8 @@ impl RunWriter {
                 format!("appending to /particles/floes/{name}")
             })?;
         }
-        let owned =
-            |c: &&floe_dem::contacts::ContactRecord| (c.a as usize) < n && (c.b as usize) < n;
-        let cs: Vec<_> = world.contacts.iter().filter(owned).collect();
+        let cs = world.contacts();
+        let law = &world.model().law;
         let m = cs.len();
         let chunk = self.contacts.chunk_rows;
         let pad = if self.contacts.pad {
@@ -442,7 +445,7 @@ impl RunWriter {
         };
         let pairs: Vec<u32> = cs.iter().flat_map(|c| [c.a, c.b]).collect();
         let columns: [Vec<f64>; 8] = [
-            cs.iter().map(|c| c.friction.theta).collect(),
+            cs.iter().map(|c| law.theta(&c.friction)).collect(),
             cs.iter().map(|c| c.mu()).collect(),
             cs.iter().map(|c| c.normal_force_n).collect(),
             cs.iter().map(|c| c.tangential_force_n()).collect(),
@@ -516,7 +519,11 @@ impl RunWriter {
     /// far, into the slot not holding the current one; then flushes, marks
     /// it valid and flushes again. A process killed at any point leaves one
     /// valid checkpoint (the old or the new).
-    pub fn write_checkpoint(&mut self, state: &WorldState) -> Result<(), IoError> {
+    pub fn write_checkpoint(
+        &mut self,
+        state: &WorldState,
+        law_state_slots: usize,
+    ) -> Result<(), IoError> {
         self.write_pending()?;
         let counts = OutputCounts {
             snapshots: self.elements[0].rows() as u64,
@@ -527,7 +534,7 @@ impl RunWriter {
                 .map(|(name, el)| (name.clone(), el.rows() as u64))
                 .collect(),
         };
-        let blob = checkpoint_blob::encode(state, &counts);
+        let blob = checkpoint_blob::encode(state, &counts, law_state_slots);
         let slot = self.next_slot;
         let name = layout::SLOTS[slot];
         let path = self.path.clone();
@@ -579,11 +586,15 @@ impl RunWriter {
     /// checkpoint and truncates every snapshot, contact and observable
     /// dataset to what had been written when the checkpoint was taken, so
     /// the continued file ends as an uninterrupted run's would. Returns the
-    /// writer, the state to resume from and where it stands.
-    pub fn reopen_for_resume(path: &Path) -> Result<(Self, WorldState, CheckpointInfo), IoError> {
+    /// writer, the state to resume from and where it stands. A checkpoint
+    /// of format 1 or 2 takes its time step from `fallback_dt_s`.
+    pub fn reopen_for_resume(
+        path: &Path,
+        fallback_dt_s: impl FnOnce() -> Option<f64>,
+    ) -> Result<(Self, WorldState, CheckpointInfo), IoError> {
         let file = h5::open_run(path, true)?;
-        let (slot, state, counts) =
-            reader::read_checkpoint(&file, path)?.ok_or_else(|| IoError::NoCheckpoint {
+        let (slot, state, counts) = reader::read_checkpoint(&file, path, fallback_dt_s)?
+            .ok_or_else(|| IoError::NoCheckpoint {
                 path: path.to_path_buf(),
             })?;
         let slot_name = format!("/{}/{}", layout::CHECKPOINT, layout::SLOTS[slot]);
@@ -594,14 +605,15 @@ impl RunWriter {
         };
         let what = || "opening the datasets to resume".to_string();
         let particles = file.group(layout::FLOES).at(path, what)?;
-        let n_floes = particles
+        let ids: Vec<u64> = particles
             .dataset("id")
-            .map(|d| d.shape().first().copied().unwrap_or(0))
+            .and_then(|d| d.read_raw::<u64>())
             .at(path, what)?;
-        if state.floes.owned != n_floes {
+        if state.floes.id != ids {
             return Err(corrupt(format!(
-                "{} owned floes, but the file has {n_floes}",
-                state.floes.owned
+                "its {} floes are not the file's {}",
+                state.floes.len(),
+                ids.len()
             )));
         }
         let mut elements = Vec::new();
@@ -694,7 +706,7 @@ impl RunWriter {
             Self {
                 path: path.to_path_buf(),
                 file,
-                n_floes,
+                ids,
                 elements,
                 contacts,
                 observables,

@@ -48,7 +48,7 @@ pub fn compare(args: &CompareArgs) -> Result<PathBuf, CliError> {
     // Checks the user's file as written first, so its errors point into it.
     Scenario::from_text(&text, origin)?;
     let (reference, reference_text) = reference_law(&text, origin, |t| {
-        Ok(Scenario::from_text(t, origin)?.contact_model().law)
+        Ok(Scenario::from_text(t, origin)?.contact_model().law.clone())
     })?;
     let report_path = args.out_dir.join("report.md");
     let mut targets = vec![report_path.clone()];
@@ -77,7 +77,7 @@ pub fn compare(args: &CompareArgs) -> Result<PathBuf, CliError> {
         });
     }
     if args.laws.contains(&LawChoice::Rate) {
-        if let floe_friction::law::Law::RateState(rs) = &reference {
+        if let floe_friction::Law::RateState(rs) = &reference {
             let v = args.matching.reference_slip_m_per_s;
             notes.push(format!(
                 "Rate law: the rate-and-state mu0 = {} and V* = {} m/s, with C1 = A - B = {:.4}: the steady state of the published form, without memory. At the reference slip speed {v:e} m/s it gives mu = {:.4}; the rate-and-state law used here ({:?} form) gives {:.4} in steady state.",

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use floe_friction::law::{FrictionLaw, Law};
+use floe_friction::{FrictionLaw, Law};
 use toml_edit::{value, DocumentMut, Item, Table};
 
 use crate::error::CliError;

@@ -8,9 +8,11 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use floe_dem::checkpoint::WorldState;
+use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
-use floe_dem::world::{ExternalForces, World};
+use floe_dem::state::WorldState;
+use floe_dem::world::World;
+use floe_friction::FrictionLaw;
 
 use super::health::{check_health, BlowUp};
 
@@ -22,8 +24,10 @@ pub trait RunObserver<F: ExternalForces> {
     fn snapshot(&mut self, world: &World<F>) -> Result<(), Self::Error>;
     /// One sample of the assembly observables at step `step`.
     fn observables(&mut self, step: u64, observables: &Observables) -> Result<(), Self::Error>;
-    /// A checkpoint from which the run can continue bitwise.
-    fn checkpoint(&mut self, state: &WorldState) -> Result<(), Self::Error>;
+    /// A checkpoint from which the run can continue bitwise; each contact's
+    /// friction state has `law_state_slots` slots of law state.
+    fn checkpoint(&mut self, state: &WorldState, law_state_slots: usize)
+        -> Result<(), Self::Error>;
 }
 
 /// When to write, in steps.
@@ -95,7 +99,7 @@ fn write_due<F: ExternalForces, O: RunObserver<F>>(
     domain_area_m2: f64,
     force_all: bool,
 ) -> Result<(), O::Error> {
-    let step = world.steps;
+    let step = world.steps();
     if force_all || step.is_multiple_of(cadence.observables) {
         observer.observables(step, &world.observables(domain_area_m2))?;
     }
@@ -104,7 +108,7 @@ fn write_due<F: ExternalForces, O: RunObserver<F>>(
     }
     // The checkpoint comes last: whatever it records as written is written.
     if force_all || step.is_multiple_of(cadence.checkpoint) {
-        observer.checkpoint(&world.state())?;
+        observer.checkpoint(world.state(), world.model().law.state_slots())?;
     }
     Ok(())
 }
@@ -137,28 +141,32 @@ pub fn drive<F: ExternalForces, O: RunObserver<F>>(
     interrupt: &AtomicBool,
     progress: &mut dyn Progress,
 ) -> Result<Ending, O::Error> {
-    while world.steps < total_steps {
+    while world.steps() < total_steps {
         world.step();
-        progress.update(world.steps, total_steps, world.time_s);
+        progress.update(world.steps(), total_steps, world.time_s());
         if let Some(blow_up) = check_health(world) {
             // The bad state is shown (it is what one needs to see), but the
             // checkpoint is left at the last good state.
-            observer.observables(world.steps, &world.observables(domain_area_m2))?;
+            observer.observables(world.steps(), &world.observables(domain_area_m2))?;
             observer.snapshot(world)?;
             progress.finish();
             return Ok(Ending::BlewUp(blow_up));
         }
-        let last = world.steps == total_steps;
+        let last = world.steps() == total_steps;
         write_due(world, observer, cadence, domain_area_m2, last)?;
         if interrupt.load(Ordering::SeqCst) && !last {
             finish_interrupted(world, observer, cadence, domain_area_m2)?;
             progress.finish();
-            return Ok(Ending::Interrupted { step: world.steps });
+            return Ok(Ending::Interrupted {
+                step: world.steps(),
+            });
         }
-        if pause_at == Some(world.steps) && !last {
+        if pause_at == Some(world.steps()) && !last {
             finish_interrupted(world, observer, cadence, domain_area_m2)?;
             progress.finish();
-            return Ok(Ending::Paused { step: world.steps });
+            return Ok(Ending::Paused {
+                step: world.steps(),
+            });
         }
     }
     progress.finish();
@@ -175,9 +183,9 @@ fn finish_interrupted<F: ExternalForces, O: RunObserver<F>>(
     cadence: Cadence,
     domain_area_m2: f64,
 ) -> Result<(), O::Error> {
-    let step = world.steps;
+    let step = world.steps();
     if !step.is_multiple_of(cadence.checkpoint) {
-        observer.checkpoint(&world.state())?;
+        observer.checkpoint(world.state(), world.model().law.state_slots())?;
     }
     if !step.is_multiple_of(cadence.observables) {
         observer.observables(step, &world.observables(domain_area_m2))?;

@@ -4,7 +4,8 @@
 
 use std::fmt;
 
-use floe_dem::world::{ExternalForces, World};
+use floe_dem::forcing::ExternalForces;
+use floe_dem::world::World;
 
 /// Overlap, as a fraction of the smaller floe's area, beyond which a contact
 /// is taken as a blow-up. Elastic overlaps in a sea-ice pack are a tiny
@@ -82,7 +83,7 @@ impl fmt::Display for BlowUp {
 /// The first fault in `world`, if any: floes in handle order, then contacts
 /// in pair order (so the report is the same for any thread count).
 pub fn check_health<F: ExternalForces>(world: &World<F>) -> Option<BlowUp> {
-    let f = &world.floes;
+    let f = &world.floes();
     let fault = (0..f.len())
         .find(|&i| {
             !(f.position[i].is_finite()
@@ -92,7 +93,7 @@ pub fn check_health<F: ExternalForces>(world: &World<F>) -> Option<BlowUp> {
         })
         .map(|i| Fault::NonFinite { floe_id: f.id[i] })
         .or_else(|| {
-            world.contacts.iter().find_map(|c| {
+            world.contacts().iter().find_map(|c| {
                 let (a, b) = (c.a as usize, c.b as usize);
                 let fraction = c.overlap_m2 / f.area_m2[a].min(f.area_m2[b]);
                 (fraction > MAX_OVERLAP_FRACTION).then_some(Fault::Overlap {
@@ -102,9 +103,9 @@ pub fn check_health<F: ExternalForces>(world: &World<F>) -> Option<BlowUp> {
             })
         })?;
     Some(BlowUp {
-        step: world.steps,
-        time_s: world.time_s,
-        dt_s: world.dt_s,
+        step: world.steps(),
+        time_s: world.time_s(),
+        dt_s: world.dt_s(),
         what: fault,
     })
 }

@@ -10,9 +10,9 @@ pub mod progress;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use floe_dem::checkpoint::WorldState;
 use floe_dem::forcing::Forcing;
 use floe_dem::observables::Observables;
+use floe_dem::state::WorldState;
 use floe_dem::world::World;
 use floe_io::{DomainBox, OutputOptions, RunFile, RunMetadata, RunWriter};
 
@@ -33,8 +33,12 @@ impl RunObserver<Forcing> for RunWriter {
         self.write_observables(step, observables)
     }
 
-    fn checkpoint(&mut self, state: &WorldState) -> Result<(), Self::Error> {
-        self.write_checkpoint(state)
+    fn checkpoint(
+        &mut self,
+        state: &WorldState,
+        law_state_slots: usize,
+    ) -> Result<(), Self::Error> {
+        self.write_checkpoint(state, law_state_slots)
     }
 }
 
@@ -150,7 +154,7 @@ pub fn run(args: &RunArgs) -> Result<RunSummary, CliError> {
         let mut writer = RunWriter::create(
             &args.output,
             &metadata,
-            &setup.world.floes,
+            setup.world.floes(),
             &OutputOptions::default(),
         )?;
         writer.set_status("running")?;
@@ -171,21 +175,18 @@ fn resume(args: &RunArgs) -> Result<RunSummary, CliError> {
     let threads = thread_count(args.threads.or(scenario.threads()))?;
     let pool = pool(threads)?;
     pool.install(|| {
-        let parts = scenario.engine_parts()?;
-        let (mut writer, state, info) = RunWriter::reopen_for_resume(&args.output)?;
+        let parts = scenario.engine_parts();
+        // Checkpoints of format 3 hold the time step; older ones take the
+        // scenario's, found by building its floes.
+        let (mut writer, state, info) =
+            RunWriter::reopen_for_resume(&args.output, || scenario.time_step().ok())?;
         eprintln!(
             "resuming {} from step {} (t = {})",
             args.output.display(),
             info.step,
             format_sim_time(info.time_s)
         );
-        let mut world = World::resume(
-            state,
-            parts.model,
-            parts.forcing,
-            parts.periodicity,
-            parts.dt_s,
-        )?;
+        let mut world = World::resume(state, parts.model, parts.forcing, parts.periodicity)?;
         writer.set_status("running")?;
         advance(&scenario, &mut world, &mut writer, args, threads)
     })
@@ -199,7 +200,7 @@ fn advance(
     args: &RunArgs,
     threads: usize,
 ) -> Result<RunSummary, CliError> {
-    let dt = world.dt_s;
+    let dt = world.dt_s();
     let total_steps = ((scenario.duration_s() / dt).round() as u64).max(1);
     let out = scenario.output();
     let cadence = Cadence::from_seconds(
@@ -208,7 +209,7 @@ fn advance(
         out.checkpoint_every_s,
         dt,
     );
-    let first_step = world.steps;
+    let first_step = world.steps();
     let pause_at = args.max_steps.map(|n| first_step.saturating_add(n));
     let mut progress = RunProgress::new(
         first_step,
@@ -228,10 +229,10 @@ fn advance(
         &mut progress,
     )?;
     let summary = RunSummary {
-        steps_taken: world.steps - first_step,
-        final_step: world.steps,
+        steps_taken: world.steps() - first_step,
+        final_step: world.steps(),
         total_steps,
-        final_time_s: world.time_s,
+        final_time_s: world.time_s(),
         wall_s: started.elapsed().as_secs_f64(),
         threads,
     };

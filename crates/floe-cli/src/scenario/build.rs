@@ -7,7 +7,7 @@
 
 use std::ops::Range;
 
-use floe_dem::floes::{Floes, Motion};
+use floe_dem::floes::{Floe, Floes};
 use floe_dem::geometry::FloeShape;
 use floe_dem::tessellation::{DiamondLattice, Rect, Tessellation, VoronoiFloes, MAX_FLOES};
 use floe_dem::world::stable_time_step;
@@ -547,23 +547,24 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Cl
                 _ => f.error(r.floes_span.clone(), "tessellation", reason),
             }
         })?;
-        let motion = if p.prescribed {
-            Motion::Prescribed {
-                velocity: p.velocity,
-            }
-        } else {
-            Motion::Free
-        };
-        floes.push(
+        let floe = Floe::new(
             i as u64,
             &shape,
             periodicity.wrap(centroid),
             p.thickness_m,
             r.density_kg_per_m3,
-            motion,
         );
-        floes.velocity[i] = p.velocity;
-        floes.angular_velocity[i] = p.angular_velocity;
+        let floe = if p.prescribed {
+            floe.prescribed(p.velocity)
+        } else {
+            floe
+        };
+        floes
+            .insert(floe.with_velocity(p.velocity, p.angular_velocity))
+            .map_err(|e| match (&p.span, &p.label) {
+                (Some(s), Some(l)) => f.error(s.clone(), l.clone(), e.to_string()),
+                _ => f.error(r.floes_span.clone(), "tessellation", e.to_string()),
+            })?;
         spans.push(p.span);
         labels.push(p.label);
     }

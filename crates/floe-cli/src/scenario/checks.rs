@@ -2,7 +2,7 @@
 //! together (walls against the domain and each other, explicit floes
 //! against each other), and the contact geometry of the double-shear set-up.
 
-use floe_dem::contacts::ContactModel;
+use floe_dem::contact_model::ContactModel;
 use floe_dem::geometry::{overlap, ClipScratch};
 
 use super::build::{sig, BuiltFloes};

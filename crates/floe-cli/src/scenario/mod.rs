@@ -25,9 +25,9 @@ pub use resolve::{
 
 use std::path::Path;
 
-use floe_dem::broad_phase::{Period, Periodicity};
-use floe_dem::contacts::ContactModel;
+use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
+use floe_dem::periodicity::{Period, Periodicity};
 use floe_dem::world::World;
 use floe_dem::Vec2;
 
@@ -100,8 +100,6 @@ pub struct EngineParts {
     pub forcing: Forcing,
     /// Periodic axes.
     pub periodicity: Periodicity,
-    /// The time step [`Scenario::build`] chooses, s.
-    pub dt_s: f64,
 }
 
 /// A scenario file, read and checked (but not yet built).
@@ -191,14 +189,14 @@ impl Scenario {
         report.push(describe_forcing(&r.forcing));
         let world = World::new(
             built.floes,
-            r.model,
+            r.model.clone(),
             r.forcing.clone(),
             r.domain.periodicity(),
             dt_s,
         )?;
         report.push(format!(
             "  {} contacts at the start",
-            build::thousands(world.contacts.len())
+            build::thousands(world.contacts().len())
         ));
         Ok(Setup {
             world,
@@ -208,20 +206,25 @@ impl Scenario {
         })
     }
 
-    /// What [`World::resume`] needs: the same model, forcing, periodicity
-    /// and time step as [`Scenario::build`] (the floes are rebuilt to find
-    /// the automatic time step, deterministically).
-    pub fn engine_parts(&self) -> Result<EngineParts, CliError> {
+    /// What [`World::resume`] needs besides the checkpoint: the same
+    /// model, forcing and periodicity as [`Scenario::build`].
+    pub fn engine_parts(&self) -> EngineParts {
+        let r = &self.resolved;
+        EngineParts {
+            model: r.model.clone(),
+            forcing: r.forcing.clone(),
+            periodicity: r.domain.periodicity(),
+        }
+    }
+
+    /// The time step [`Scenario::build`] chooses, s: the floes are built to
+    /// find the automatic one (deterministically). Only checkpoints of
+    /// format 1 and 2, which do not store it, need this.
+    pub fn time_step(&self) -> Result<f64, CliError> {
         let f = &self.source;
         let r = &self.resolved;
         let built = build::build_floes(f, r)?;
-        let (dt_s, _, _) = build::time_step(f, r, &built)?;
-        Ok(EngineParts {
-            model: r.model,
-            forcing: r.forcing.clone(),
-            periodicity: r.domain.periodicity(),
-            dt_s,
-        })
+        Ok(build::time_step(f, r, &built)?.0)
     }
 }
 
@@ -242,6 +245,7 @@ fn describe_contact(m: &ContactModel) -> String {
             "rate-dependent mu0 = {}, c1 = {}, V* = {} m/s",
             r.mu0, r.c1, r.v_star_m_per_s
         ),
+        Law::Custom(_) => format!("custom law `{}`", m.law.name()),
         Law::RateState(rs) => format!(
             "rate-and-state ({} form, {} law) mu0 = {}, A = {}, B = {}, V* = {} m/s, L = {} m",
             match rs.form {

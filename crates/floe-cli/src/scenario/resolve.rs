@@ -5,7 +5,7 @@
 
 use std::ops::Range;
 
-use floe_dem::contacts::ContactModel;
+use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::{Coriolis, DragParameters, Envelope, Forcing, VelocityField};
 use floe_dem::tessellation::{max_jitter_fraction, ThicknessDistribution};
 use floe_dem::{DemError, Vec2};

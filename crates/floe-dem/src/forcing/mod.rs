@@ -49,6 +49,7 @@
 
 pub mod coriolis;
 pub mod drag;
+pub mod external;
 pub mod fields;
 pub mod free_drift;
 mod serde_vec2;
@@ -58,6 +59,7 @@ pub use drag::{
     polygon_r3_moment, rotate, DragParameters, AIR_DENSITY_KG_M3, AIR_DRAG_COEFFICIENT,
     OCEAN_DRAG_COEFFICIENT, SEAWATER_DENSITY_KG_M3,
 };
+pub use external::{ExternalForces, NoForcing};
 pub use fields::{Envelope, VelocityField};
 pub use free_drift::free_drift_velocity;
 

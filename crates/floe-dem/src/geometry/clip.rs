@@ -27,7 +27,7 @@
 //! fell exactly on a clip line (a crossing may then sit on a vertex, which
 //! is not marked) are all pairs of edges searched instead.
 
-use crate::geometry::{cross, perp, rotate};
+use crate::geometry::{cross, perp, rotate, MAX_VERTICES};
 use crate::Vec2;
 
 /// A convex polygon placed in the world: local counter-clockwise vertices
@@ -61,10 +61,6 @@ pub struct Overlap {
     /// Contact length, m.
     pub length_m: f64,
 }
-
-/// Most vertices a floe may have (checked when floes are created): the
-/// clipper works in fixed-size buffers, so the narrow phase never allocates.
-pub const MAX_VERTICES: usize = 32;
 
 /// A polygon in a fixed buffer.
 #[derive(Debug, Clone, Copy)]

@@ -1,16 +1,22 @@
-//! Floe geometry: shapes and their mass properties ([`shape`]), the
-//! overlap of two convex floes ([`clip`]), and a lower bound on their
-//! distance for the broad phase ([`separation`]).
+//! Floe geometry: shapes and their mass properties ([`shape`],
+//! [`r3_moment`]), the overlap of two convex floes ([`clip`]), and a lower
+//! bound on their distance for the broad phase ([`separation`]).
 
 pub mod clip;
+pub mod r3_moment;
 pub mod separation;
 pub mod shape;
 
 pub use clip::{overlap, overlap_cached, ClipScratch, Overlap, Placed, SeparatingEdge};
+pub use r3_moment::polygon_r3_moment;
 pub use separation::separation_lower_bound;
 pub use shape::FloeShape;
 
 use crate::Vec2;
+
+/// Most vertices a floe may have: the clipper's fixed buffers are sized
+/// for it.
+pub const MAX_VERTICES: usize = 32;
 
 /// Counter-clockwise rotation of `v` by the angle whose cosine and sine are given.
 #[inline(always)]

@@ -33,10 +33,10 @@ impl FloeShape {
         if polygon.len() < 3 {
             return Err(bad("a floe needs at least 3 vertices"));
         }
-        if polygon.len() > crate::geometry::clip::MAX_VERTICES {
+        if polygon.len() > crate::geometry::MAX_VERTICES {
             return Err(bad(&format!(
                 "more than {} vertices",
-                crate::geometry::clip::MAX_VERTICES
+                crate::geometry::MAX_VERTICES
             )));
         }
         if polygon.iter().any(|v| !v.x.is_finite() || !v.y.is_finite()) {

@@ -1,0 +1,114 @@
+//! The world's state: everything a run needs to continue bitwise from the
+//! end of a step, and nothing else. A checkpoint holds exactly this
+//! ([`World::state`](crate::world::World::state) lends it);
+//! [`World::resume`](crate::world::World::resume) continues from it.
+//!
+//! What is *not* in the state comes from the scenario: the contact model,
+//! the forcing and the periodicity. Scratch is not in it either: the
+//! broad-phase candidate list is rebuilt on the first step after a resume,
+//! and the contacts found do not depend on when it was built (a candidate
+//! list only has to contain every touching pair, and the contact list is
+//! sorted by pair).
+
+use crate::contacts::{BrokenContact, ContactRecord};
+use crate::energy_ledger::EnergyLedger;
+use crate::error::DemError;
+use crate::floes::Floes;
+use crate::Vec2;
+
+/// Everything a run needs to continue bitwise from the end of a step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldState {
+    /// The floes, including prescribed ones (walls), sorted by id.
+    pub floes: Floes,
+    /// Contacts at the end of the step, sorted by `(a, b)`, with their
+    /// friction state and integrated energies.
+    pub contacts: Vec<ContactRecord>,
+    /// Recently broken contacts remembered by the model, sorted by `(a, b)`.
+    pub broken: Vec<BrokenContact>,
+    /// Simulated time, s.
+    pub time_s: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// The time step, s.
+    pub dt_s: f64,
+    /// Energy bookkeeping since the start.
+    pub energy: EnergyLedger,
+    /// Total force on each floe from the last evaluation, N. Saved rather
+    /// than recomputed: it was evaluated at the half-step velocity.
+    pub force: Vec<Vec2>,
+    /// Total torque on each floe from the last evaluation, N m.
+    pub torque: Vec<f64>,
+    /// External (forcing) part of `force`, N; the next step's work integral
+    /// starts from it.
+    pub external_force: Vec<Vec2>,
+    /// External part of `torque`, N m.
+    pub external_torque: Vec<f64>,
+}
+
+impl WorldState {
+    /// A state with the given floes, no contacts, at time 0.
+    pub(crate) fn start(floes: Floes, dt_s: f64) -> Self {
+        let n = floes.len();
+        WorldState {
+            floes,
+            contacts: Vec::new(),
+            broken: Vec::new(),
+            time_s: 0.0,
+            steps: 0,
+            dt_s,
+            energy: EnergyLedger::default(),
+            force: vec![Vec2::ZERO; n],
+            torque: vec![0.0; n],
+            external_force: vec![Vec2::ZERO; n],
+            external_torque: vec![0.0; n],
+        }
+    }
+
+    /// Checks that the arrays agree in length, that the contacts refer to
+    /// floes that exist and are sorted, and that the clock is valid, so a
+    /// damaged checkpoint is refused, not stepped.
+    pub fn validate(&self) -> Result<(), DemError> {
+        let n = self.floes.len();
+        let bad = |reason: String| Err(DemError::InvalidCheckpoint { reason });
+        for (name, len) in [
+            ("force", self.force.len()),
+            ("torque", self.torque.len()),
+            ("external_force", self.external_force.len()),
+            ("external_torque", self.external_torque.len()),
+        ] {
+            if len != n {
+                return bad(format!("{name} has {len} entries for {n} floes"));
+            }
+        }
+        if !sorted_pairs(self.contacts.iter().map(|c| (c.a, c.b)), n) {
+            return bad("contacts are not sorted pairs (a, b) of existing floes with a < b".into());
+        }
+        if !sorted_pairs(self.broken.iter().map(|c| (c.a, c.b)), n) {
+            return bad(
+                "broken contacts are not sorted pairs (a, b) of existing floes with a < b".into(),
+            );
+        }
+        if !self.time_s.is_finite() {
+            return bad(format!("time {} is not finite", self.time_s));
+        }
+        if !(self.dt_s.is_finite() && self.dt_s > 0.0) {
+            return bad(format!("time step {} s is not > 0", self.dt_s));
+        }
+        Ok(())
+    }
+}
+
+/// Whether `pairs` are strictly increasing pairs `(a, b)` of handles below
+/// `n` with `a < b` (the force gathering relies on `a < b`: a floe's
+/// contacts as `a` come after its contacts as `b`).
+pub(crate) fn sorted_pairs(pairs: impl Iterator<Item = (u32, u32)>, n: usize) -> bool {
+    let mut last = None;
+    for (a, b) in pairs {
+        if a as usize >= n || b as usize >= n || a >= b || last >= Some((a, b)) {
+            return false;
+        }
+        last = Some((a, b));
+    }
+    true
+}
