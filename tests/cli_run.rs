@@ -97,6 +97,11 @@ impl Case {
     }
 }
 
+/// `tests/data/run_small_format2_paused.h5`: `run_small.toml` paused at
+/// step 37 by floe at commit 676b801, whose checkpoints were of format 2
+/// (no time step, three friction slots per contact).
+const FORMAT_2_PAUSED: &[u8] = include_bytes!("data/run_small_format2_paused.h5");
+
 /// Everything a run writes, compared bitwise: every snapshot, every contact
 /// list, every observable, and the final checkpointed state.
 fn assert_same_run(a: &Path, b: &Path) {
@@ -403,4 +408,20 @@ fn render_draws_the_floes_and_the_observables() {
     // Pictures are not overwritten without --force.
     let out = run(&["render", &file, "--every", "2", "-o", &dir_s]);
     assert_eq!(code(&out), 2, "{}", text(&out.stderr));
+}
+
+/// A run paused by the previous checkpoint format (2) resumes, taking its
+/// time step from the stored scenario, and ends bitwise as a fresh run of
+/// the same scenario does.
+#[test]
+fn a_run_paused_in_the_previous_checkpoint_format_resumes_bitwise() {
+    let case = Case::new(SMALL);
+    let old = case.path("old.h5");
+    std::fs::write(&old, FORMAT_2_PAUSED).unwrap();
+    let info = run_ok(&["info", &old]);
+    assert!(info.contains("paused at step 37"), "{info}");
+    let out = case.resume("old.h5", &[]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    case.run_ok("fresh.h5", &[]);
+    assert_same_run(Path::new(&old), Path::new(&case.path("fresh.h5")));
 }
