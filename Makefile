@@ -82,7 +82,7 @@ test: deps
 
 ## Regenerate the validation section of docs/friction.md and docs/validation/*.png.
 validation: deps
-	$(CARGO) run --release -p floe-cli --example friction_validation
+	$(CARGO) run --release -p floe-study --example friction_validation
 
 ## Criterion benchmarks (figures in docs/performance.md).
 bench: deps

@@ -5,8 +5,7 @@
 
 use std::path::Path;
 
-use floe_cli::scenario::Scenario;
-use floe_cli::CliError;
+use floe_scenario::{Scenario, ScenarioError};
 
 /// A small valid scenario that the cases below break one way each.
 const BASE: &str = r#"title = "base"
@@ -26,7 +25,7 @@ thickness_m = 1.0
 "#;
 
 /// The error of `text` (which must fail to load or to build).
-fn error(text: &str) -> CliError {
+fn error(text: &str) -> ScenarioError {
     let origin = Path::new("bad.toml");
     match Scenario::from_text(text, origin) {
         Err(e) => e,
@@ -55,8 +54,8 @@ fn at(text: &str, needle: &str, offset: usize) -> String {
 fn check(text: &str, needle: &str, offset: usize, key: &str, reasons: &[&str]) {
     let e = error(text);
     let msg = e.to_string();
-    assert_eq!(e.exit_code(), 2, "{msg}");
-    assert!(matches!(e, CliError::Input { .. }), "{msg}");
+    assert!(e.is_input(), "{msg}");
+    assert!(matches!(e, ScenarioError::Input { .. }), "{msg}");
     let place = at(text, needle, offset);
     assert!(msg.starts_with(&place), "expected {place}: {msg}");
     assert!(msg.contains(key), "expected key {key}: {msg}");
@@ -279,10 +278,10 @@ fn keys_that_do_not_apply_and_unknown_kinds_are_refused() {
     let t = format!("{BASE}\n[friction]\nlaw = \"amontons\"\nmu = 0.3\na = 0.01\n");
     check(
         &t,
-        "0.01",
+        "a = 0.01",
         0,
         "friction.a",
-        &["does not apply to law `amontons`"],
+        &["does not apply to law `amontons`", "it takes `mu`"],
     );
     let t = format!("{BASE}\n[friction]\nlaw = \"coulomb\"\n");
     check(
@@ -400,6 +399,6 @@ push_velocity_m_per_s = 0.008
 #[test]
 fn load_reports_unreadable_files() {
     let e = Scenario::load(Path::new("/nonexistent/scenario.toml")).unwrap_err();
-    assert_eq!(e.exit_code(), 1);
+    assert!(!e.is_input() && matches!(e, ScenarioError::Io { .. }));
     assert!(e.to_string().contains("/nonexistent/scenario.toml"));
 }

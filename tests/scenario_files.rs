@@ -5,11 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use floe_cli::scenario::{checks, Scenario};
 use floe_dem::floes::Motion;
 use floe_dem::forcing::{free_drift_velocity, DragParameters};
 use floe_dem::Vec2;
 use floe_friction::FrictionLaw;
+use floe_scenario::{checks, Scenario};
 
 /// Runs `f` on a one-thread rayon pool: stepping a world from outside a
 /// pool hands every parallel loop to another thread (~0.1 ms per step).

@@ -6,15 +6,17 @@ use clap::{Parser, Subcommand, ValueEnum};
 use floe_friction::experiments::Preset;
 use floe_friction::{Form, StateLaw};
 
-use crate::compare::variants::{LawChoice, Matching};
-use crate::compare::CompareArgs;
-use crate::error::CliError;
-use crate::render::Snapshots;
-use crate::run::RunArgs;
+use floe_friction::LawRegistry;
+use floe_scenario::law_variants::{LawChoice, Matching};
+use floe_scenario::settings::parse_setting;
+use floe_study::compare::{self, CompareArgs};
+use floe_study::render::{self, ColourBy, Snapshots};
+use floe_study::run_file::{self as run, RunArgs};
+use floe_study::sweep::{self, SweepArgs};
+
+use crate::hooks::{provenance, TerminalHooks};
 use crate::slider::{self, ExperimentOptions};
-use crate::sweep::grid::parse_setting;
-use crate::sweep::SweepArgs;
-use crate::{compare, info, render, run, sweep};
+use crate::{info, CliError};
 
 /// floe: sea-ice floes with rate-and-state friction.
 #[derive(Debug, Parser)]
@@ -130,8 +132,8 @@ pub enum Command {
         #[arg(long, value_name = "K")]
         every: Option<usize>,
         /// What colours the floes.
-        #[arg(long, value_enum, default_value_t = ColourBy::Speed)]
-        color: ColourBy,
+        #[arg(long, value_enum, default_value_t = Colour::Speed)]
+        color: Colour,
         /// Output directory.
         #[arg(long, short)]
         output: PathBuf,
@@ -156,8 +158,8 @@ pub struct MetricArgs {
 }
 
 impl MetricArgs {
-    fn options(&self) -> crate::compare::metrics::MetricOptions {
-        crate::compare::metrics::MetricOptions {
+    fn options(&self) -> floe_study::compare::metrics::MetricOptions {
+        floe_study::compare::metrics::MetricOptions {
             profile_bins: self.profile_bins,
             slip: floe_analysis::slip_events::SlipEventRule {
                 jump_factor: self.slip_jump,
@@ -170,13 +172,23 @@ impl MetricArgs {
 
 /// `floe render --color`
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ColourBy {
+pub enum Colour {
     /// Floe speed, m/s.
     Speed,
     /// Mean rate-and-state theta over the floe's contacts.
     Theta,
     /// Floe pressure from its contact forces, N/m (compression positive).
     Stress,
+}
+
+impl From<Colour> for ColourBy {
+    fn from(c: Colour) -> Self {
+        match c {
+            Colour::Speed => ColourBy::Speed,
+            Colour::Theta => ColourBy::Theta,
+            Colour::Stress => ColourBy::Stress,
+        }
+    }
 }
 
 /// `floe slider ...`
@@ -327,9 +339,9 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 force,
                 resume,
                 max_steps,
-                progress: !quiet,
+                provenance: provenance(),
             };
-            let summary = run::run(&args)?;
+            let summary = run::run(&args, &TerminalHooks { progress: !quiet })?;
             Ok(summary.describe(&args.output))
         }
         Command::Info { file } => info::describe(&file),
@@ -351,7 +363,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             }
             let args = CompareArgs {
                 scenario,
-                laws: LawChoice::parse_list(&laws)?,
+                laws: LawChoice::parse_list(&laws, &LawRegistry::builtin())?,
                 out_dir: output,
                 threads,
                 force,
@@ -360,9 +372,9 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                     amontons_mu,
                 },
                 metrics: metrics.options(),
-                progress: !quiet,
+                provenance: provenance(),
             };
-            let report = compare::compare(&args)?;
+            let report = compare::compare(&args, &TerminalHooks { progress: !quiet })?;
             Ok(format!("report: {}", report.display()))
         }
         Command::Sweep {
@@ -391,8 +403,9 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 force,
                 emit_only: emit,
                 metrics: metrics.options(),
+                provenance: provenance(),
             };
-            let path = sweep::sweep(&args)?;
+            let path = sweep::sweep(&args, &TerminalHooks { progress: false })?;
             Ok(if emit {
                 format!("variants written; manifest: {} (run each variant_NNN.toml with `floe run`, then `floe sweep --gather`)", path.display())
             } else {
@@ -412,7 +425,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 (None, Some(k)) => Snapshots::Every(k),
                 (None, None) => Snapshots::One(-1),
             };
-            let written = render::render(&file, which, color, &output, force)?;
+            let written = render::render(&file, which, color.into(), &output, force)?;
             Ok(format!(
                 "{} pictures in {}",
                 written.len(),

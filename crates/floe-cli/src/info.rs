@@ -5,8 +5,8 @@ use std::path::Path;
 
 use floe_io::RunFile;
 
-use crate::error::CliError;
-use crate::run::progress::format_sim_time;
+use crate::CliError;
+use floe_dem::run::format_sim_time;
 
 /// A human-readable description of the run in `file`.
 pub fn describe(file: &Path) -> Result<String, CliError> {

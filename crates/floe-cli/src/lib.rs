@@ -1,20 +1,18 @@
-//! The `floe` command line, as a library so that its pieces (input files with
-//! located errors, plots, CSV) can be tested and reused by the documentation
-//! generators.
+//! The `floe` command line: the grammar ([`cli`]), what it prints ([`info`],
+//! [`slider`] tables, [`progress_bar`]) and the process's signals
+//! ([`interrupt`]). The work is done by the libraries: floe-scenario (files),
+//! floe-dem (the engine and its run loop), floe-io (run files), floe-study
+//! (runs, comparisons, sweeps, pictures).
 #![deny(missing_docs)]
 
 pub mod cli;
-pub mod compare;
-pub mod error;
+pub mod hooks;
 pub mod info;
-pub mod input;
-pub mod plot;
-pub mod protocol_file;
-pub mod render;
-pub mod run;
-pub mod scenario;
+pub mod interrupt;
+pub mod progress_bar;
 pub mod series_csv;
 pub mod slider;
-pub mod sweep;
 
-pub use error::CliError;
+/// Every failure of the command line: the libraries' errors, one message
+/// and an exit code each.
+pub type CliError = floe_study::Error;

@@ -5,7 +5,7 @@ use std::path::Path;
 use floe_friction::fit::FitData;
 use floe_friction::spring_slider::Sample;
 
-use crate::error::CliError;
+use crate::CliError;
 
 /// Column header of `series.csv`, with units.
 pub const SERIES_HEADER: [&str; 6] = [
@@ -46,12 +46,14 @@ const TIME_COLUMNS: [&str; 3] = ["t_s", "time_s", "t"];
 /// column (`t_s`, `time_s` or `t`, seconds from the start of the protocol)
 /// and a `mu` column; other columns are ignored.
 pub fn read_fit_data(path: &Path) -> Result<FitData, CliError> {
-    let located = |line: u64, key: Option<&str>, message: String| CliError::Input {
-        file: path.to_path_buf(),
-        line: line as usize,
-        column: 1,
-        key: key.map(str::to_string),
-        message,
+    let located = |line: u64, key: Option<&str>, message: String| {
+        CliError::Scenario(floe_scenario::ScenarioError::Input {
+            file: path.to_path_buf(),
+            line: line as usize,
+            column: 1,
+            key: key.map(str::to_string),
+            message,
+        })
     };
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)

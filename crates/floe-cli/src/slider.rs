@@ -9,10 +9,10 @@ use floe_friction::spring_slider::{Apparatus, OutputThinning, Sample, SpringSlid
 use floe_friction::{Form, Law, RateDependent, RateState, StateLaw};
 use serde::Serialize;
 
-use crate::error::CliError;
-use crate::plot::friction_figure;
-use crate::protocol_file::{self, SliderSetup};
 use crate::series_csv::{read_fit_data, write_series};
+use crate::CliError;
+use floe_scenario::protocol_file::{self, SliderSetup};
+use floe_study::plot::friction_figure;
 
 /// Options shared by `hold` and `step`.
 #[derive(Debug, Clone, Copy)]
@@ -258,13 +258,13 @@ pub fn fit(data_path: &Path, protocol_path: &Path) -> Result<ModelComparison, Cl
     if let Some(&t) = data.t_s().last() {
         let duration = setup.protocol.duration_s();
         if t > duration * (1.0 + 1e-9) {
-            return Err(CliError::Input {
+            return Err(CliError::Scenario(floe_scenario::ScenarioError::Input {
                 file: data_path.to_path_buf(),
                 line: data.len() + 1,
                 column: 1,
                 key: Some("t_s".into()),
                 message: format!("time {t} s is beyond the end of the protocol ({duration} s)"),
-            });
+            }));
         }
     }
     let experiment = Experiment::new(

@@ -15,7 +15,7 @@
 //!   force formulas; [`forcing`]: wind, ocean, Coriolis;
 //!   [`periodicity`]: periodic axes; [`geometry`], [`tessellation`]: floe
 //!   shapes and how to make a pack of them; [`observables`]: assembly
-//!   diagnostics.
+//!   diagnostics; [`run`]: the stepping loop with its observer and cadences.
 #![deny(missing_docs)]
 
 pub mod contact_kernel;
@@ -29,6 +29,7 @@ pub mod geometry;
 pub mod observables;
 pub mod periodicity;
 pub mod pipeline;
+pub mod run;
 pub mod state;
 pub mod tessellation;
 pub mod world;

@@ -3,6 +3,16 @@
 use serde::{Deserialize, Serialize};
 
 use crate::law::{released, sign, ContactLoad, ContactState, FrictionLaw, StepOutcome};
+use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
+
+/// The law's parameters, as the registry publishes them.
+pub const PARAMS: &[ParamSpec] = &[ParamSpec {
+    key: "mu",
+    unit: "",
+    kind: ParamKind::NON_NEGATIVE,
+    default: ParamDefault::Required,
+    meaning: "constant friction coefficient",
+}];
 
 /// Constant friction coefficient, applied as Coulomb friction on a tangential
 /// spring: the contact sticks while `|F| <= mu N` and slides at `|F| = mu N`.
@@ -11,6 +21,13 @@ use crate::law::{released, sign, ContactLoad, ContactState, FrictionLaw, StepOut
 pub struct Amontons {
     /// Friction coefficient (dimensionless), >= 0.
     pub mu: f64,
+}
+
+impl Amontons {
+    /// The law from its checked parameters ([`PARAMS`]).
+    pub fn from_params(p: &LawParams) -> Self {
+        Amontons { mu: p.number("mu") }
+    }
 }
 
 impl FrictionLaw for Amontons {

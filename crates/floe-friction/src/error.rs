@@ -26,6 +26,10 @@ pub enum FrictionError {
         /// What is wrong with it.
         reason: String,
     },
+    /// A law cannot be registered or built (a name taken twice, values
+    /// that do not go together).
+    #[error("{0}")]
+    InvalidLaw(String),
     /// A least-squares fit could not be carried out.
     #[error("fit failed: {0}")]
     Fit(String),

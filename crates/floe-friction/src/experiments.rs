@@ -5,21 +5,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::any_law::Law;
 use crate::law::FrictionLaw;
-use crate::params::RateStateParams;
+pub use crate::params::Preset;
 use crate::protocol::{Protocol, Segment};
 use crate::spring_slider::{Apparatus, SpringSlider};
-
-/// The paper's two experimental set-ups.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Preset {
-    /// UCL laboratory double shear: k = 20 MN/m, 0.1 mm/s, L = 0.2 mm, 1 kN
-    /// side load on two faces (effective normal load 2 kN).
-    Lab,
-    /// HSVA ice tank: k = 2 MN/m, 8 mm/s, L = 5 mm, 5 kN side load on two faces
-    /// (effective normal load 10 kN).
-    Tank,
-}
 
 /// Default time step of the paper's spring-slider model (section 4), s.
 pub const PAPER_DT_S: f64 = 1e-3;
@@ -46,14 +34,6 @@ impl Preset {
         match self {
             Preset::Lab => 1e-4,
             Preset::Tank => 8e-3,
-        }
-    }
-
-    /// Lishman et al. (2011) parameters at this scale.
-    pub fn params(self) -> RateStateParams {
-        match self {
-            Preset::Lab => RateStateParams::lishman_2011_lab(),
-            Preset::Tank => RateStateParams::lishman_2011_tank(),
         }
     }
 

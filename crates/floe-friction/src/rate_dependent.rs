@@ -5,7 +5,42 @@ use serde::{Deserialize, Serialize};
 use crate::law::{
     released, sign, ContactLoad, ContactState, FrictionLaw, StepOutcome, LAW_STATE_SLOTS,
 };
+use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
+use crate::params::{LISHMAN_A, LISHMAN_B, LISHMAN_MU0, LISHMAN_V_STAR_M_PER_S};
 use crate::rate_state::SOLVER_GUESS;
+
+/// The law's parameters, as the registry publishes them (defaults:
+/// Lishman et al. 2011).
+pub const PARAMS: &[ParamSpec] = &[
+    ParamSpec {
+        key: "mu0",
+        unit: "",
+        kind: ParamKind::FINITE,
+        default: ParamDefault::Number(LISHMAN_MU0),
+        meaning: "friction coefficient at V = V*",
+    },
+    ParamSpec {
+        key: "c1",
+        unit: "",
+        kind: ParamKind::FINITE,
+        default: ParamDefault::Number(LISHMAN_A - LISHMAN_B),
+        meaning: "slope of mu in ln V (A - B of the rate-and-state law)",
+    },
+    ParamSpec {
+        key: "v_star_m_per_s",
+        unit: "m/s",
+        kind: ParamKind::POSITIVE,
+        default: ParamDefault::Number(LISHMAN_V_STAR_M_PER_S),
+        meaning: "reference slip rate V*",
+    },
+    ParamSpec {
+        key: "v_floor_m_per_s",
+        unit: "m/s",
+        kind: ParamKind::POSITIVE,
+        default: ParamDefault::Number(LISHMAN_V_STAR_M_PER_S),
+        meaning: "slip rate below which mu is held at mu(floor): static friction",
+    },
+];
 use crate::root::{solve, Eval};
 
 /// Rate-dependent friction on a tangential spring.
@@ -41,6 +76,16 @@ impl RateDependent {
             c1,
             v_star_m_per_s: crate::params::LISHMAN_V_STAR_M_PER_S,
             v_floor_m_per_s: crate::params::LISHMAN_V_STAR_M_PER_S,
+        }
+    }
+
+    /// The law from its checked parameters ([`PARAMS`]).
+    pub fn from_params(p: &LawParams) -> Self {
+        RateDependent {
+            mu0: p.number("mu0"),
+            c1: p.number("c1"),
+            v_star_m_per_s: p.number("v_star_m_per_s"),
+            v_floor_m_per_s: p.number("v_floor_m_per_s"),
         }
     }
 

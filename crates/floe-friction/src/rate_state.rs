@@ -26,26 +26,67 @@
 use serde::{Deserialize, Serialize};
 
 use crate::law::{sign, BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
-use crate::params::RateStateParams;
+use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
+pub use crate::params::Form;
+use crate::params::{
+    Preset, RateStateParams, LISHMAN_A, LISHMAN_B, LISHMAN_MU0, LISHMAN_V_STAR_M_PER_S,
+};
 use crate::root::{solve, Eval, Root, Solver};
 use crate::state_evolution::{evolve, Evolved, SlipMeasure, StateLaw};
 
-/// How the friction coefficient relates to the slip rate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Form {
-    /// Eq. 4b as published: `V = V* exp((mu - mu0 - theta)/A)`. The slip rate is
-    /// always positive, so the slider creeps forward even at zero or negative
-    /// spring force; it cannot slide backwards.
-    Published,
-    /// Sign-consistent form `V = 2 V* exp(-(mu0 + theta)/A) sinh(mu/A)`: slip and
-    /// friction share their sign and vanish together. Equal to the published form
-    /// to relative order `exp(-2 mu/A)`, which for ice (`A = 0.31`) is not
-    /// negligible: about 5 % in `mu` at 8 mm/s. Needed wherever force can vanish
-    /// or reverse, as on every DEM contact.
-    #[default]
-    Regularized,
-}
+/// The law's parameters, as the registry publishes them (defaults:
+/// Lishman et al. 2011, Table 2; `L` at the preset's scale).
+pub const PARAMS: &[ParamSpec] = &[
+    ParamSpec {
+        key: "mu0",
+        unit: "",
+        kind: ParamKind::FINITE,
+        default: ParamDefault::Number(LISHMAN_MU0),
+        meaning: "steady-state friction coefficient at V = V*",
+    },
+    ParamSpec {
+        key: "a",
+        unit: "",
+        kind: ParamKind::POSITIVE,
+        default: ParamDefault::Number(LISHMAN_A),
+        meaning: "direct effect A",
+    },
+    ParamSpec {
+        key: "b",
+        unit: "",
+        kind: ParamKind::NON_NEGATIVE,
+        default: ParamDefault::Number(LISHMAN_B),
+        meaning: "state evolution effect B (B > A: velocity weakening)",
+    },
+    ParamSpec {
+        key: "v_star_m_per_s",
+        unit: "m/s",
+        kind: ParamKind::POSITIVE,
+        default: ParamDefault::Number(LISHMAN_V_STAR_M_PER_S),
+        meaning: "reference slip rate V*",
+    },
+    ParamSpec {
+        key: "critical_slip_m",
+        unit: "m",
+        kind: ParamKind::POSITIVE,
+        default: ParamDefault::ByPreset(|p: Preset| p.params().critical_slip_m),
+        meaning: "slip distance L over which the state evolves",
+    },
+    ParamSpec {
+        key: "form",
+        unit: "",
+        kind: ParamKind::Word(&["regularized", "published", "regularised"]),
+        default: ParamDefault::Form,
+        meaning: "`regularized`: sign-consistent, for DEM contacts; `published`: eq. 4b, creeps at zero or reversed force",
+    },
+    ParamSpec {
+        key: "state_law",
+        unit: "",
+        kind: ParamKind::Word(&["slip", "aging", "ageing"]),
+        default: ParamDefault::Word("slip"),
+        meaning: "`slip` (Ruina, eq. 3b: heals only while slipping) or `aging` (Dieterich: heals at rest)",
+    },
+];
 
 /// Slot of [`ContactState::law_state`] holding `theta`.
 pub const THETA: usize = 0;
@@ -138,6 +179,26 @@ struct StepConstants {
 }
 
 impl RateState {
+    /// The law from its checked parameters ([`PARAMS`]).
+    pub fn from_params(p: &LawParams) -> Self {
+        let params = RateStateParams {
+            mu0: p.number("mu0"),
+            a: p.number("a"),
+            b: p.number("b"),
+            v_star_m_per_s: p.number("v_star_m_per_s"),
+            critical_slip_m: p.number("critical_slip_m"),
+        };
+        let form = match p.word("form") {
+            "published" => Form::Published,
+            _ => Form::Regularized,
+        };
+        let state_law = match p.word("state_law") {
+            "aging" | "ageing" => StateLaw::Aging,
+            _ => StateLaw::Slip,
+        };
+        RateState::new(params, form, state_law)
+    }
+
     /// A rate-and-state law from its three ingredients.
     pub fn new(params: RateStateParams, form: Form, state_law: StateLaw) -> Self {
         Self {

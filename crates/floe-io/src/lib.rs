@@ -5,7 +5,8 @@
 //! snapshots of the floes and their contacts, assembly observables, the
 //! run's provenance, and checkpoints that a run resumes from bitwise.
 //!
-//! [`RunWriter`] creates and appends to a file; [`RunFile`] reads one.
+//! [`RunWriter`] creates and appends to a file (and is the stepping loop's
+//! observer, [`observer`]); [`RunFile`] reads one.
 //! Checkpoints live in two slots written alternately, with the valid one
 //! switched only after the new one is flushed, so a process killed at any
 //! moment leaves a file that [`RunWriter::reopen_for_resume`] continues.
@@ -17,6 +18,7 @@ pub mod error;
 mod h5;
 pub mod layout;
 pub mod metadata;
+pub mod observer;
 pub mod reader;
 pub mod writer;
 

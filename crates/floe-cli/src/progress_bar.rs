@@ -1,0 +1,88 @@
+//! Progress of a long run: an indicatif bar on a terminal (simulated time,
+//! steps per second, ETA), plain log lines every 10 % otherwise (batch jobs
+//! whose standard error goes to a file).
+
+use std::io::IsTerminal;
+use std::time::{Duration, Instant};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use floe_dem::run::{format_sim_time, Progress};
+
+/// Progress on standard error.
+pub struct RunProgress {
+    bar: Option<ProgressBar>,
+    started: Instant,
+    first_step: u64,
+    last_message: Instant,
+    next_log_fraction: f64,
+    end_time_s: f64,
+}
+
+impl RunProgress {
+    /// Progress from `first_step` to `total_steps` (simulated end `end_time_s`);
+    /// a bar if standard error is a terminal and `show` is set, log lines if
+    /// it is not, nothing if `show` is false.
+    pub fn new(first_step: u64, total_steps: u64, end_time_s: f64, show: bool) -> Self {
+        let bar = (show && std::io::stderr().is_terminal()).then(|| {
+            let bar = ProgressBar::with_draw_target(
+                Some(total_steps),
+                ProgressDrawTarget::stderr_with_hz(4),
+            );
+            bar.set_style(
+                ProgressStyle::with_template(
+                    "{bar:30} {pos}/{len} steps  t = {msg}  {per_sec}  ETA {eta}",
+                )
+                .expect("constant template")
+                .progress_chars("=> "),
+            );
+            bar.set_position(first_step);
+            bar.reset_eta();
+            bar
+        });
+        Self {
+            bar,
+            started: Instant::now(),
+            first_step,
+            last_message: Instant::now() - Duration::from_secs(1),
+            next_log_fraction: if show { 0.1 } else { f64::INFINITY },
+            end_time_s,
+        }
+    }
+}
+
+impl Progress for RunProgress {
+    fn update(&mut self, step: u64, total_steps: u64, time_s: f64) {
+        if let Some(bar) = &self.bar {
+            bar.set_position(step);
+            // Formatting allocates: only a few times a second.
+            if self.last_message.elapsed() >= Duration::from_millis(250) {
+                bar.set_message(format!(
+                    "{} / {}",
+                    format_sim_time(time_s),
+                    format_sim_time(self.end_time_s)
+                ));
+                self.last_message = Instant::now();
+            }
+            return;
+        }
+        let fraction = step as f64 / total_steps.max(1) as f64;
+        if fraction >= self.next_log_fraction {
+            let rate = (step - self.first_step) as f64 / self.started.elapsed().as_secs_f64();
+            eprintln!(
+                "step {step}/{total_steps} ({:.0} %), t = {}, {rate:.1} steps/s",
+                100.0 * fraction,
+                format_sim_time(time_s)
+            );
+            while self.next_log_fraction <= fraction {
+                self.next_log_fraction += 0.1;
+            }
+        }
+    }
+
+    fn finish(&mut self) {
+        if let Some(bar) = self.bar.take() {
+            bar.abandon();
+        }
+    }
+}

@@ -1,0 +1,199 @@
+//! The stepping loop: advances a world to a given step, hands snapshots,
+//! observables and checkpoints to an observer at their cadences, stops
+//! cleanly on an interrupt or a numerical blow-up.
+//!
+//! Cadences are counted in absolute steps (`steps % every == 0`), never from
+//! the start of this process, so a resumed run writes exactly where the
+//! uninterrupted run would have.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use crate::forcing::ExternalForces;
+use crate::observables::Observables;
+use crate::state::WorldState;
+use crate::world::World;
+
+use floe_friction::FrictionLaw;
+
+use super::health::{check_health, BlowUp};
+
+/// What the loop reports to: the HDF5 run writer of floe-io is one, tests
+/// use an in-memory one.
+pub trait RunObserver<F: ExternalForces> {
+    /// The error type of the sink.
+    type Error;
+    /// A snapshot of the world (floes and contacts).
+    fn snapshot(&mut self, world: &World<F>) -> Result<(), Self::Error>;
+    /// One sample of the assembly observables at step `step`.
+    fn observables(&mut self, step: u64, observables: &Observables) -> Result<(), Self::Error>;
+    /// A checkpoint from which the run can continue bitwise; each contact's
+    /// friction state has `law_state_slots` slots of law state.
+    fn checkpoint(&mut self, state: &WorldState, law_state_slots: usize)
+        -> Result<(), Self::Error>;
+}
+
+/// When to write, in steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Cadence {
+    /// Steps between snapshots (>= 1).
+    pub snapshot: u64,
+    /// Steps between observable samples (>= 1).
+    pub observables: u64,
+    /// Steps between checkpoints (>= 1).
+    pub checkpoint: u64,
+}
+
+impl Cadence {
+    /// Cadences given in seconds, rounded to whole steps of `dt_s`, at least one step.
+    pub fn from_seconds(snapshot_s: f64, observables_s: f64, checkpoint_s: f64, dt_s: f64) -> Self {
+        let steps = |s: f64| ((s / dt_s).round() as u64).max(1);
+        Self {
+            snapshot: steps(snapshot_s),
+            observables: steps(observables_s),
+            checkpoint: steps(checkpoint_s),
+        }
+    }
+}
+
+/// How a call to [`drive`] ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Ending {
+    /// The last step was reached; everything was written.
+    Completed,
+    /// The interrupt flag was raised; the step in progress was finished and
+    /// a checkpoint and final snapshot written (see `finish_interrupted`).
+    Interrupted {
+        /// The step the run stopped at.
+        step: u64,
+    },
+    /// The state went bad; a last snapshot was written, the last checkpoint
+    /// is the last good state.
+    BlewUp(BlowUp),
+    /// The step budget of this invocation was used up before the end; a
+    /// checkpoint (and a snapshot) was written as for an interrupt.
+    Paused {
+        /// The step the run paused at.
+        step: u64,
+    },
+}
+
+/// Progress reports, one per step (implementations throttle themselves).
+pub trait Progress {
+    /// Called after each step with the steps done and the total.
+    fn update(&mut self, step: u64, total_steps: u64, time_s: f64);
+    /// Called once when the loop ends.
+    fn finish(&mut self);
+}
+
+/// No progress output.
+pub struct Silent;
+
+impl Progress for Silent {
+    fn update(&mut self, _: u64, _: u64, _: f64) {}
+    fn finish(&mut self) {}
+}
+
+/// Writes what is due at the world's current step.
+fn write_due<F: ExternalForces, O: RunObserver<F>>(
+    world: &World<F>,
+    observer: &mut O,
+    cadence: Cadence,
+    domain_area_m2: f64,
+    force_all: bool,
+) -> Result<(), O::Error> {
+    let step = world.steps();
+    if force_all || step.is_multiple_of(cadence.observables) {
+        observer.observables(step, &world.observables(domain_area_m2))?;
+    }
+    if force_all || step.is_multiple_of(cadence.snapshot) {
+        observer.snapshot(world)?;
+    }
+    // The checkpoint comes last: whatever it records as written is written.
+    if force_all || step.is_multiple_of(cadence.checkpoint) {
+        observer.checkpoint(world.state(), world.model().law.state_slots())?;
+    }
+    Ok(())
+}
+
+/// Writes the initial output of a fresh run (step 0: observables, snapshot, checkpoint).
+pub fn start<F: ExternalForces, O: RunObserver<F>>(
+    world: &World<F>,
+    observer: &mut O,
+    domain_area_m2: f64,
+) -> Result<(), O::Error> {
+    let all = Cadence {
+        snapshot: 1,
+        observables: 1,
+        checkpoint: 1,
+    };
+    write_due(world, observer, all, domain_area_m2, true)
+}
+
+/// Steps `world` until `total_steps`, or until `pause_at` if that comes
+/// first, writing at the cadences. Checks the interrupt flag and the
+/// state's health after every step.
+#[allow(clippy::too_many_arguments)] // one call site; a struct would only rename them
+pub fn drive<F: ExternalForces, O: RunObserver<F>>(
+    world: &mut World<F>,
+    total_steps: u64,
+    pause_at: Option<u64>,
+    cadence: Cadence,
+    domain_area_m2: f64,
+    observer: &mut O,
+    interrupt: &AtomicBool,
+    progress: &mut dyn Progress,
+) -> Result<Ending, O::Error> {
+    while world.steps() < total_steps {
+        world.step();
+        progress.update(world.steps(), total_steps, world.time_s());
+        if let Some(blow_up) = check_health(world) {
+            // The bad state is shown (it is what one needs to see), but the
+            // checkpoint is left at the last good state.
+            observer.observables(world.steps(), &world.observables(domain_area_m2))?;
+            observer.snapshot(world)?;
+            progress.finish();
+            return Ok(Ending::BlewUp(blow_up));
+        }
+        let last = world.steps() == total_steps;
+        write_due(world, observer, cadence, domain_area_m2, last)?;
+        if interrupt.load(Ordering::SeqCst) && !last {
+            finish_interrupted(world, observer, cadence, domain_area_m2)?;
+            progress.finish();
+            return Ok(Ending::Interrupted {
+                step: world.steps(),
+            });
+        }
+        if pause_at == Some(world.steps()) && !last {
+            finish_interrupted(world, observer, cadence, domain_area_m2)?;
+            progress.finish();
+            return Ok(Ending::Paused {
+                step: world.steps(),
+            });
+        }
+    }
+    progress.finish();
+    Ok(Ending::Completed)
+}
+
+/// After an interrupt: a checkpoint at this step, then the observables and
+/// snapshot the cadence did not already write. The checkpoint comes before
+/// those extras, so it does not count them and a resume drops them: the
+/// resumed file then holds exactly the uninterrupted run's output.
+fn finish_interrupted<F: ExternalForces, O: RunObserver<F>>(
+    world: &World<F>,
+    observer: &mut O,
+    cadence: Cadence,
+    domain_area_m2: f64,
+) -> Result<(), O::Error> {
+    let step = world.steps();
+    if !step.is_multiple_of(cadence.checkpoint) {
+        observer.checkpoint(world.state(), world.model().law.state_slots())?;
+    }
+    if !step.is_multiple_of(cadence.observables) {
+        observer.observables(step, &world.observables(domain_area_m2))?;
+    }
+    if !step.is_multiple_of(cadence.snapshot) {
+        observer.snapshot(world)?;
+    }
+    Ok(())
+}

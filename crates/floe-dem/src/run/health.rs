@@ -1,0 +1,120 @@
+//! Detecting a numerical blow-up: a state an explicit integrator reaches
+//! when the time step is too long for the stiffest contact, or when a
+//! scenario drives floes into each other faster than contacts can push back.
+
+use std::fmt;
+
+use crate::forcing::ExternalForces;
+use crate::world::World;
+
+/// Overlap, as a fraction of the smaller floe's area, beyond which a contact
+/// is taken as a blow-up. Elastic overlaps in a sea-ice pack are a tiny
+/// fraction of a floe (the contact stiffness is set for that); a quarter of
+/// a floe means the contact force cannot stop the approach.
+pub const MAX_OVERLAP_FRACTION: f64 = 0.25;
+
+/// What went wrong, where and when.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlowUp {
+    /// The step at which it was detected.
+    pub step: u64,
+    /// Simulated time, s.
+    pub time_s: f64,
+    /// The time step in use, s.
+    pub dt_s: f64,
+    /// Which floes, and what is wrong with them.
+    pub what: Fault,
+}
+
+/// The kind of fault.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Fault {
+    /// A floe's position, angle or velocity is not finite.
+    NonFinite {
+        /// Global id of the floe.
+        floe_id: u64,
+    },
+    /// Two floes overlap beyond [`MAX_OVERLAP_FRACTION`].
+    Overlap {
+        /// Global ids of the two floes.
+        floe_ids: (u64, u64),
+        /// Overlap area over the smaller floe's area.
+        fraction: f64,
+    },
+}
+
+impl BlowUp {
+    /// A time step to try: half the one that failed.
+    pub fn suggested_dt_s(&self) -> f64 {
+        0.5 * self.dt_s
+    }
+}
+
+impl fmt::Display for BlowUp {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "numerical blow-up at step {} (t = {}): ",
+            self.step,
+            super::sim_time::format_sim_time(self.time_s)
+        )?;
+        match &self.what {
+            Fault::NonFinite { floe_id } => {
+                write!(f, "floe {floe_id} has a non-finite position or velocity")?
+            }
+            Fault::Overlap { floe_ids, fraction } => write!(
+                f,
+                "floes {} and {} overlap by {:.0} % of the smaller one (limit {:.0} %)",
+                floe_ids.0,
+                floe_ids.1,
+                100.0 * fraction,
+                100.0 * MAX_OVERLAP_FRACTION
+            )?,
+        }
+        write!(
+            f,
+            "; try dt_s = {} (half of {} s) or weaker forcing",
+            seconds(self.suggested_dt_s()),
+            seconds(self.dt_s)
+        )
+    }
+}
+
+/// The first fault in `world`, if any: floes in handle order, then contacts
+/// in pair order (so the report is the same for any thread count).
+pub fn check_health<F: ExternalForces>(world: &World<F>) -> Option<BlowUp> {
+    let f = &world.floes();
+    let fault = (0..f.len())
+        .find(|&i| {
+            !(f.position[i].is_finite()
+                && f.velocity[i].is_finite()
+                && f.angle[i].is_finite()
+                && f.angular_velocity[i].is_finite())
+        })
+        .map(|i| Fault::NonFinite { floe_id: f.id[i] })
+        .or_else(|| {
+            world.contacts().iter().find_map(|c| {
+                let (a, b) = (c.a as usize, c.b as usize);
+                let fraction = c.overlap_m2 / f.area_m2[a].min(f.area_m2[b]);
+                (fraction > MAX_OVERLAP_FRACTION).then_some(Fault::Overlap {
+                    floe_ids: (f.id[a], f.id[b]),
+                    fraction,
+                })
+            })
+        })?;
+    Some(BlowUp {
+        step: world.steps(),
+        time_s: world.time_s(),
+        dt_s: world.dt_s(),
+        what: fault,
+    })
+}
+
+/// A time step for a message: four significant digits, plain or scientific.
+fn seconds(x: f64) -> String {
+    if (1e-2..1e4).contains(&x.abs()) {
+        format!("{x:.4}")
+    } else {
+        format!("{x:.3e}")
+    }
+}

@@ -1,0 +1,644 @@
+//! From resolved values to floe-dem objects: the floes (generated or
+//! explicit), the walls as strings of prescribed floes, and the time step.
+//!
+//! Floe order (and id): the free floes of the tessellation, or the
+//! `[[floe]]` tables in file order; then the prescribed blocks of a
+//! double-shear set-up; then the wall segments, wall by wall in file order.
+
+use std::ops::Range;
+
+use floe_dem::floes::{Floe, Floes};
+use floe_dem::geometry::FloeShape;
+use floe_dem::tessellation::{DiamondLattice, Rect, Tessellation, VoronoiFloes, MAX_FLOES};
+use floe_dem::world::stable_time_step;
+use floe_dem::Vec2;
+use floe_friction::Law;
+
+use crate::built_floes::BuiltFloes;
+use crate::checks;
+use crate::error::ScenarioError;
+use crate::numbers::{sig, thousands};
+use crate::resolve::{dem_error, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION};
+use crate::source_file::SourceFile;
+
+/// Most segments one wall is made of (a wall much longer than the floes are
+/// wide gets longer segments rather than millions of them).
+const MAX_WALL_SEGMENTS: usize = 100_000;
+
+/// One floe to be created.
+pub(crate) struct Piece {
+    pub polygon: Vec<Vec2>,
+    pub thickness_m: f64,
+    pub velocity: Vec2,
+    pub angular_velocity: f64,
+    pub prescribed: bool,
+    /// What it is, for messages (`floe[3]`, `wall[0] (bottom)`...).
+    pub label: Option<String>,
+    /// Where it was written, for explicit floes.
+    pub span: Option<Range<usize>>,
+}
+
+/// The ice region: the domain minus the wall insets.
+pub(crate) fn ice_region(r: &Resolved) -> Rect {
+    let d = &r.domain;
+    let mut min = d.min_m;
+    let mut max = d.min_m + d.size_m;
+    for w in &r.walls {
+        match w.side {
+            Side::Left => min.x += w.inset_m,
+            Side::Right => max.x -= w.inset_m,
+            Side::Bottom => min.y += w.inset_m,
+            Side::Top => max.y -= w.inset_m,
+        }
+    }
+    Rect::new(min, max)
+}
+
+fn rect_polygon(center: Vec2, size: [f64; 2]) -> Vec<Vec2> {
+    let h = Vec2::new(0.5 * size[0], 0.5 * size[1]);
+    vec![
+        center - h,
+        center + Vec2::new(h.x, -h.y),
+        center + h,
+        center + Vec2::new(-h.x, h.y),
+    ]
+}
+
+/// The free (and double-shear prescribed) pieces and report lines.
+fn generate(
+    f: &SourceFile,
+    r: &Resolved,
+    region: Rect,
+    report: &mut Vec<String>,
+) -> Result<Vec<Piece>, ScenarioError> {
+    let span = r.floes_span.clone();
+    let dem = |e| dem_error(f, span.clone(), "tessellation", e);
+    let free = |t: Tessellation, v: Vec2| -> Vec<Piece> {
+        t.polygons
+            .into_iter()
+            .zip(t.thickness_m)
+            .map(|(polygon, thickness_m)| Piece {
+                polygon,
+                thickness_m,
+                velocity: v,
+                angular_velocity: 0.0,
+                prescribed: false,
+                label: None,
+                span: None,
+            })
+            .collect()
+    };
+    let v0 = r.initial_velocity;
+    let dropped_line = |what: &str, dropped: usize, area: f64| {
+        format!(
+            "  {} {what} below {} of the nominal floe area dropped ({} m^2, {} % of the ice region)",
+            thousands(dropped),
+            r.min_area_fraction,
+            sig(area),
+            sig(100.0 * area / region.area_m2())
+        )
+    };
+    match &r.floes {
+        FloeSource::Diamond {
+            side_m,
+            acute_angle_deg,
+            orientation_deg,
+            diagonals_m,
+            jitter_fraction,
+        } => {
+            let lattice = match diagonals_m {
+                Some((along, across)) => DiamondLattice::from_diagonals(
+                    region,
+                    *along,
+                    *across,
+                    *orientation_deg,
+                    r.thickness,
+                    *jitter_fraction,
+                    r.seed,
+                )
+                .map_err(dem)?,
+                None => DiamondLattice {
+                    domain: region,
+                    side_m: *side_m,
+                    acute_angle_deg: *acute_angle_deg,
+                    orientation_deg: *orientation_deg,
+                    thickness: r.thickness,
+                    jitter_fraction: *jitter_fraction,
+                    seed: r.seed,
+                },
+            };
+            let (mut t, lr) = lattice.build_with_report().map_err(dem)?;
+            let cell = lattice.cell_area_m2();
+            let drop = t.drop_floes_smaller_than(r.min_area_fraction * cell);
+            let (d_along, d_across) = lattice.diagonals_m();
+            report.push(format!(
+                "floes: {} diamonds, side {} m, acute angle {} deg, diagonals {} x {} m, orientation {} deg, jitter {}",
+                thousands(t.len()),
+                sig(lattice.side_m),
+                sig(lattice.acute_angle_deg),
+                sig(d_along),
+                sig(d_across),
+                sig(lattice.orientation_deg),
+                lattice.jitter_fraction
+            ));
+            report.push(format!(
+                "  {} clipped at the edges of the ice region; {} slivers dropped by the lattice",
+                thousands(lr.clipped_floes),
+                lr.dropped_slivers
+            ));
+            report.push(dropped_line(
+                "clipped pieces",
+                drop.dropped,
+                drop.dropped_area_m2,
+            ));
+            Ok(free(t, v0))
+        }
+        FloeSource::Voronoi {
+            count,
+            floe_scale_m,
+            relax_iterations,
+        } => {
+            let n = match (count, floe_scale_m) {
+                (Some(n), _) => *n,
+                (None, Some(scale)) => {
+                    let n = (region.area_m2() / (scale * scale)).round().max(1.0);
+                    if n > MAX_FLOES as f64 {
+                        return Err(f.error(
+                            span,
+                            "tessellation.floe_scale_m",
+                            format!("would make about {n:.3e} floes, above the cap of {MAX_FLOES}"),
+                        ));
+                    }
+                    n as usize
+                }
+                (None, None) => unreachable!("resolve requires count or floe_scale_m"),
+            };
+            let v = VoronoiFloes {
+                domain: region,
+                count: n,
+                seed: r.seed,
+                thickness: r.thickness,
+                relax_iterations: *relax_iterations,
+            };
+            let mut t = v.build().map_err(dem)?;
+            let mean = region.area_m2() / n as f64;
+            let drop = t.drop_floes_smaller_than(r.min_area_fraction * mean);
+            report.push(format!(
+                "floes: {} Voronoi cells (mean area {} m^2, {} Lloyd iterations)",
+                thousands(t.len()),
+                sig(mean),
+                relax_iterations
+            ));
+            report.push(dropped_line("cells", drop.dropped, drop.dropped_area_m2));
+            Ok(free(t, v0))
+        }
+        FloeSource::Grid {
+            columns,
+            rows,
+            gap_m,
+        } => {
+            let (cw, ch) = (
+                region.width_m() / *columns as f64,
+                region.height_m() / *rows as f64,
+            );
+            if !(*gap_m < cw && *gap_m < ch) {
+                return Err(f.error(
+                    span,
+                    "tessellation.gap_m",
+                    format!(
+                        "gap {gap_m} m leaves nothing of the {} x {} m cells",
+                        sig(cw),
+                        sig(ch)
+                    ),
+                ));
+            }
+            let n = columns.saturating_mul(*rows);
+            if n > MAX_FLOES {
+                return Err(f.error(
+                    span,
+                    "tessellation.columns",
+                    format!("{columns} x {rows} floes is above the cap of {MAX_FLOES}"),
+                ));
+            }
+            let thickness = r.thickness.sample(n, r.seed).map_err(dem)?;
+            let mut polygons = Vec::with_capacity(n);
+            for j in 0..*rows {
+                for i in 0..*columns {
+                    let c = region.min + Vec2::new((i as f64 + 0.5) * cw, (j as f64 + 0.5) * ch);
+                    polygons.push(rect_polygon(c, [cw - gap_m, ch - gap_m]));
+                }
+            }
+            report.push(format!(
+                "floes: {} rectangles ({columns} x {rows}), {} x {} m, gap {} m",
+                thousands(n),
+                sig(cw - gap_m),
+                sig(ch - gap_m),
+                sig(*gap_m)
+            ));
+            Ok(free(
+                Tessellation {
+                    polygons,
+                    thickness_m: thickness,
+                },
+                v0,
+            ))
+        }
+        FloeSource::Explicit(list) => {
+            let thickness = r.thickness.sample(list.len(), r.seed).map_err(dem)?;
+            let prescribed = list.iter().filter(|e| e.prescribed).count();
+            report.push(format!(
+                "floes: {} from [[floe]] tables ({} free, {} prescribed)",
+                list.len(),
+                list.len() - prescribed,
+                prescribed
+            ));
+            Ok(list
+                .iter()
+                .zip(thickness)
+                .enumerate()
+                .map(|(i, (e, h))| Piece {
+                    polygon: e.vertices.clone(),
+                    thickness_m: e.thickness_m.unwrap_or(h),
+                    velocity: e
+                        .velocity
+                        .unwrap_or(if e.prescribed { Vec2::ZERO } else { v0 }),
+                    angular_velocity: e.angular_velocity_rad_per_s,
+                    prescribed: e.prescribed,
+                    label: Some(format!("floe[{i}]")),
+                    span: Some(e.span.clone()),
+                })
+                .collect())
+        }
+        FloeSource::DoubleShear {
+            block_m,
+            side_block_m,
+            pusher_m,
+            normal_load_per_face_n,
+            push_velocity_m_per_s,
+        } => double_shear(
+            f,
+            r,
+            *block_m,
+            *side_block_m,
+            *pusher_m,
+            *normal_load_per_face_n,
+            *push_velocity_m_per_s,
+            report,
+        ),
+    }
+}
+
+/// The double-shear set-up of Lishman et al. (2011): a free block between
+/// two fixed blocks that overlap it by the depth giving the normal load,
+/// pushed along x by a prescribed plate whose contact is the loading spring.
+#[allow(clippy::too_many_arguments)]
+fn double_shear(
+    f: &SourceFile,
+    r: &Resolved,
+    block: [f64; 2],
+    side: [f64; 2],
+    pusher: [f64; 2],
+    load: f64,
+    v: f64,
+    report: &mut Vec<String>,
+) -> Result<Vec<Piece>, ScenarioError> {
+    let span = r.floes_span.clone();
+    let h = r.thickness.mean_m();
+    let geometry = checks::double_shear_geometry(&r.model, h, block, pusher, load);
+    if geometry.depth_m >= 0.25 * block[1] {
+        return Err(f.error(
+            span,
+            "tessellation.normal_load_per_face_n",
+            format!(
+                "{load} N per face needs an overlap {} m deep, over a quarter of the block's width {} m: raise contact.youngs_modulus_pa or lower the load",
+                sig(geometry.depth_m),
+                block[1]
+            ),
+        ));
+    }
+    let travel = v * r.duration_s;
+    if side[0] < block[0] + travel {
+        return Err(f.error(
+            span,
+            "tessellation.side_block_m",
+            format!(
+                "side blocks {} m long are too short: the {} m block travels {} m in duration_s, so they must be at least {} m long",
+                sig(side[0]),
+                sig(block[0]),
+                sig(travel),
+                sig(block[0] + travel)
+            ),
+        ));
+    }
+    let d = &r.domain;
+    let c = d.min_m + 0.5 * d.size_m;
+    let depth = geometry.depth_m;
+    let side_y = 0.5 * block[1] + 0.5 * side[1] - depth;
+    let side_x = c.x + 0.5 * travel;
+    let pusher_c = Vec2::new(c.x - 0.5 * block[0] - 0.5 * pusher[0], c.y);
+    let pieces = vec![
+        Piece {
+            polygon: rect_polygon(c, block),
+            thickness_m: h,
+            velocity: Vec2::new(v, 0.0),
+            angular_velocity: 0.0,
+            prescribed: false,
+            label: Some("block".into()),
+            span: None,
+        },
+        Piece {
+            polygon: rect_polygon(Vec2::new(side_x, c.y + side_y), side),
+            thickness_m: h,
+            velocity: Vec2::ZERO,
+            angular_velocity: 0.0,
+            prescribed: true,
+            label: Some("upper side block".into()),
+            span: None,
+        },
+        Piece {
+            polygon: rect_polygon(Vec2::new(side_x, c.y - side_y), side),
+            thickness_m: h,
+            velocity: Vec2::ZERO,
+            angular_velocity: 0.0,
+            prescribed: true,
+            label: Some("lower side block".into()),
+            span: None,
+        },
+        Piece {
+            polygon: rect_polygon(pusher_c, pusher),
+            thickness_m: h,
+            velocity: Vec2::new(v, 0.0),
+            angular_velocity: 0.0,
+            prescribed: true,
+            label: Some("pusher".into()),
+            span: None,
+        },
+    ];
+    // Everything, with its travel, must lie in the domain.
+    let (lo, hi) = (d.min_m, d.min_m + d.size_m);
+    for p in &pieces {
+        let moves = if p.velocity.x != 0.0 { travel } else { 0.0 };
+        for q in &p.polygon {
+            if q.x < lo.x || q.x + moves > hi.x || q.y < lo.y || q.y > hi.y {
+                return Err(f.error(
+                    span,
+                    "domain.size_m",
+                    format!(
+                        "the double-shear set-up ({}, with {} m of travel) does not fit in the domain [{}, {}] x [{}, {}] m",
+                        p.label.as_deref().unwrap_or("a block"),
+                        sig(travel),
+                        lo.x, hi.x, lo.y, hi.y
+                    ),
+                ));
+            }
+        }
+    }
+    report.push(format!(
+        "floes: double shear: block {} x {} x {} m pushed at {} m/s between fixed side blocks {} x {} m",
+        block[0], block[1], sig(h), sig(v), side[0], side[1]
+    ));
+    report.push(format!(
+        "  normal load {} N per face ({} N on both) from an overlap {} m deep; contact kappa = E h / sqrt(A) = {} Pa",
+        sig(load),
+        sig(2.0 * load),
+        sig(depth),
+        sig(geometry.kappa_pa)
+    ));
+    report.push(format!(
+        "  loading spring (pusher contact, {} m wide) k = {} N/m; side contacts k_t = {} N/m each; in series {} N/m",
+        sig(pusher[1].min(block[1])),
+        sig(geometry.pusher_stiffness_n_per_m),
+        sig(geometry.side_tangential_stiffness_n_per_m),
+        sig(geometry.series_stiffness_n_per_m)
+    ));
+    if let Law::RateState(rs) = &r.model.law {
+        let p = rs.params;
+        if p.b > p.a {
+            let kc = 2.0 * load * (p.b - p.a) / p.critical_slip_m;
+            report.push(format!(
+                "  critical stiffness N (B - A) / L = {} N/m: steady sliding is {} at this stiffness",
+                sig(kc),
+                if geometry.series_stiffness_n_per_m > kc {
+                    "stable"
+                } else {
+                    "unstable (stick-slip expected)"
+                }
+            ));
+        }
+    }
+    Ok(pieces)
+}
+
+/// Builds the floes (free, prescribed, walls) and checks their layout.
+pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, ScenarioError> {
+    checks::walls_fit(f, r)?;
+    let region = ice_region(r);
+    let mut report = Vec::new();
+    if let Some(t) = &r.title {
+        report.push(format!("scenario: {t}"));
+    }
+    let mut pieces = generate(f, r, region, &mut report)?;
+    let free = pieces.iter().filter(|p| !p.prescribed).count();
+    if free == 0 {
+        return Err(f.error(
+            r.floes_span.clone(),
+            "tessellation",
+            "no free floes: the tessellation is empty (cells larger than the ice region?) or every [[floe]] is prescribed",
+        ));
+    }
+    let r_max = pieces
+        .iter()
+        .filter(|p| !p.prescribed)
+        .map(|p| {
+            let c = p.polygon.iter().fold(Vec2::ZERO, |a, &b| a + b) / p.polygon.len() as f64;
+            p.polygon
+                .iter()
+                .map(|&q| (q - c).length())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max);
+    let mean_h = r.thickness.mean_m();
+    for w in &r.walls {
+        let segments = wall_segments(r, w, r_max);
+        report.push(format!(
+            "wall[{}]: {} side, {}, {} segments {} m long, {} m thick",
+            w.index,
+            w.side.name(),
+            if w.velocity == Vec2::ZERO {
+                "fixed".to_string()
+            } else {
+                format!("moving at [{}, {}] m/s", w.velocity.x, w.velocity.y)
+            },
+            segments.len(),
+            sig(segments.first().map_or(0.0, |s| {
+                let e = s[2] - s[0];
+                if w.side.axis() == 0 {
+                    e.y
+                } else {
+                    e.x
+                }
+            })),
+            sig(w.thickness_m.unwrap_or(r_max))
+        ));
+        for polygon in segments {
+            pieces.push(Piece {
+                polygon,
+                thickness_m: mean_h,
+                velocity: w.velocity,
+                angular_velocity: 0.0,
+                prescribed: true,
+                label: Some(format!("wall[{}] ({})", w.index, w.side.name())),
+                span: Some(w.span.clone()),
+            });
+        }
+    }
+    let periodicity = r.domain.periodicity();
+    let mut floes = Floes::default();
+    let mut spans = Vec::with_capacity(pieces.len());
+    let mut labels = Vec::with_capacity(pieces.len());
+    for (i, p) in pieces.into_iter().enumerate() {
+        let (shape, centroid) = FloeShape::from_world(i, &p.polygon).map_err(|e| {
+            let reason = match e {
+                floe_dem::DemError::InvalidFloe { reason, .. } => reason,
+                other => other.to_string(),
+            };
+            match (&p.span, &p.label) {
+                (Some(s), Some(l)) => f.error(s.clone(), l.clone(), reason),
+                _ => f.error(r.floes_span.clone(), "tessellation", reason),
+            }
+        })?;
+        let floe = Floe::new(
+            i as u64,
+            &shape,
+            periodicity.wrap(centroid),
+            p.thickness_m,
+            r.density_kg_per_m3,
+        );
+        let floe = if p.prescribed {
+            floe.prescribed(p.velocity)
+        } else {
+            floe
+        };
+        floes
+            .insert(floe.with_velocity(p.velocity, p.angular_velocity))
+            .map_err(|e| match (&p.span, &p.label) {
+                (Some(s), Some(l)) => f.error(s.clone(), l.clone(), e.to_string()),
+                _ => f.error(r.floes_span.clone(), "tessellation", e.to_string()),
+            })?;
+        spans.push(p.span);
+        labels.push(p.label);
+    }
+    let built = BuiltFloes {
+        floes,
+        pieces_span: spans,
+        labels,
+        report,
+        free,
+    };
+    if matches!(r.floes, FloeSource::Explicit(_)) {
+        checks::no_initial_overlap(f, r, &built)?;
+    }
+    Ok(built)
+}
+
+/// The outlines of a wall's segments: rectangles about one floe diameter
+/// long, so that the broad phase's cells stay floe-sized.
+fn wall_segments(r: &Resolved, w: &Wall, r_max: f64) -> Vec<Vec<Vec2>> {
+    let region = ice_region(r);
+    let d = &r.domain;
+    let t = w.thickness_m.unwrap_or(r_max);
+    let along = 1 - w.side.axis();
+    let vmax = r
+        .walls
+        .iter()
+        .map(|w| w.velocity.length())
+        .fold(0.0, f64::max);
+    let reach = t + vmax * r.duration_s;
+    let (lo, hi) = if d.periodic[along] {
+        (d.min_m[along], d.min_m[along] + d.size_m[along])
+    } else {
+        (region.min[along] - reach, region.max[along] + reach)
+    };
+    // Segments of one floe diameter, but at most MAX_WALL_SEGMENTS of them.
+    let target = (2.0 * r_max).max((hi - lo) / MAX_WALL_SEGMENTS as f64);
+    let n = ((hi - lo) / target)
+        .ceil()
+        .clamp(1.0, MAX_WALL_SEGMENTS as f64) as usize;
+    let step = (hi - lo) / n as f64;
+    let (a, b) = match w.side {
+        Side::Left => (region.min.x - t, region.min.x),
+        Side::Right => (region.max.x, region.max.x + t),
+        Side::Bottom => (region.min.y - t, region.min.y),
+        Side::Top => (region.max.y, region.max.y + t),
+    };
+    (0..n)
+        .map(|k| {
+            let (s0, s1) = (lo + k as f64 * step, lo + (k + 1) as f64 * step);
+            let (x0, x1, y0, y1) = if w.side.axis() == 0 {
+                (a, b, s0, s1)
+            } else {
+                (s0, s1, a, b)
+            };
+            vec![
+                Vec2::new(x0, y0),
+                Vec2::new(x1, y0),
+                Vec2::new(x1, y1),
+                Vec2::new(x0, y1),
+            ]
+        })
+        .collect()
+}
+
+/// The time step: automatic, or the file's if stable.
+pub(crate) fn time_step(
+    f: &SourceFile,
+    r: &Resolved,
+    built: &BuiltFloes,
+) -> Result<(f64, f64, String), ScenarioError> {
+    let (limit, culprit) = stable_time_step(&built.floes, &r.model);
+    let culprit_name = built.labels[culprit]
+        .clone()
+        .unwrap_or_else(|| format!("floe {culprit}"));
+    let steps = |dt: f64| ((r.duration_s / dt).round() as u64).max(1);
+    match &r.dt {
+        DtChoice::Auto => {
+            let dt = AUTO_DT_FRACTION * limit;
+            Ok((
+                dt,
+                limit,
+                format!(
+                    "dt: {} s (auto: {AUTO_DT_FRACTION} x the stable limit {} s, set by {culprit_name}); {} steps for {} s",
+                    sig(dt),
+                    sig(limit),
+                    thousands(steps(dt) as usize),
+                    sig(r.duration_s)
+                ),
+            ))
+        }
+        DtChoice::Given(dt, span) => {
+            if *dt > limit {
+                return Err(f.error(
+                    span.clone(),
+                    "dt_s",
+                    format!(
+                        "{dt} s is above the stable limit {} s (set by {culprit_name}, E = {} Pa); use at most that, or omit dt_s for {} s",
+                        sig(limit),
+                        r.model.youngs_modulus_pa,
+                        sig(AUTO_DT_FRACTION * limit)
+                    ),
+                ));
+            }
+            Ok((
+                *dt,
+                limit,
+                format!(
+                    "dt: {} s (given; stable limit {} s, set by {culprit_name}); {} steps for {} s",
+                    sig(*dt),
+                    sig(limit),
+                    thousands(steps(*dt) as usize),
+                    sig(r.duration_s)
+                ),
+            ))
+        }
+    }
+}

@@ -1,0 +1,16 @@
+//! What building a scenario's floes made: the floe set, where each floe
+//! came from in the file (for located errors), and report lines.
+
+use std::ops::Range;
+
+use floe_dem::floes::Floes;
+
+/// The floes and what was done to make them.
+pub(crate) struct BuiltFloes {
+    pub floes: Floes,
+    pub pieces_span: Vec<Option<Range<usize>>>,
+    pub labels: Vec<Option<String>>,
+    pub report: Vec<String>,
+    /// Number of free floes.
+    pub free: usize,
+}

@@ -1,0 +1,182 @@
+//! Physical consistency of a scenario: checks that involve several values
+//! together (walls against the domain and each other, explicit floes
+//! against each other), and the contact geometry of the double-shear set-up.
+
+use floe_dem::contact_model::ContactModel;
+use floe_dem::geometry::{overlap, ClipScratch};
+
+use crate::built_floes::BuiltFloes;
+use crate::error::ScenarioError;
+use crate::numbers::sig;
+use crate::resolve::{Resolved, Side};
+use crate::source_file::SourceFile;
+
+/// Overlap area, as a fraction of the smaller floe, above which explicit
+/// floes are refused as overlapping at the start.
+pub const OVERLAP_TOLERANCE: f64 = 1e-6;
+
+/// Contact numbers of the double-shear set-up, for a block of thickness
+/// `h` (m), plan size `block` = [along the push, across] (m), a pusher plate
+/// `pusher` (m) and `load` (N) on each sliding face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DoubleShearGeometry {
+    /// Normal force per unit overlap area against a fixed block,
+    /// `E h / sqrt(block area)`, Pa.
+    pub kappa_pa: f64,
+    /// Overlap depth of each side block giving `load`, m.
+    pub depth_m: f64,
+    /// Normal stiffness of the pusher contact (the loading spring), N/m.
+    pub pusher_stiffness_n_per_m: f64,
+    /// Tangential stiffness of one side contact, N/m.
+    pub side_tangential_stiffness_n_per_m: f64,
+    /// The pusher in series with the two side contacts in parallel, N/m.
+    pub series_stiffness_n_per_m: f64,
+}
+
+/// See [`DoubleShearGeometry`].
+pub fn double_shear_geometry(
+    model: &ContactModel,
+    thickness_m: f64,
+    block: [f64; 2],
+    pusher: [f64; 2],
+    load_per_face_n: f64,
+) -> DoubleShearGeometry {
+    let kappa = model.youngs_modulus_pa * thickness_m / (block[0] * block[1]).sqrt();
+    let k_pusher = kappa * pusher[1].min(block[1]);
+    let k_t = kappa * block[0] / (2.0 * (1.0 + model.poisson_ratio));
+    DoubleShearGeometry {
+        kappa_pa: kappa,
+        depth_m: load_per_face_n / (kappa * block[0]),
+        pusher_stiffness_n_per_m: k_pusher,
+        side_tangential_stiffness_n_per_m: k_t,
+        series_stiffness_n_per_m: 1.0 / (1.0 / k_pusher + 1.0 / (2.0 * k_t)),
+    }
+}
+
+/// Walls: not across a periodic axis, inside the domain, and not meeting
+/// (or crossing the domain) before the end of the run.
+pub(crate) fn walls_fit(f: &SourceFile, r: &Resolved) -> Result<(), ScenarioError> {
+    let d = &r.domain;
+    let axis_name = ["x", "y"];
+    for w in &r.walls {
+        let axis = w.side.axis();
+        if d.periodic[axis] {
+            return Err(f.error(
+                w.span.clone(),
+                format!("wall[{}].side", w.index),
+                format!(
+                    "the domain is periodic along {}: a {} wall would cut the period (set domain.periodic to false along {} or remove the wall)",
+                    axis_name[axis],
+                    w.side.name(),
+                    axis_name[axis]
+                ),
+            ));
+        }
+    }
+    for (axis, axis_label) in axis_name.iter().enumerate() {
+        let (lo_side, hi_side) = if axis == 0 {
+            (Side::Left, Side::Right)
+        } else {
+            (Side::Bottom, Side::Top)
+        };
+        let lo = r.walls.iter().find(|w| w.side == lo_side);
+        let hi = r.walls.iter().find(|w| w.side == hi_side);
+        let insets = lo.map_or(0.0, |w| w.inset_m) + hi.map_or(0.0, |w| w.inset_m);
+        let extent = d.size_m[axis];
+        if insets >= extent {
+            let w = hi.or(lo).expect("an inset comes from a wall");
+            return Err(f.error(
+                w.inset_span.clone(),
+                format!("wall[{}].inset_m", w.index),
+                format!(
+                    "the wall lies outside the domain: insets of {} m leave nothing of its {} m {}",
+                    sig(insets),
+                    sig(extent),
+                    if axis == 0 { "width" } else { "height" }
+                ),
+            ));
+        }
+        let v_lo = lo.map_or(0.0, |w| w.velocity[axis]);
+        let v_hi = hi.map_or(0.0, |w| w.velocity[axis]);
+        let closing = v_lo - v_hi;
+        if closing > 0.0 {
+            let gap = extent - insets;
+            let meet_s = gap / closing;
+            if meet_s <= r.duration_s {
+                let w = if v_hi < 0.0 { hi } else { lo }.expect("a closing wall exists");
+                return Err(f.error(
+                    w.velocity_span.clone(),
+                    format!("wall[{}].velocity_m_per_s", w.index),
+                    format!(
+                        "the walls across {} close {} m in {} s, before duration_s = {} s: {}",
+                        axis_label,
+                        sig(gap),
+                        sig(meet_s),
+                        sig(r.duration_s),
+                        if lo.is_some() && hi.is_some() {
+                            "they would cross each other"
+                        } else {
+                            "the wall would cross the whole domain"
+                        }
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// No two floes (at least one of them free) overlap by more than
+/// [`OVERLAP_TOLERANCE`] of the smaller one.
+pub(crate) fn no_initial_overlap(
+    f: &SourceFile,
+    r: &Resolved,
+    built: &BuiltFloes,
+) -> Result<(), ScenarioError> {
+    let fl = &built.floes;
+    let periodicity = r.domain.periodicity();
+    let mut scratch = ClipScratch::default();
+    let placed = |i: usize, offset| fl.placed(i, offset, fl.angle[i].sin_cos());
+    let name = |i: usize| {
+        built.labels[i]
+            .clone()
+            .unwrap_or_else(|| format!("floe {i}"))
+    };
+    for i in 0..fl.len() {
+        for j in (i + 1)..fl.len() {
+            if !fl.is_free(i) && !fl.is_free(j) {
+                continue;
+            }
+            let offset = periodicity.nearest_image(fl.position[i], fl.position[j]);
+            let reach = fl.radius_m[i] + fl.radius_m[j];
+            if (fl.position[j] + offset - fl.position[i]).length_squared() > reach * reach {
+                continue;
+            }
+            let Some(ov) = overlap(
+                placed(i, floe_dem::Vec2::ZERO),
+                placed(j, offset),
+                &mut scratch,
+            ) else {
+                continue;
+            };
+            let smaller = fl.area_m2[i].min(fl.area_m2[j]);
+            if ov.area_m2 > OVERLAP_TOLERANCE * smaller {
+                let span = built.pieces_span[j]
+                    .clone()
+                    .or_else(|| built.pieces_span[i].clone())
+                    .unwrap_or_else(|| r.floes_span.clone());
+                return Err(f.error(
+                    span,
+                    name(j),
+                    format!(
+                        "overlaps {} by {} m^2 ({} % of the smaller floe) at the start; floes may touch but not overlap",
+                        name(i),
+                        sig(ov.area_m2),
+                        sig(100.0 * ov.area_m2 / smaller)
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,191 @@
+//! Spring-slider protocol files (TOML): apparatus, friction law, initial
+//! state, output spacing and the load-point segments. Every key is documented
+//! in docs/friction.md ("Protocol files").
+
+use std::path::Path;
+
+use floe_friction::experiments::{Preset, PAPER_DT_S};
+use floe_friction::protocol::{Protocol, Segment};
+use floe_friction::spring_slider::Apparatus;
+use floe_friction::{Form, Law, LawContext, LawRegistry};
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::error::ScenarioError;
+use crate::law_table::{law_from_table, RawLawTable};
+use crate::source_file::SourceFile;
+
+type Num = Option<Spanned<f64>>;
+type Word = Option<Spanned<String>>;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    apparatus: Option<RawApparatus>,
+    /// `kind` and the law's parameters ([`crate::law_table`]).
+    law: Option<RawLawTable>,
+    initial: Option<RawInitial>,
+    output: Option<RawOutput>,
+    segment: Option<Vec<Spanned<RawSegment>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawApparatus {
+    preset: Word,
+    stiffness_n_per_m: Num,
+    normal_load_n: Num,
+    dt_s: Num,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawInitial {
+    slip_rate_m_per_s: Num,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawOutput {
+    every_s: Num,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSegment {
+    velocity_m_per_s: Num,
+    ramp_m_per_s: Option<Spanned<Vec<f64>>>,
+    duration_s: Spanned<f64>,
+}
+
+/// Everything a spring-slider run needs, read from a protocol file.
+#[derive(Debug, Clone)]
+pub struct SliderSetup {
+    /// The friction law.
+    pub law: Law,
+    /// Spring, normal load, time step.
+    pub apparatus: Apparatus,
+    /// Load-point history.
+    pub protocol: Protocol,
+    /// Steady sliding rate the slider starts from, m/s.
+    pub initial_slip_rate_m_per_s: f64,
+    /// Spacing of output samples, s.
+    pub every_s: f64,
+    /// The file, verbatim (kept for provenance).
+    pub source: SourceFile,
+}
+
+/// At most this many rows are written by default; longer runs are thinned.
+const DEFAULT_MAX_ROWS: f64 = 100_000.0;
+
+/// Reads and checks a protocol file, with the friction laws of
+/// [`LawRegistry::builtin`].
+pub fn load(path: &Path) -> Result<SliderSetup, ScenarioError> {
+    load_with(path, &LawRegistry::builtin())
+}
+
+/// [`load`] with the laws of `registry`.
+pub fn load_with(path: &Path, registry: &LawRegistry) -> Result<SliderSetup, ScenarioError> {
+    let source = SourceFile::read(path)?;
+    let raw: RawFile = source.parse_toml()?;
+    let f = &source;
+
+    let no_preset = None;
+    let preset_word = raw.apparatus.as_ref().map_or(&no_preset, |a| &a.preset);
+    let preset = f.keyword(
+        preset_word,
+        "apparatus.preset",
+        &[("lab", Preset::Lab), ("tank", Preset::Tank)],
+        Preset::Lab,
+    )?;
+    let get =
+        |v: &Num, key: &str, default: f64| v.as_ref().map_or(Ok(default), |v| f.positive(v, key));
+    let apparatus = match &raw.apparatus {
+        None => preset.apparatus(PAPER_DT_S),
+        Some(a) => Apparatus {
+            stiffness_n_per_m: get(
+                &a.stiffness_n_per_m,
+                "apparatus.stiffness_n_per_m",
+                preset.stiffness_n_per_m(),
+            )?,
+            normal_load_n: get(
+                &a.normal_load_n,
+                "apparatus.normal_load_n",
+                preset.normal_load_n(),
+            )?,
+            dt_s: get(&a.dt_s, "apparatus.dt_s", PAPER_DT_S)?,
+        },
+    };
+    let law = law_from_table(
+        f,
+        raw.law.as_ref().unwrap_or(&RawLawTable::new()),
+        "law",
+        "kind",
+        &[],
+        registry,
+        LawContext {
+            preset,
+            default_form: Form::Published,
+        },
+    )?;
+
+    let Some(raw_segments) = raw.segment.as_ref().filter(|s| !s.is_empty()) else {
+        return Err(
+            f.error_in_file("no load-point history: add at least one [[segment]] with duration_s")
+        );
+    };
+    let mut segments = Vec::with_capacity(raw_segments.len());
+    for (i, s) in raw_segments.iter().enumerate() {
+        let key = |k: &str| format!("segment[{i}].{k}");
+        let seg = s.get_ref();
+        let duration = f.positive(&seg.duration_s, &key("duration_s"))?;
+        segments.push(match (&seg.velocity_m_per_s, &seg.ramp_m_per_s) {
+            (Some(v), None) => Segment::constant(f.finite(v, &key("velocity_m_per_s"))?, duration),
+            (None, Some(r)) => {
+                let [from, to] = r.get_ref()[..] else {
+                    return Err(f.error(
+                        r.span(),
+                        key("ramp_m_per_s"),
+                        "must be [from, to] in m/s",
+                    ));
+                };
+                if !(from.is_finite() && to.is_finite()) {
+                    return Err(f.error(
+                        r.span(),
+                        key("ramp_m_per_s"),
+                        "velocities must be finite",
+                    ));
+                }
+                Segment::ramp(from, to, duration)
+            }
+            _ => return Err(f.error(
+                s.span(),
+                format!("segment[{i}]"),
+                "give exactly one of velocity_m_per_s (0 for a hold) or ramp_m_per_s = [from, to]",
+            )),
+        });
+    }
+    let protocol = Protocol::new(segments)?;
+
+    let initial = match raw
+        .initial
+        .as_ref()
+        .and_then(|i| i.slip_rate_m_per_s.as_ref())
+    {
+        Some(v) => f.finite(v, "initial.slip_rate_m_per_s")?,
+        None => protocol.initial_velocity_m_per_s(),
+    };
+    let default_every = apparatus.dt_s.max(protocol.duration_s() / DEFAULT_MAX_ROWS);
+    let every_s = match raw.output.as_ref().and_then(|o| o.every_s.as_ref()) {
+        Some(v) => f.positive(v, "output.every_s")?,
+        None => default_every,
+    };
+    Ok(SliderSetup {
+        law,
+        apparatus,
+        protocol,
+        initial_slip_rate_m_per_s: initial,
+        every_s,
+        source: source.clone(),
+    })
+}

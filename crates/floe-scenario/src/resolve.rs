@@ -1,0 +1,1069 @@
+//! From the file as written ([`super::spec`]) to checked values with their
+//! defaults: every number is range-checked here, with its location, so that
+//! building the world ([`super::build`]) only has to check what depends on
+//! several values together ([`super::checks`]).
+
+use std::ops::Range;
+
+use floe_dem::contact_model::ContactModel;
+use floe_dem::forcing::{Coriolis, DragParameters, Envelope, Forcing, VelocityField};
+use floe_dem::tessellation::{max_jitter_fraction, ThicknessDistribution};
+use floe_dem::{DemError, Vec2};
+use floe_friction::experiments::Preset;
+use floe_friction::{Form, LawContext, LawRegistry};
+use toml::Spanned;
+
+use crate::domain::Domain;
+use crate::error::ScenarioError;
+use crate::law_table::{law_from_table, preset_applies, RawLawTable};
+use crate::numbers::sig;
+use crate::output_cadence::OutputCadence;
+use crate::source_file::SourceFile;
+use crate::spec::*;
+
+/// Fraction of the nominal floe area below which generated floes (pieces
+/// clipped at the domain edges) are dropped, unless the file says otherwise.
+pub const DEFAULT_MIN_AREA_FRACTION: f64 = 0.1;
+
+/// Ice density when `[ice] density_kg_per_m3` is absent, kg/m^3.
+pub const DEFAULT_ICE_DENSITY_KG_PER_M3: f64 = 917.0;
+
+/// Ice thickness when `[ice]` gives none, m.
+pub const DEFAULT_THICKNESS_M: f64 = 1.0;
+
+/// Auto time step as a fraction of the stable limit.
+pub const AUTO_DT_FRACTION: f64 = 0.5;
+
+/// A user-chosen or automatic time step.
+#[derive(Debug, Clone)]
+pub(crate) enum DtChoice {
+    /// [`AUTO_DT_FRACTION`] of the stable limit.
+    Auto,
+    /// Given in the file, at this location.
+    Given(f64, Range<usize>),
+}
+
+/// Which side of the domain a wall closes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Side {
+    Left,
+    Right,
+    Bottom,
+    Top,
+}
+
+impl Side {
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Left => "left",
+            Side::Right => "right",
+            Side::Bottom => "bottom",
+            Side::Top => "top",
+        }
+    }
+
+    /// 0 for walls across x (left, right), 1 for walls across y.
+    pub fn axis(self) -> usize {
+        match self {
+            Side::Left | Side::Right => 0,
+            Side::Bottom | Side::Top => 1,
+        }
+    }
+}
+
+/// A `[[wall]]`, checked.
+#[derive(Debug, Clone)]
+pub(crate) struct Wall {
+    pub index: usize,
+    pub side: Side,
+    pub velocity: Vec2,
+    pub inset_m: f64,
+    pub thickness_m: Option<f64>,
+    pub span: Range<usize>,
+    pub velocity_span: Range<usize>,
+    pub inset_span: Range<usize>,
+}
+
+/// A `[[floe]]`, checked.
+#[derive(Debug, Clone)]
+pub(crate) struct ExplicitFloe {
+    pub vertices: Vec<Vec2>,
+    pub thickness_m: Option<f64>,
+    pub velocity: Option<Vec2>,
+    pub angular_velocity_rad_per_s: f64,
+    pub prescribed: bool,
+    pub span: Range<usize>,
+}
+
+/// Where the floes come from.
+#[derive(Debug, Clone)]
+pub(crate) enum FloeSource {
+    Diamond {
+        side_m: f64,
+        acute_angle_deg: f64,
+        orientation_deg: f64,
+        /// `Some((along, across))` when given by the diagonals.
+        diagonals_m: Option<(f64, f64)>,
+        jitter_fraction: f64,
+    },
+    Voronoi {
+        /// Floe count, or `None` to derive it from `floe_scale_m`.
+        count: Option<usize>,
+        floe_scale_m: Option<f64>,
+        relax_iterations: usize,
+    },
+    Grid {
+        columns: usize,
+        rows: usize,
+        gap_m: f64,
+    },
+    DoubleShear {
+        block_m: [f64; 2],
+        side_block_m: [f64; 2],
+        pusher_m: [f64; 2],
+        normal_load_per_face_n: f64,
+        push_velocity_m_per_s: f64,
+    },
+    Explicit(Vec<ExplicitFloe>),
+}
+
+/// The scenario with every default applied and every single value checked.
+#[derive(Debug, Clone)]
+pub(crate) struct Resolved {
+    pub title: Option<String>,
+    pub seed: u64,
+    pub threads: Option<usize>,
+    pub duration_s: f64,
+    pub dt: DtChoice,
+    pub domain: Domain,
+    pub floes: FloeSource,
+    /// Location of `[tessellation]` (or of the first `[[floe]]`).
+    pub floes_span: Range<usize>,
+    pub min_area_fraction: f64,
+    pub thickness: ThicknessDistribution,
+    pub density_kg_per_m3: f64,
+    pub initial_velocity: Vec2,
+    pub model: ContactModel,
+    pub forcing: Forcing,
+    pub walls: Vec<Wall>,
+    pub output: OutputCadence,
+}
+
+/// What a table allows, for refusing keys that do not apply.
+fn refuse_given(
+    f: &SourceFile,
+    table: &str,
+    what: &str,
+    given: &[(Option<Range<usize>>, &str)],
+    allowed: &[&str],
+) -> Result<(), ScenarioError> {
+    for (span, name) in given {
+        if let Some(span) = span {
+            if !allowed.contains(name) {
+                return Err(f.error(
+                    span.clone(),
+                    format!("{table}.{name}"),
+                    format!("does not apply to {what}"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn span_of<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
+    v.as_ref().map(|s| s.span())
+}
+
+/// A finite `[x, y]`.
+fn pair(f: &SourceFile, v: &Spanned<[f64; 2]>, key: &str) -> Result<Vec2, ScenarioError> {
+    let [x, y] = *v.get_ref();
+    if x.is_finite() && y.is_finite() {
+        Ok(Vec2::new(x, y))
+    } else {
+        Err(f.error(v.span(), key, format!("must be finite, got [{x}, {y}]")))
+    }
+}
+
+/// A count >= `min`.
+fn count(f: &SourceFile, v: &Spanned<i64>, key: &str, min: i64) -> Result<usize, ScenarioError> {
+    let n = *v.get_ref();
+    if n >= min {
+        Ok(n as usize)
+    } else {
+        Err(f.error(
+            v.span(),
+            key,
+            format!("must be an integer >= {min}, got {n}"),
+        ))
+    }
+}
+
+/// A number in `[lo, hi]` (or `[lo, hi)` when `open_hi`).
+fn within(
+    f: &SourceFile,
+    v: &Spanned<f64>,
+    key: &str,
+    lo: f64,
+    hi: f64,
+    open_hi: bool,
+) -> Result<f64, ScenarioError> {
+    let x = *v.get_ref();
+    let ok = x.is_finite() && x >= lo && if open_hi { x < hi } else { x <= hi };
+    if ok {
+        Ok(x)
+    } else {
+        let close = if open_hi { ")" } else { "]" };
+        Err(f.error(
+            v.span(),
+            key,
+            format!("must lie in [{}, {}{close}, got {x}", sig(lo), sig(hi)),
+        ))
+    }
+}
+
+/// A [`DemError`] about something at `span`.
+pub(crate) fn dem_error(
+    f: &SourceFile,
+    span: Range<usize>,
+    key: &str,
+    e: DemError,
+) -> ScenarioError {
+    f.error(span, key, e.to_string())
+}
+
+/// Reads the file, applies defaults and checks every value on its own.
+pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved, ScenarioError> {
+    let raw: RawScenario = f.parse_toml()?;
+
+    let title = raw.title.as_ref().map(|t| t.get_ref().clone());
+    let seed = match &raw.seed {
+        Some(s) => count(f, s, "seed", 0)? as u64,
+        None => 0,
+    };
+    let threads = raw
+        .threads
+        .as_ref()
+        .map(|t| count(f, t, "threads", 1))
+        .transpose()?;
+    let Some(duration) = &raw.duration_s else {
+        return Err(f.error_in_file("missing `duration_s`: how long to simulate, in seconds"));
+    };
+    let duration_s = f.positive(duration, "duration_s")?;
+    let dt = match &raw.dt_s {
+        Some(v) => DtChoice::Given(f.positive(v, "dt_s")?, v.span()),
+        None => DtChoice::Auto,
+    };
+
+    let domain = resolve_domain(f, raw.domain.as_ref())?;
+    let (thickness, density_kg_per_m3, initial_velocity) = resolve_ice(f, raw.ice.as_ref())?;
+    let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw)?;
+    let model = resolve_contact(f, raw.contact.as_ref(), raw.friction.as_ref(), registry)?;
+    let forcing = resolve_forcing(
+        f,
+        raw.wind.as_ref(),
+        raw.ocean.as_ref(),
+        raw.coriolis.as_ref(),
+    )?;
+    let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]))?;
+    let output = resolve_output(f, raw.output.as_ref(), duration_s)?;
+    Ok(Resolved {
+        title,
+        seed,
+        threads,
+        duration_s,
+        dt,
+        domain,
+        floes,
+        floes_span,
+        min_area_fraction,
+        thickness,
+        density_kg_per_m3,
+        initial_velocity,
+        model,
+        forcing,
+        walls,
+        output,
+    })
+}
+
+fn resolve_domain(
+    f: &SourceFile,
+    raw: Option<&Spanned<RawDomain>>,
+) -> Result<Domain, ScenarioError> {
+    let Some(raw) = raw else {
+        return Err(f.error_in_file(
+            "missing [domain]: give at least `size_m = [width, height]` in metres",
+        ));
+    };
+    let d = raw.get_ref();
+    let min_m = match &d.min_m {
+        Some(v) => pair(f, v, "domain.min_m")?,
+        None => Vec2::ZERO,
+    };
+    let Some(size) = &d.size_m else {
+        return Err(f.error(
+            raw.span(),
+            "domain.size_m",
+            "missing: give the domain's `size_m = [width, height]` in metres",
+        ));
+    };
+    let size_m = pair(f, size, "domain.size_m")?;
+    if !(size_m.x > 0.0 && size_m.y > 0.0) {
+        return Err(f.error(
+            size.span(),
+            "domain.size_m",
+            format!(
+                "width and height must be > 0, got [{}, {}]",
+                size_m.x, size_m.y
+            ),
+        ));
+    }
+    let periodic = d.periodic.as_ref().map_or([false; 2], |p| *p.get_ref());
+    Ok(Domain {
+        min_m,
+        size_m,
+        periodic,
+    })
+}
+
+fn resolve_ice(
+    f: &SourceFile,
+    raw: Option<&Spanned<RawIce>>,
+) -> Result<(ThicknessDistribution, f64, Vec2), ScenarioError> {
+    let Some(raw) = raw else {
+        return Ok((
+            ThicknessDistribution::Uniform {
+                thickness_m: DEFAULT_THICKNESS_M,
+            },
+            DEFAULT_ICE_DENSITY_KG_PER_M3,
+            Vec2::ZERO,
+        ));
+    };
+    let ice = raw.get_ref();
+    let ways = [
+        ice.thickness_m.is_some(),
+        ice.thickness_mean_m.is_some(),
+        ice.thickness_range_m.is_some(),
+    ];
+    if ways.iter().filter(|&&w| w).count() > 1 {
+        return Err(f.error(
+            raw.span(),
+            "ice",
+            "give one of `thickness_m`, `thickness_mean_m` (with `thickness_std_m`) or `thickness_range_m`",
+        ));
+    }
+    if ice.thickness_std_m.is_some() && ice.thickness_mean_m.is_none() {
+        let s = ice
+            .thickness_std_m
+            .as_ref()
+            .map(|s| s.span())
+            .unwrap_or(0..0);
+        return Err(f.error(
+            s,
+            "ice.thickness_std_m",
+            "needs `thickness_mean_m` (log-normal thickness)",
+        ));
+    }
+    let thickness = if let Some(h) = &ice.thickness_m {
+        ThicknessDistribution::Uniform {
+            thickness_m: f.positive(h, "ice.thickness_m")?,
+        }
+    } else if let Some(mean) = &ice.thickness_mean_m {
+        ThicknessDistribution::LogNormal {
+            mean_m: f.positive(mean, "ice.thickness_mean_m")?,
+            std_m: match &ice.thickness_std_m {
+                Some(s) => f.non_negative(s, "ice.thickness_std_m")?,
+                None => 0.0,
+            },
+        }
+    } else if let Some(r) = &ice.thickness_range_m {
+        let [lo, hi] = *r.get_ref();
+        if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi >= lo) {
+            return Err(f.error(
+                r.span(),
+                "ice.thickness_range_m",
+                format!("must be [min, max] with 0 < min <= max, got [{lo}, {hi}]"),
+            ));
+        }
+        ThicknessDistribution::UniformRange {
+            min_m: lo,
+            max_m: hi,
+        }
+    } else {
+        ThicknessDistribution::Uniform {
+            thickness_m: DEFAULT_THICKNESS_M,
+        }
+    };
+    let density = match &ice.density_kg_per_m3 {
+        Some(v) => f.positive(v, "ice.density_kg_per_m3")?,
+        None => DEFAULT_ICE_DENSITY_KG_PER_M3,
+    };
+    let velocity = match &ice.initial_velocity_m_per_s {
+        Some(v) => pair(f, v, "ice.initial_velocity_m_per_s")?,
+        None => Vec2::ZERO,
+    };
+    Ok((thickness, density, velocity))
+}
+
+fn resolve_floes(
+    f: &SourceFile,
+    raw: &RawScenario,
+) -> Result<(FloeSource, Range<usize>, f64), ScenarioError> {
+    match (&raw.tessellation, &raw.floe) {
+        (Some(t), Some(floes)) => {
+            let span = floes.first().map_or(t.span(), |fl| fl.span());
+            Err(f.error(
+                span,
+                "floe",
+                "explicit [[floe]] tables and [tessellation] exclude each other: use one",
+            ))
+        }
+        (None, None) => Err(f.error_in_file(
+            "no floes: add a [tessellation] (diamond, voronoi, grid, double-shear) or [[floe]] tables",
+        )),
+        (None, Some(floes)) => {
+            let mut out = Vec::with_capacity(floes.len());
+            for (i, fl) in floes.iter().enumerate() {
+                out.push(resolve_explicit_floe(f, fl, i)?);
+            }
+            let span = floes.first().map_or(0..0, |fl| fl.span());
+            Ok((FloeSource::Explicit(out), span, 0.0))
+        }
+        (Some(t), None) => resolve_tessellation(f, t),
+    }
+}
+
+fn resolve_explicit_floe(
+    f: &SourceFile,
+    raw: &Spanned<RawFloe>,
+    i: usize,
+) -> Result<ExplicitFloe, ScenarioError> {
+    let fl = raw.get_ref();
+    let key = |k: &str| format!("floe[{i}].{k}");
+    let vertices = match (&fl.vertices_m, &fl.box_m) {
+        (Some(v), None) => {
+            let pts: Vec<Vec2> = v.get_ref().iter().map(|&[x, y]| Vec2::new(x, y)).collect();
+            if pts.iter().any(|p| !(p.x.is_finite() && p.y.is_finite())) {
+                return Err(f.error(v.span(), key("vertices_m"), "coordinates must be finite"));
+            }
+            pts
+        }
+        (None, Some(b)) => {
+            let [x0, y0, x1, y1] = *b.get_ref();
+            if !([x0, y0, x1, y1].iter().all(|v| v.is_finite()) && x1 > x0 && y1 > y0) {
+                return Err(f.error(
+                    b.span(),
+                    key("box_m"),
+                    format!("must be [x_min, y_min, x_max, y_max] with max > min, got [{x0}, {y0}, {x1}, {y1}]"),
+                ));
+            }
+            vec![
+                Vec2::new(x0, y0),
+                Vec2::new(x1, y0),
+                Vec2::new(x1, y1),
+                Vec2::new(x0, y1),
+            ]
+        }
+        _ => {
+            return Err(f.error(
+                raw.span(),
+                format!("floe[{i}]"),
+                "give exactly one of `vertices_m = [[x, y], ...]` (convex outline) or `box_m = [x_min, y_min, x_max, y_max]`",
+            ))
+        }
+    };
+    Ok(ExplicitFloe {
+        vertices,
+        thickness_m: fl
+            .thickness_m
+            .as_ref()
+            .map(|h| f.positive(h, &key("thickness_m")))
+            .transpose()?,
+        velocity: fl
+            .velocity_m_per_s
+            .as_ref()
+            .map(|v| pair(f, v, &key("velocity_m_per_s")))
+            .transpose()?,
+        angular_velocity_rad_per_s: fl
+            .angular_velocity_rad_per_s
+            .as_ref()
+            .map(|w| f.finite(w, &key("angular_velocity_rad_per_s")))
+            .transpose()?
+            .unwrap_or(0.0),
+        prescribed: fl.prescribed.as_ref().is_some_and(|p| *p.get_ref()),
+        span: raw.span(),
+    })
+}
+
+fn resolve_tessellation(
+    f: &SourceFile,
+    raw: &Spanned<RawTessellation>,
+) -> Result<(FloeSource, Range<usize>, f64), ScenarioError> {
+    let t = raw.get_ref();
+    let span = raw.span();
+    let Some(kind_word) = &t.kind else {
+        return Err(f.error(
+            span,
+            "tessellation.kind",
+            "missing: `diamond`, `voronoi`, `grid` or `double-shear`",
+        ));
+    };
+    let kind = kind_word.get_ref().as_str();
+    let given = [
+        (span_of(&t.min_area_fraction), "min_area_fraction"),
+        (span_of(&t.side_m), "side_m"),
+        (span_of(&t.diagonals_m), "diagonals_m"),
+        (span_of(&t.acute_angle_deg), "acute_angle_deg"),
+        (span_of(&t.orientation_deg), "orientation_deg"),
+        (span_of(&t.jitter_fraction), "jitter_fraction"),
+        (span_of(&t.floe_scale_m), "floe_scale_m"),
+        (span_of(&t.count), "count"),
+        (span_of(&t.relax_iterations), "relax_iterations"),
+        (span_of(&t.columns), "columns"),
+        (span_of(&t.rows), "rows"),
+        (span_of(&t.gap_m), "gap_m"),
+        (span_of(&t.block_m), "block_m"),
+        (span_of(&t.side_block_m), "side_block_m"),
+        (span_of(&t.pusher_m), "pusher_m"),
+        (span_of(&t.normal_load_per_face_n), "normal_load_per_face_n"),
+        (span_of(&t.push_velocity_m_per_s), "push_velocity_m_per_s"),
+    ];
+    let allowed: &[&str] = match kind {
+        "diamond" => &[
+            "min_area_fraction",
+            "side_m",
+            "diagonals_m",
+            "acute_angle_deg",
+            "orientation_deg",
+            "jitter_fraction",
+        ],
+        "voronoi" => &[
+            "min_area_fraction",
+            "floe_scale_m",
+            "count",
+            "relax_iterations",
+        ],
+        "grid" => &["columns", "rows", "gap_m"],
+        "double-shear" => &[
+            "block_m",
+            "side_block_m",
+            "pusher_m",
+            "normal_load_per_face_n",
+            "push_velocity_m_per_s",
+        ],
+        other => {
+            return Err(f.error(
+                kind_word.span(),
+                "tessellation.kind",
+                format!(
+                "unknown kind `{other}`, expected `diamond`, `voronoi`, `grid` or `double-shear`"
+            ),
+            ))
+        }
+    };
+    refuse_given(
+        f,
+        "tessellation",
+        &format!("kind `{kind}`"),
+        &given,
+        allowed,
+    )?;
+    let min_area_fraction = match &t.min_area_fraction {
+        Some(v) => within(f, v, "tessellation.min_area_fraction", 0.0, 1.0, true)?,
+        None => DEFAULT_MIN_AREA_FRACTION,
+    };
+    let need = |what: &str| {
+        f.error(
+            span.clone(),
+            format!("tessellation.{what}"),
+            format!("missing: kind `{kind}` needs it"),
+        )
+    };
+    let source = match kind {
+        "diamond" => {
+            let orientation_deg = match &t.orientation_deg {
+                Some(v) => f.finite(v, "tessellation.orientation_deg")?,
+                None => 0.0,
+            };
+            let (side_m, acute_angle_deg, diagonals_m) = match (&t.side_m, &t.diagonals_m) {
+                (Some(s), None) => {
+                    let side = f.positive(s, "tessellation.side_m")?;
+                    let angle = match &t.acute_angle_deg {
+                        Some(a) => {
+                            let a_deg = *a.get_ref();
+                            if !(a_deg.is_finite() && a_deg > 0.0 && a_deg < 180.0) {
+                                return Err(f.error(
+                                    a.span(),
+                                    "tessellation.acute_angle_deg",
+                                    format!("must lie strictly between 0 and 180, got {a_deg}"),
+                                ));
+                            }
+                            a_deg
+                        }
+                        None => 60.0,
+                    };
+                    (side, angle, None)
+                }
+                (None, Some(d)) => {
+                    if let Some(a) = &t.acute_angle_deg {
+                        return Err(f.error(
+                            a.span(),
+                            "tessellation.acute_angle_deg",
+                            "does not apply with `diagonals_m` (the diagonals set the angle)",
+                        ));
+                    }
+                    let [along, across] = *d.get_ref();
+                    if !(along.is_finite() && across.is_finite() && along > 0.0 && across > 0.0) {
+                        return Err(f.error(
+                            d.span(),
+                            "tessellation.diagonals_m",
+                            format!("must be [along, across] > 0, got [{along}, {across}]"),
+                        ));
+                    }
+                    let angle = 2.0 * across.atan2(along).to_degrees();
+                    (0.5 * along.hypot(across), angle, Some((along, across)))
+                }
+                (Some(s), Some(_)) => {
+                    return Err(f.error(
+                        s.span(),
+                        "tessellation.side_m",
+                        "give `side_m` (with `acute_angle_deg`) or `diagonals_m`, not both",
+                    ))
+                }
+                (None, None) => return Err(need("side_m` or `diagonals_m")),
+            };
+            let jitter_fraction = match &t.jitter_fraction {
+                Some(v) => {
+                    let max = max_jitter_fraction(acute_angle_deg);
+                    within(f, v, "tessellation.jitter_fraction", 0.0, max, false)?
+                }
+                None => 0.0,
+            };
+            FloeSource::Diamond {
+                side_m,
+                acute_angle_deg,
+                orientation_deg,
+                diagonals_m,
+                jitter_fraction,
+            }
+        }
+        "voronoi" => {
+            let (count_n, scale) = match (&t.count, &t.floe_scale_m) {
+                (Some(c), None) => (Some(count(f, c, "tessellation.count", 1)?), None),
+                (None, Some(s)) => (None, Some(f.positive(s, "tessellation.floe_scale_m")?)),
+                (Some(c), Some(_)) => {
+                    return Err(f.error(
+                        c.span(),
+                        "tessellation.count",
+                        "give `count` or `floe_scale_m`, not both",
+                    ))
+                }
+                (None, None) => return Err(need("count` or `floe_scale_m")),
+            };
+            FloeSource::Voronoi {
+                count: count_n,
+                floe_scale_m: scale,
+                relax_iterations: match &t.relax_iterations {
+                    Some(r) => count(f, r, "tessellation.relax_iterations", 0)?,
+                    None => 1,
+                },
+            }
+        }
+        "grid" => FloeSource::Grid {
+            columns: match &t.columns {
+                Some(c) => count(f, c, "tessellation.columns", 1)?,
+                None => return Err(need("columns")),
+            },
+            rows: match &t.rows {
+                Some(c) => count(f, c, "tessellation.rows", 1)?,
+                None => return Err(need("rows")),
+            },
+            gap_m: match &t.gap_m {
+                Some(g) => f.non_negative(g, "tessellation.gap_m")?,
+                None => 0.0,
+            },
+        },
+        _ => {
+            // "double-shear", the only kind left.
+            let size = |v: &Pair, key: &str| -> Result<[f64; 2], ScenarioError> {
+                let Some(v) = v else {
+                    return Err(need(key));
+                };
+                let p = pair(f, v, &format!("tessellation.{key}"))?;
+                if !(p.x > 0.0 && p.y > 0.0) {
+                    return Err(f.error(
+                        v.span(),
+                        format!("tessellation.{key}"),
+                        format!("lengths must be > 0, got [{}, {}]", p.x, p.y),
+                    ));
+                }
+                Ok([p.x, p.y])
+            };
+            let block_m = size(&t.block_m, "block_m")?;
+            let side_block_m = size(&t.side_block_m, "side_block_m")?;
+            let pusher_m = match &t.pusher_m {
+                Some(_) => size(&t.pusher_m, "pusher_m")?,
+                None => [0.25 * block_m[0], block_m[1]],
+            };
+            let Some(load) = &t.normal_load_per_face_n else {
+                return Err(need("normal_load_per_face_n"));
+            };
+            let Some(push) = &t.push_velocity_m_per_s else {
+                return Err(need("push_velocity_m_per_s"));
+            };
+            FloeSource::DoubleShear {
+                block_m,
+                side_block_m,
+                pusher_m,
+                normal_load_per_face_n: f.positive(load, "tessellation.normal_load_per_face_n")?,
+                push_velocity_m_per_s: f
+                    .non_negative(push, "tessellation.push_velocity_m_per_s")?,
+            }
+        }
+    };
+    Ok((source, span, min_area_fraction))
+}
+
+fn resolve_contact(
+    f: &SourceFile,
+    raw: Option<&RawContact>,
+    friction: Option<&Spanned<RawLawTable>>,
+    registry: &LawRegistry,
+) -> Result<ContactModel, ScenarioError> {
+    let mut m = ContactModel::default();
+    if let Some(c) = raw {
+        if let Some(v) = &c.youngs_modulus_pa {
+            m.youngs_modulus_pa = f.positive(v, "contact.youngs_modulus_pa")?;
+        }
+        if let Some(v) = &c.poisson_ratio {
+            m.poisson_ratio = within(f, v, "contact.poisson_ratio", 0.0, 0.5, true)?;
+        }
+        if let Some(v) = &c.restitution {
+            m.restitution = within(f, v, "contact.restitution", 0.0, 1.0, false)?;
+            if m.restitution == 0.0 {
+                return Err(f.error(
+                    v.span(),
+                    "contact.restitution",
+                    "must lie in (0, 1]; 0 would be an infinitely stiff dashpot",
+                ));
+            }
+        }
+        if let Some(v) = &c.new_contact_slip_rate_m_per_s {
+            m.new_contact_slip_rate_m_per_s =
+                f.positive(v, "contact.new_contact_slip_rate_m_per_s")?;
+        }
+        if let Some(v) = &c.sliding_threshold_m_per_s {
+            m.sliding_threshold_m_per_s = f.positive(v, "contact.sliding_threshold_m_per_s")?;
+        }
+        if let Some(v) = &c.memory_s {
+            m.memory_s = f.non_negative(v, "contact.memory_s")?;
+        }
+    }
+    let empty = RawLawTable::new();
+    let (fr, table_span) = friction.map_or((&empty, 0..0), |t| (t.get_ref(), t.span()));
+    let preset = match fr.get("preset") {
+        None => Preset::Tank,
+        Some(p) => {
+            if !preset_applies(fr, "law", registry) {
+                let law = fr
+                    .get("law")
+                    .and_then(|l| l.get_ref().as_str())
+                    .unwrap_or("");
+                return Err(f.error(
+                    p.span(),
+                    "friction.preset",
+                    format!("does not apply to law `{law}` (no default depends on it)"),
+                ));
+            }
+            match p.get_ref().as_str() {
+                Some("lab") => Preset::Lab,
+                Some("tank") => Preset::Tank,
+                _ => {
+                    return Err(f.error(
+                        p.span(),
+                        "friction.preset",
+                        format!(
+                            "unknown value {}, expected one of `lab`, `tank`",
+                            p.get_ref()
+                        ),
+                    ))
+                }
+            }
+        }
+    };
+    let _ = table_span;
+    m.law = law_from_table(
+        f,
+        fr,
+        "friction",
+        "law",
+        &["preset"],
+        registry,
+        LawContext {
+            preset,
+            default_form: Form::Regularized,
+        },
+    )?;
+    Ok(m)
+}
+
+fn resolve_field(
+    f: &SourceFile,
+    raw: &RawFluid,
+    table: &str,
+) -> Result<VelocityField, ScenarioError> {
+    let ways = [
+        raw.velocity_m_per_s.is_some(),
+        raw.time_series.is_some(),
+        raw.shear.is_some(),
+        raw.gyre.is_some(),
+    ];
+    if ways.iter().filter(|&&w| w).count() > 1 {
+        let span = [
+            span_of(&raw.time_series),
+            span_of(&raw.shear),
+            span_of(&raw.gyre),
+        ]
+        .into_iter()
+        .flatten()
+        .next_back()
+        .unwrap_or(0..0);
+        return Err(f.error(
+            span,
+            table,
+            "give one of `velocity_m_per_s`, `time_series`, `shear` or `gyre`",
+        ));
+    }
+    let check = |field: VelocityField, span: Range<usize>, key: &str| {
+        field
+            .validate()
+            .map(|()| field)
+            .map_err(|e| f.error(span, format!("{table}.{key}"), e.to_string()))
+    };
+    let field = if let Some(v) = &raw.velocity_m_per_s {
+        VelocityField::Uniform(pair(f, v, &format!("{table}.velocity_m_per_s"))?)
+    } else if let Some(ts) = &raw.time_series {
+        let t = ts.get_ref();
+        check(
+            VelocityField::TimeSeries {
+                times_s: t.times_s.clone(),
+                values: t
+                    .velocities_m_per_s
+                    .iter()
+                    .map(|&[x, y]| Vec2::new(x, y))
+                    .collect(),
+            },
+            ts.span(),
+            "time_series",
+        )?
+    } else if let Some(s) = &raw.shear {
+        let r = s.get_ref();
+        let [a, b] = r.velocity_at_y_min_m_per_s;
+        let [c, d] = r.velocity_at_y_max_m_per_s;
+        check(
+            VelocityField::LinearShear {
+                y_min_m: r.y_min_m,
+                y_max_m: r.y_max_m,
+                velocity_at_y_min_m_s: Vec2::new(a, b),
+                velocity_at_y_max_m_s: Vec2::new(c, d),
+            },
+            s.span(),
+            "shear",
+        )?
+    } else if let Some(g) = &raw.gyre {
+        let r = g.get_ref();
+        check(
+            VelocityField::Gyre {
+                center_m: Vec2::new(r.center_m[0], r.center_m[1]),
+                core_radius_m: r.core_radius_m,
+                max_speed_m_s: r.max_speed_m_per_s,
+            },
+            g.span(),
+            "gyre",
+        )?
+    } else {
+        VelocityField::Uniform(Vec2::ZERO)
+    };
+    match &raw.envelope {
+        None => Ok(field),
+        Some(e) => {
+            let env = Envelope {
+                times_s: e.get_ref().times_s.clone(),
+                factors: e.get_ref().factors.clone(),
+            };
+            env.validate()
+                .map_err(|err| f.error(e.span(), format!("{table}.envelope"), err.to_string()))?;
+            Ok(field.scaled(env))
+        }
+    }
+}
+
+fn resolve_drag(
+    f: &SourceFile,
+    raw: &RawFluid,
+    table: &str,
+    mut drag: DragParameters,
+) -> Result<DragParameters, ScenarioError> {
+    if let Some(v) = &raw.density_kg_per_m3 {
+        drag.density_kg_m3 = f.non_negative(v, &format!("{table}.density_kg_per_m3"))?;
+    }
+    if let Some(v) = &raw.drag_coefficient {
+        drag.drag_coefficient = f.non_negative(v, &format!("{table}.drag_coefficient"))?;
+    }
+    if let Some(v) = &raw.turning_angle_deg {
+        let a = *v.get_ref();
+        if !(a.is_finite() && a.abs() < 90.0) {
+            return Err(f.error(
+                v.span(),
+                format!("{table}.turning_angle_deg"),
+                format!("must lie strictly between -90 and 90, got {a}"),
+            ));
+        }
+        drag.turning_angle_deg = a;
+    }
+    if let Some(v) = &raw.relative_to_ice {
+        drag.relative_to_ice = *v.get_ref();
+    }
+    Ok(drag)
+}
+
+fn resolve_forcing(
+    f: &SourceFile,
+    wind: Option<&Spanned<RawFluid>>,
+    ocean: Option<&Spanned<RawFluid>>,
+    coriolis: Option<&Spanned<RawCoriolis>>,
+) -> Result<Forcing, ScenarioError> {
+    let mut forcing = Forcing::default();
+    if let Some(w) = wind {
+        let w = w.get_ref();
+        for (flag, name) in [
+            (&w.sea_surface_tilt, "sea_surface_tilt"),
+            (&w.rotational_drag, "rotational_drag"),
+        ] {
+            if let Some(v) = flag {
+                return Err(f.error(
+                    v.span(),
+                    format!("wind.{name}"),
+                    "belongs in [ocean], not [wind]",
+                ));
+            }
+        }
+        forcing.wind = resolve_field(f, w, "wind")?;
+        forcing.air = resolve_drag(f, w, "wind", forcing.air)?;
+    }
+    if let Some(o) = ocean {
+        let o = o.get_ref();
+        forcing.current = resolve_field(f, o, "ocean")?;
+        forcing.ocean = resolve_drag(f, o, "ocean", forcing.ocean)?;
+        if let Some(v) = &o.sea_surface_tilt {
+            forcing.sea_surface_tilt = *v.get_ref();
+        }
+        if let Some(v) = &o.rotational_drag {
+            forcing.rotational_drag = *v.get_ref();
+        }
+    }
+    if let Some(c) = coriolis {
+        let r = c.get_ref();
+        forcing.coriolis = match (&r.latitude_deg, &r.f_per_s) {
+            (Some(lat), None) => {
+                Coriolis::LatitudeDeg(within(f, lat, "coriolis.latitude_deg", -90.0, 90.0, false)?)
+            }
+            (None, Some(fp)) => Coriolis::ParameterPerS(f.finite(fp, "coriolis.f_per_s")?),
+            _ => {
+                return Err(f.error(
+                    c.span(),
+                    "coriolis",
+                    "give exactly one of `latitude_deg` or `f_per_s` (omit [coriolis] for none)",
+                ))
+            }
+        };
+    }
+    Ok(forcing)
+}
+
+fn resolve_walls(f: &SourceFile, raw: &[Spanned<RawWall>]) -> Result<Vec<Wall>, ScenarioError> {
+    let mut walls: Vec<Wall> = Vec::with_capacity(raw.len());
+    for (i, w) in raw.iter().enumerate() {
+        let r = w.get_ref();
+        let key = |k: &str| format!("wall[{i}].{k}");
+        let Some(side_word) = &r.side else {
+            return Err(f.error(
+                w.span(),
+                key("side"),
+                "missing: `left`, `right`, `bottom` or `top`",
+            ));
+        };
+        let side = f.keyword(
+            &r.side,
+            &key("side"),
+            &[
+                ("left", Side::Left),
+                ("right", Side::Right),
+                ("bottom", Side::Bottom),
+                ("top", Side::Top),
+            ],
+            Side::Left,
+        )?;
+        if let Some(other) = walls.iter().find(|o| o.side == side) {
+            return Err(f.error(
+                side_word.span(),
+                key("side"),
+                format!(
+                    "wall[{}] is already on the {} side",
+                    other.index,
+                    side.name()
+                ),
+            ));
+        }
+        let velocity = match &r.velocity_m_per_s {
+            Some(v) => pair(f, v, &key("velocity_m_per_s"))?,
+            None => Vec2::ZERO,
+        };
+        walls.push(Wall {
+            index: i,
+            side,
+            velocity,
+            inset_m: match &r.inset_m {
+                Some(v) => f.non_negative(v, &key("inset_m"))?,
+                None => 0.0,
+            },
+            thickness_m: r
+                .thickness_m
+                .as_ref()
+                .map(|v| f.positive(v, &key("thickness_m")))
+                .transpose()?,
+            span: side_word.span(),
+            velocity_span: r.velocity_m_per_s.as_ref().map_or(w.span(), |v| v.span()),
+            inset_span: r.inset_m.as_ref().map_or(w.span(), |v| v.span()),
+        });
+    }
+    Ok(walls)
+}
+
+fn resolve_output(
+    f: &SourceFile,
+    raw: Option<&RawOutput>,
+    duration_s: f64,
+) -> Result<OutputCadence, ScenarioError> {
+    let get = |v: Option<&Spanned<f64>>, key: &str, default: f64| {
+        v.map_or(Ok(default), |v| f.positive(v, key))
+    };
+    Ok(OutputCadence {
+        snapshot_every_s: get(
+            raw.and_then(|o| o.snapshot_every_s.as_ref()),
+            "output.snapshot_every_s",
+            duration_s / 100.0,
+        )?,
+        observables_every_s: get(
+            raw.and_then(|o| o.observables_every_s.as_ref()),
+            "output.observables_every_s",
+            duration_s / 1000.0,
+        )?,
+        checkpoint_every_s: get(
+            raw.and_then(|o| o.checkpoint_every_s.as_ref()),
+            "output.checkpoint_every_s",
+            duration_s / 10.0,
+        )?,
+    })
+}

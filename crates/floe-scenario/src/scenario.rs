@@ -1,0 +1,187 @@
+//! A scenario: the file read and checked ([`Scenario`]), and what
+//! building it makes ([`Setup`]): the floes, walls, contact model, forcing
+//! and time step, ready to step.
+
+use std::path::Path;
+
+use floe_dem::contact_model::ContactModel;
+use floe_dem::forcing::Forcing;
+use floe_dem::periodicity::Periodicity;
+use floe_dem::world::World;
+
+use floe_friction::LawRegistry;
+
+use crate::build;
+use crate::describe::{describe_contact, describe_forcing, describe_thickness};
+pub use crate::domain::Domain;
+use crate::error::ScenarioError;
+use crate::numbers::thousands;
+pub use crate::output_cadence::OutputCadence;
+use crate::resolve::{self, Resolved};
+use crate::source_file::SourceFile;
+
+/// A built scenario, ready to step.
+pub struct Setup {
+    /// The world at time 0 (contacts detected, forces evaluated).
+    pub world: World<Forcing>,
+    /// What was built, for the terminal: floes, walls, dropped slivers,
+    /// the time step and its stable limit, friction, forcing.
+    pub report: Vec<String>,
+    /// The time step, s.
+    pub dt_s: f64,
+    /// The stable limit of the time step, s.
+    pub stable_limit_s: f64,
+}
+
+/// What [`World::resume`] needs besides the saved state.
+#[derive(Debug, Clone)]
+pub struct EngineParts {
+    /// Contact parameters and friction law.
+    pub model: ContactModel,
+    /// Wind, ocean, Coriolis.
+    pub forcing: Forcing,
+    /// Periodic axes.
+    pub periodicity: Periodicity,
+}
+
+/// A scenario file, read and checked (but not yet built).
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    source: SourceFile,
+    resolved: Resolved,
+}
+
+impl Scenario {
+    /// Reads, parses and checks a scenario file, with the friction laws of
+    /// [`LawRegistry::builtin`].
+    pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
+        Self::load_with(path, &LawRegistry::builtin())
+    }
+
+    /// [`Scenario::load`] with the laws of `registry` (laws defined
+    /// outside floe-friction).
+    pub fn load_with(path: &Path, registry: &LawRegistry) -> Result<Scenario, ScenarioError> {
+        let source = SourceFile::read(path)?;
+        let resolved = resolve::resolve(&source, registry)?;
+        Ok(Scenario { source, resolved })
+    }
+
+    /// Parses and checks scenario text; `origin` names it in error messages.
+    pub fn from_text(text: &str, origin: &Path) -> Result<Scenario, ScenarioError> {
+        Self::from_text_with(text, origin, &LawRegistry::builtin())
+    }
+
+    /// [`Scenario::from_text`] with the laws of `registry`.
+    pub fn from_text_with(
+        text: &str,
+        origin: &Path,
+        registry: &LawRegistry,
+    ) -> Result<Scenario, ScenarioError> {
+        let source = SourceFile {
+            path: origin.to_path_buf(),
+            text: text.to_string(),
+        };
+        let resolved = resolve::resolve(&source, registry)?;
+        Ok(Scenario { source, resolved })
+    }
+
+    /// The file, verbatim.
+    pub fn text(&self) -> &str {
+        &self.source.text
+    }
+
+    /// The `title`, if any.
+    pub fn title(&self) -> Option<&str> {
+        self.resolved.title.as_deref()
+    }
+
+    /// Worker threads asked for by the file.
+    pub fn threads(&self) -> Option<usize> {
+        self.resolved.threads
+    }
+
+    /// Simulated time, s.
+    pub fn duration_s(&self) -> f64 {
+        self.resolved.duration_s
+    }
+
+    /// The domain.
+    pub fn domain(&self) -> Domain {
+        self.resolved.domain
+    }
+
+    /// The output cadence.
+    pub fn output(&self) -> OutputCadence {
+        self.resolved.output
+    }
+
+    /// The contact model, friction law included.
+    pub fn contact_model(&self) -> &ContactModel {
+        &self.resolved.model
+    }
+
+    /// The forcing (wind, ocean, Coriolis).
+    pub fn forcing(&self) -> &Forcing {
+        &self.resolved.forcing
+    }
+
+    /// Builds the world: floes, walls, contact model, forcing, time step.
+    /// Refuses (located at the key) a time step above the stable limit,
+    /// overlapping explicit floes, walls outside the domain or across a
+    /// periodic axis, and set-ups that do not fit.
+    pub fn build(&self) -> Result<Setup, ScenarioError> {
+        let f = &self.source;
+        let r = &self.resolved;
+        let built = build::build_floes(f, r)?;
+        let (dt_s, stable_limit_s, dt_line) = build::time_step(f, r, &built)?;
+        let mut report = built.report.clone();
+        report.push(format!(
+            "  {} free floes, {} prescribed (walls, fixed blocks); ice density {} kg/m^3, thickness {}",
+            thousands(built.free),
+            thousands(built.floes.len() - built.free),
+            r.density_kg_per_m3,
+            describe_thickness(r)
+        ));
+        report.push(dt_line);
+        report.push(describe_contact(&r.model));
+        report.push(describe_forcing(&r.forcing));
+        let world = World::new(
+            built.floes,
+            r.model.clone(),
+            r.forcing.clone(),
+            r.domain.periodicity(),
+            dt_s,
+        )?;
+        report.push(format!(
+            "  {} contacts at the start",
+            thousands(world.contacts().len())
+        ));
+        Ok(Setup {
+            world,
+            report,
+            dt_s,
+            stable_limit_s,
+        })
+    }
+
+    /// What [`World::resume`] needs besides the checkpoint: the same
+    /// model, forcing and periodicity as [`Scenario::build`].
+    pub fn engine_parts(&self) -> EngineParts {
+        let r = &self.resolved;
+        EngineParts {
+            model: r.model.clone(),
+            forcing: r.forcing.clone(),
+            periodicity: r.domain.periodicity(),
+        }
+    }
+
+    /// The time step [`Scenario::build`] chooses, s: the floes are built to
+    /// find the automatic one (deterministically). Only checkpoints of
+    /// format 1 and 2, which do not store it, need this.
+    pub fn time_step(&self) -> Result<f64, ScenarioError> {
+        let f = &self.source;
+        let r = &self.resolved;
+        let built = build::build_floes(f, r)?;
+        Ok(build::time_step(f, r, &built)?.0)
+    }
+}

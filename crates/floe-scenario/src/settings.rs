@@ -1,0 +1,145 @@
+//! The variants of a sweep: `--set key.path=v1,v2,...` options, their
+//! cartesian product, and each variant's scenario text (the user's text with
+//! those keys replaced, comments and layout kept).
+
+use std::path::Path;
+
+use toml_edit::{Item, Table, Value};
+
+use crate::error::ScenarioError;
+use crate::source_file::SourceFile;
+
+/// One `--set` option: a dotted key and the values it takes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setting {
+    /// Dotted key, e.g. `friction.a`.
+    pub key: Vec<String>,
+    /// The values as written (TOML syntax: `0.31`, `"tank"`, `[1.0, 2.0]`).
+    pub values: Vec<String>,
+}
+
+impl Setting {
+    /// The dotted key as written.
+    pub fn dotted(&self) -> String {
+        self.key.join(".")
+    }
+}
+
+/// Parses `key.path=v1,v2,...`. Commas inside brackets or quotes belong to
+/// the value (`wind.velocity_m_per_s=[5,0],[10,0]` has two values).
+pub fn parse_setting(spec: &str) -> Result<Setting, ScenarioError> {
+    let bad = |why: &str| ScenarioError::Usage(format!("--set {spec}: {why}"));
+    let (key, values) = spec
+        .split_once('=')
+        .ok_or_else(|| bad("expected KEY=VALUE[,VALUE...]"))?;
+    let key: Vec<String> = key
+        .trim()
+        .split('.')
+        .map(|k| k.trim().to_string())
+        .collect();
+    if key.iter().any(|k| k.is_empty()) {
+        return Err(bad("empty part in the key"));
+    }
+    let mut out = Vec::new();
+    let (mut depth, mut quoted, mut start) = (0i32, false, 0usize);
+    for (i, ch) in values.char_indices() {
+        match ch {
+            '"' => quoted = !quoted,
+            '[' | '{' if !quoted => depth += 1,
+            ']' | '}' if !quoted => depth -= 1,
+            ',' if !quoted && depth == 0 => {
+                out.push(values[start..i].trim().to_string());
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    out.push(values[start..].trim().to_string());
+    if out.iter().any(|v| v.is_empty()) {
+        return Err(bad("empty value"));
+    }
+    for v in &out {
+        v.parse::<Value>().map_err(|e| {
+            bad(&format!(
+                "`{v}` is not a TOML value ({})",
+                e.to_string().trim()
+            ))
+        })?;
+    }
+    Ok(Setting { key, values: out })
+}
+
+/// Every combination of the settings' values, first setting slowest.
+pub fn cartesian(settings: &[Setting]) -> Vec<Vec<usize>> {
+    let mut combos = vec![Vec::new()];
+    for s in settings {
+        combos = combos
+            .into_iter()
+            .flat_map(|c| {
+                (0..s.values.len()).map(move |k| {
+                    let mut c = c.clone();
+                    c.push(k);
+                    c
+                })
+            })
+            .collect();
+    }
+    combos
+}
+
+/// `text` with each setting's key set to its chosen value; tables on the
+/// way are created when missing. Whether the key means anything is left to
+/// the scenario reader, which rejects unknown keys.
+pub fn apply(
+    text: &str,
+    origin: &Path,
+    settings: &[Setting],
+    choice: &[usize],
+) -> Result<String, ScenarioError> {
+    let mut doc = SourceFile {
+        path: origin.to_path_buf(),
+        text: text.to_string(),
+    }
+    .parse_document()?;
+    for (s, &k) in settings.iter().zip(choice) {
+        let value: Value = s.values[k].parse().map_err(|_| {
+            ScenarioError::Usage(format!("--set {}: bad value `{}`", s.dotted(), s.values[k]))
+        })?;
+        let (last, path) = s.key.split_last().expect("non-empty key");
+        let mut table: &mut Table = doc.as_table_mut();
+        for part in path {
+            let item = table
+                .entry(part)
+                .or_insert_with(|| Item::Table(Table::new()));
+            table = item.as_table_mut().ok_or_else(|| {
+                ScenarioError::Usage(format!(
+                    "--set {}: `{part}` is not a table in {}",
+                    s.dotted(),
+                    origin.display()
+                ))
+            })?;
+        }
+        // In place when the key exists, so its comments stay with it.
+        match table.get_mut(last).and_then(Item::as_value_mut) {
+            Some(old) => {
+                let decor = old.decor().clone();
+                *old = value;
+                *old.decor_mut() = decor;
+            }
+            None => {
+                table.insert(last, Item::Value(value));
+            }
+        }
+    }
+    Ok(doc.to_string())
+}
+
+/// A short label of a combination, e.g. `friction.a=0.25 friction.critical_slip_m=0.005`.
+pub fn label(settings: &[Setting], choice: &[usize]) -> String {
+    settings
+        .iter()
+        .zip(choice)
+        .map(|(s, &k)| format!("{}={}", s.dotted(), s.values[k]))
+        .collect::<Vec<_>>()
+        .join(" ")
+}

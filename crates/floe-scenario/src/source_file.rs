@@ -1,0 +1,219 @@
+//! Reading user files with errors that point at the line, column and key.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+use toml::Spanned;
+
+use crate::error::ScenarioError;
+
+/// A text file the user wrote, kept to locate errors in it.
+#[derive(Debug, Clone)]
+pub struct SourceFile {
+    /// Where it was read from.
+    pub path: PathBuf,
+    /// Its contents.
+    pub text: String,
+}
+
+impl SourceFile {
+    /// Reads `path` as UTF-8.
+    pub fn read(path: &Path) -> Result<Self, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::io(path, e))?;
+        Ok(Self {
+            path: path.to_path_buf(),
+            text,
+        })
+    }
+
+    /// The file as an editable TOML document (comments and layout kept),
+    /// for tools that rewrite scenarios; a syntax error is located.
+    pub fn parse_document(&self) -> Result<toml_edit::DocumentMut, ScenarioError> {
+        self.text.parse::<toml_edit::DocumentMut>().map_err(|e| {
+            let (line, column) = e.span().map_or((1, 1), |s| self.line_column(s.start));
+            ScenarioError::Input {
+                file: self.path.clone(),
+                line,
+                column,
+                key: None,
+                message: e.message().to_string(),
+            }
+        })
+    }
+
+    /// 1-based line and column of byte offset `offset`.
+    pub fn line_column(&self, offset: usize) -> (usize, usize) {
+        let before = &self.text[..offset.min(self.text.len())];
+        let line = before.matches('\n').count() + 1;
+        let column = before
+            .rfind('\n')
+            .map_or(before.len(), |nl| before.len() - nl - 1)
+            + 1;
+        (line, column)
+    }
+
+    /// The key a span belongs to: the span itself if it is a key (as for an
+    /// unknown field), else the key before `=` on the span's line.
+    fn key_at(&self, span: &Range<usize>) -> Option<String> {
+        let start = span.start.min(self.text.len());
+        let line_start = self.text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = self.text[start..]
+            .find('\n')
+            .map_or(self.text.len(), |i| start + i);
+        let line = &self.text[line_start..line_end];
+        let eq = line.find('=')?;
+        let key = line[..eq].trim();
+        (!key.is_empty() && !key.starts_with('[')).then(|| key.to_string())
+    }
+
+    /// Where the key of the `key = value` whose value is at `value` starts
+    /// (for messages about the key rather than its value).
+    pub fn key_start(&self, value: Range<usize>) -> Range<usize> {
+        let start = value.start.min(self.text.len());
+        let line_start = self.text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let indent = self.text[line_start..start]
+            .find(|c: char| !c.is_whitespace())
+            .unwrap_or(0);
+        line_start + indent..value.end
+    }
+
+    /// An input error at `span` about `key`.
+    pub fn error(
+        &self,
+        span: Range<usize>,
+        key: impl Into<String>,
+        message: impl Into<String>,
+    ) -> ScenarioError {
+        let (line, column) = self.line_column(span.start);
+        ScenarioError::Input {
+            file: self.path.clone(),
+            line,
+            column,
+            key: Some(key.into()),
+            message: message.into(),
+        }
+    }
+
+    /// An input error about the file as a whole (reported at line 1).
+    pub fn error_in_file(&self, message: impl Into<String>) -> ScenarioError {
+        ScenarioError::Input {
+            file: self.path.clone(),
+            line: 1,
+            column: 1,
+            key: None,
+            message: message.into(),
+        }
+    }
+
+    /// Parses the file as TOML into `T`, turning syntax and schema errors
+    /// (unknown keys, wrong types, missing keys) into located messages.
+    pub fn parse_toml<T: DeserializeOwned>(&self) -> Result<T, ScenarioError> {
+        toml::from_str(&self.text).map_err(|e| {
+            let span = e.span().unwrap_or(0..0);
+            let (line, column) = self.line_column(span.start);
+            let message = e.message().trim().to_string();
+            // serde names the key in "unknown field" messages already.
+            let key = if message.starts_with("unknown field") {
+                None
+            } else {
+                self.key_at(&span)
+            };
+            ScenarioError::Input {
+                file: self.path.clone(),
+                line,
+                column,
+                key,
+                message,
+            }
+        })
+    }
+
+    /// The value named by a keyword, or `default` if the key is absent.
+    pub fn keyword<T: Copy>(
+        &self,
+        word: &Option<Spanned<String>>,
+        key: &str,
+        choices: &[(&str, T)],
+        default: T,
+    ) -> Result<T, ScenarioError> {
+        let Some(w) = word else {
+            return Ok(default);
+        };
+        choices
+            .iter()
+            .find(|(name, _)| *name == w.get_ref())
+            .map(|&(_, value)| value)
+            .ok_or_else(|| {
+                let names: Vec<String> = choices
+                    .iter()
+                    .map(|(name, _)| format!("`{name}`"))
+                    .collect();
+                self.error(
+                    w.span(),
+                    key,
+                    format!(
+                        "unknown value `{}`, expected one of {}",
+                        w.get_ref(),
+                        names.join(", ")
+                    ),
+                )
+            })
+    }
+
+    /// A finite number > 0.
+    pub fn positive(&self, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self.error(
+                v.span(),
+                key,
+                format!("must be a finite number > 0, got {x}"),
+            ))
+        }
+    }
+
+    /// A finite number >= 0.
+    pub fn non_negative(&self, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x >= 0.0 {
+            Ok(x)
+        } else {
+            Err(self.error(
+                v.span(),
+                key,
+                format!("must be a finite number >= 0, got {x}"),
+            ))
+        }
+    }
+
+    /// A finite number.
+    pub fn finite(&self, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
+        let x = *v.get_ref();
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.error(v.span(), key, format!("must be a finite number, got {x}")))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn locates_lines_columns_and_keys() {
+        let f = SourceFile {
+            path: "p.toml".into(),
+            text: "[a]\nx = 1\n  yy = -3\n".into(),
+        };
+        assert_eq!(f.line_column(0), (1, 1));
+        assert_eq!(f.line_column(8), (2, 5));
+        assert_eq!(f.line_column(17), (3, 8));
+        assert_eq!(f.key_at(&(17..19)).as_deref(), Some("yy"));
+        assert_eq!(f.key_at(&(0..3)), None);
+    }
+}

@@ -1,0 +1,198 @@
+//! The scenario file as written: serde structures that mirror the TOML
+//! tables, with every value kept with its location ([`Spanned`]) so that
+//! [`super::resolve`] can point at the offending key. Unknown keys are
+//! refused everywhere (`deny_unknown_fields`). Every key is documented in
+//! docs/scenarios.md.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::law_table::RawLawTable;
+
+/// A number with its location.
+pub(crate) type Num = Option<Spanned<f64>>;
+/// A word with its location.
+pub(crate) type Word = Option<Spanned<String>>;
+/// An `[x, y]` pair with its location.
+pub(crate) type Pair = Option<Spanned<[f64; 2]>>;
+/// A flag with its location.
+pub(crate) type Flag = Option<Spanned<bool>>;
+/// A count with its location.
+pub(crate) type Count = Option<Spanned<i64>>;
+
+/// The whole file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawScenario {
+    pub title: Option<Spanned<String>>,
+    pub seed: Count,
+    pub threads: Count,
+    pub duration_s: Option<Spanned<f64>>,
+    pub dt_s: Num,
+    pub domain: Option<Spanned<RawDomain>>,
+    pub tessellation: Option<Spanned<RawTessellation>>,
+    pub floe: Option<Vec<Spanned<RawFloe>>>,
+    pub ice: Option<Spanned<RawIce>>,
+    pub contact: Option<RawContact>,
+    /// `[friction]`: `law`, `preset` and the law's parameters, checked
+    /// against its table in the law registry ([`crate::law_table`]).
+    pub friction: Option<Spanned<RawLawTable>>,
+    pub wind: Option<Spanned<RawFluid>>,
+    pub ocean: Option<Spanned<RawFluid>>,
+    pub coriolis: Option<Spanned<RawCoriolis>>,
+    pub wall: Option<Vec<Spanned<RawWall>>>,
+    pub output: Option<RawOutput>,
+}
+
+/// `[domain]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawDomain {
+    pub min_m: Pair,
+    pub size_m: Pair,
+    pub periodic: Option<Spanned<[bool; 2]>>,
+}
+
+/// `[tessellation]`: which keys apply depends on `kind`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawTessellation {
+    pub kind: Word,
+    pub min_area_fraction: Num,
+    // diamond
+    pub side_m: Num,
+    pub diagonals_m: Pair,
+    pub acute_angle_deg: Num,
+    pub orientation_deg: Num,
+    pub jitter_fraction: Num,
+    // voronoi
+    pub floe_scale_m: Num,
+    pub count: Count,
+    pub relax_iterations: Count,
+    // grid
+    pub columns: Count,
+    pub rows: Count,
+    pub gap_m: Num,
+    // double-shear
+    pub block_m: Pair,
+    pub side_block_m: Pair,
+    pub pusher_m: Pair,
+    pub normal_load_per_face_n: Num,
+    pub push_velocity_m_per_s: Num,
+}
+
+/// `[[floe]]`: one explicit floe.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawFloe {
+    pub vertices_m: Option<Spanned<Vec<[f64; 2]>>>,
+    pub box_m: Option<Spanned<[f64; 4]>>,
+    pub thickness_m: Num,
+    pub velocity_m_per_s: Pair,
+    pub angular_velocity_rad_per_s: Num,
+    pub prescribed: Flag,
+}
+
+/// `[ice]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawIce {
+    pub thickness_m: Num,
+    pub thickness_mean_m: Num,
+    pub thickness_std_m: Num,
+    pub thickness_range_m: Pair,
+    pub density_kg_per_m3: Num,
+    pub initial_velocity_m_per_s: Pair,
+}
+
+/// `[contact]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawContact {
+    pub youngs_modulus_pa: Num,
+    pub poisson_ratio: Num,
+    pub restitution: Num,
+    pub new_contact_slip_rate_m_per_s: Num,
+    pub sliding_threshold_m_per_s: Num,
+    pub memory_s: Num,
+}
+
+/// `[wind]` and `[ocean]`: the velocity field and the drag.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawFluid {
+    pub velocity_m_per_s: Pair,
+    pub time_series: Option<Spanned<RawTimeSeries>>,
+    pub shear: Option<Spanned<RawShear>>,
+    pub gyre: Option<Spanned<RawGyre>>,
+    pub envelope: Option<Spanned<RawEnvelope>>,
+    pub density_kg_per_m3: Num,
+    pub drag_coefficient: Num,
+    pub turning_angle_deg: Num,
+    pub relative_to_ice: Flag,
+    // [ocean] only
+    pub sea_surface_tilt: Flag,
+    pub rotational_drag: Flag,
+}
+
+/// `time_series = { times_s = [...], velocities_m_per_s = [[u, v], ...] }`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawTimeSeries {
+    pub times_s: Vec<f64>,
+    pub velocities_m_per_s: Vec<[f64; 2]>,
+}
+
+/// `shear = { y_min_m, y_max_m, velocity_at_y_min_m_per_s, velocity_at_y_max_m_per_s }`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawShear {
+    pub y_min_m: f64,
+    pub y_max_m: f64,
+    pub velocity_at_y_min_m_per_s: [f64; 2],
+    pub velocity_at_y_max_m_per_s: [f64; 2],
+}
+
+/// `gyre = { center_m, core_radius_m, max_speed_m_per_s }`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawGyre {
+    pub center_m: [f64; 2],
+    pub core_radius_m: f64,
+    pub max_speed_m_per_s: f64,
+}
+
+/// `envelope = { times_s = [...], factors = [...] }`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawEnvelope {
+    pub times_s: Vec<f64>,
+    pub factors: Vec<f64>,
+}
+
+/// `[coriolis]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawCoriolis {
+    pub latitude_deg: Num,
+    pub f_per_s: Num,
+}
+
+/// `[[wall]]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawWall {
+    pub side: Option<Spanned<String>>,
+    pub velocity_m_per_s: Pair,
+    pub inset_m: Num,
+    pub thickness_m: Num,
+}
+
+/// `[output]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawOutput {
+    pub snapshot_every_s: Num,
+    pub observables_every_s: Num,
+    pub checkpoint_every_s: Num,
+}

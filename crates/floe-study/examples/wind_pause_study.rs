@@ -1,0 +1,176 @@
+//! The wind-pause study of docs/studies/wind-pause.md: scenarios/wind_pause.toml
+//! with calms of several lengths, each run under Amontons and rate-and-state
+//! friction (`floe compare`), then the shear stress's answer to the restart.
+//!
+//!     cargo run --release -p floe-study --example wind_pause_study [-- OUT_DIR [slip|aging]]
+//!
+//! Writes OUT_DIR (default out/studies/wind-pause): one compare directory per
+//! pause, `table.md` (the table of the study) and `restart.png`; copy those
+//! two into docs/studies/ to update the study. The second argument sets the
+//! rate-and-state state law (default: the scenario's, the slip law).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use floe_analysis::stress::restart_response;
+use floe_scenario::law_variants::{LawChoice, Matching};
+use floe_scenario::settings::{apply, parse_setting};
+use floe_study::compare::metrics::{measure, MetricOptions};
+use floe_study::compare::{compare, CompareArgs};
+use floe_study::plot::{grid, Axes, Line};
+use floe_study::run_file::{Provenance, RunHooks};
+use floe_study::Error as CliError;
+
+/// The wind blows for this long before the calm, s.
+const BLOW_S: f64 = 10800.0;
+/// Ramps down and up, s.
+const RAMP_S: f64 = 600.0;
+/// Wind after the restart, s.
+const AFTER_S: f64 = 10800.0;
+/// Calm lengths, s.
+const PAUSES_S: [f64; 4] = [900.0, 3600.0, 4.0 * 3600.0, 12.0 * 3600.0];
+/// The stress level before the calm and the peak after the restart are
+/// taken over windows of this length, s.
+const WINDOW_S: f64 = 3600.0;
+
+fn main() {
+    if let Err(e) = study() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    }
+}
+
+fn study() -> Result<(), CliError> {
+    let out = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "out/studies/wind-pause".into()),
+    );
+    std::fs::create_dir_all(&out).map_err(|e| CliError::io(&out, e))?;
+    let base_path = Path::new("scenarios/wind_pause.toml");
+    let mut base = std::fs::read_to_string(base_path).map_err(|e| CliError::io(base_path, e))?;
+    if let Some(state_law) = std::env::args().nth(2) {
+        let setting = parse_setting(&format!("friction.state_law=\"{state_law}\""))?;
+        base = apply(&base, base_path, &[setting], &[0])?;
+    }
+    let laws = [LawChoice::Amontons, LawChoice::RateState];
+    let mut table = String::from(
+        "| calm | law | shear stress before the calm (kN/m) | at the end of the calm (kN/m) | peak after restart (kN/m) | peak / before | peak after restart (min) |\n|---|---|---|---|---|---|---|\n",
+    );
+    let mut panels: Vec<Vec<Line>> = vec![Vec::new(); laws.len()];
+    for pause in PAUSES_S {
+        let restart = BLOW_S + RAMP_S + pause;
+        let times = format!(
+            "{{ times_s = [0.0, {BLOW_S}, {}, {restart}, {}, {}], factors = [1.0, 1.0, 0.0, 0.0, 1.0, 1.0] }}",
+            BLOW_S + RAMP_S,
+            restart + RAMP_S,
+            restart + AFTER_S
+        );
+        let settings = [
+            parse_setting(&format!("wind.envelope={times}"))?,
+            parse_setting(&format!("duration_s={}", restart + AFTER_S))?,
+        ];
+        let text = apply(&base, base_path, &settings, &[0, 0])?;
+        let name = format!("calm_{:.2}h", pause / 3600.0);
+        let scenario = out.join(format!("{name}.toml"));
+        std::fs::write(&scenario, text).map_err(|e| CliError::io(&scenario, e))?;
+        let dir = out.join(&name);
+        // Runs already made are measured again, not rerun (delete to rerun).
+        if !dir.join("report.md").exists() {
+            compare(
+                &CompareArgs {
+                    scenario,
+                    laws: laws.to_vec(),
+                    out_dir: dir.clone(),
+                    threads: None,
+                    force: true,
+                    matching: Matching {
+                        reference_slip_m_per_s: 1e-2,
+                        amontons_mu: None,
+                    },
+                    metrics: MetricOptions::default(),
+                    provenance: Provenance::of_this_process("unknown"),
+                },
+                &Printed,
+            )?;
+        }
+        for (k, law) in laws.iter().enumerate() {
+            let m = measure(
+                &dir.join(format!("{}.h5", law.name())),
+                &MetricOptions::default(),
+            )?;
+            let r = restart_response(
+                &m.time_s,
+                &m.shear_stress_n_per_m,
+                BLOW_S,
+                restart,
+                WINDOW_S,
+            )?;
+            // Mean |stress| over the last half of the calm (before the ramp up).
+            let calm: Vec<f64> = m
+                .time_s
+                .iter()
+                .zip(&m.shear_stress_n_per_m)
+                .filter(|(t, _)| **t >= restart - 0.5 * pause && **t < restart)
+                .map(|(_, s)| s.abs())
+                .collect();
+            let calm_mean = calm.iter().sum::<f64>() / calm.len().max(1) as f64;
+            let _ = writeln!(
+                table,
+                "| {} h | {} | {:.3} | {:.3} | {:.3} | {:.2} | {:.0} |",
+                pause / 3600.0,
+                law.name(),
+                r.before * 1e-3,
+                calm_mean * 1e-3,
+                r.peak * 1e-3,
+                r.ratio,
+                r.peak_delay_s / 60.0
+            );
+            let points = m
+                .time_s
+                .iter()
+                .zip(&m.shear_stress_n_per_m)
+                .filter(|(t, _)| **t >= restart - 3600.0 && **t <= restart + 3.0 * 3600.0)
+                .map(|(t, s)| ((t - restart) / 3600.0, s.abs() * 1e-3))
+                .collect();
+            panels[k].push(Line::new(format!("calm {} h", pause / 3600.0), points));
+        }
+    }
+    let table_path = out.join("table.md");
+    std::fs::write(&table_path, &table).map_err(|e| CliError::io(&table_path, e))?;
+    let figure = out.join("restart.png");
+    let titles = ["Amontons", "rate-and-state"];
+    let panels: Vec<(Axes, Vec<Line>)> = panels
+        .into_iter()
+        .zip(titles)
+        .map(|(lines, title)| {
+            (
+                Axes {
+                    title,
+                    x: "time since the wind restarted (h)",
+                    y: "|mean shear stress| (kN/m)",
+                },
+                lines,
+            )
+        })
+        .collect();
+    grid(&figure, 1, &panels)?;
+    println!("{table}\n{} and {}", table_path.display(), figure.display());
+    Ok(())
+}
+
+/// The study's runs say what they do on standard error, without progress bars.
+struct Printed;
+
+impl RunHooks for Printed {
+    fn say(&self, line: &str) {
+        eprintln!("{line}");
+    }
+    fn progress(&self, _: u64, _: u64, _: f64) -> Box<dyn floe_dem::run::Progress> {
+        Box::new(floe_dem::run::Silent)
+    }
+    fn interrupt(&self) -> &std::sync::atomic::AtomicBool {
+        static NEVER: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+        &NEVER
+    }
+}

@@ -1,0 +1,149 @@
+//! The metrics of one run, read from its HDF5 file: stress, energy and
+//! sliding histories, the velocity profile across the channel and its shear
+//! band, slip events, and the peak-to-steady ratio of the shear stress.
+//!
+//! The channel runs along x, its walls across y (the layout of
+//! `scenarios/shear_zone.toml`); the profile bins floe centroids in y over
+//! the domain.
+
+use std::path::Path;
+
+use floe_analysis::profile::{shear_band, velocity_profile, ShearBand, VelocityProfile};
+use floe_analysis::slip_events::{SlipEvent, SlipEventDetector, SlipEventRule};
+use floe_analysis::stress::{channel_stress, peak_to_steady, PeakToSteady};
+use floe_io::RunFile;
+
+use crate::error::Error;
+
+/// Choices that shape the metrics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MetricOptions {
+    /// Bins across the channel for the velocity profile.
+    pub profile_bins: usize,
+    /// The profile pools the snapshots in the last `late_fraction` of the
+    /// run (0 < f <= 1), when the flow has settled.
+    pub late_fraction: f64,
+    /// The slip-event rule.
+    pub slip: SlipEventRule,
+    /// The steady window of the peak-to-steady ratio, as a fraction of the run.
+    pub steady_fraction: f64,
+}
+
+impl Default for MetricOptions {
+    fn default() -> Self {
+        Self {
+            profile_bins: 25,
+            late_fraction: 0.5,
+            slip: SlipEventRule::default(),
+            steady_fraction: 0.25,
+        }
+    }
+}
+
+/// Everything `floe compare` reports about one run.
+#[derive(Debug, Clone)]
+pub struct RunMetrics {
+    /// Observable sample times, s.
+    pub time_s: Vec<f64>,
+    /// Mean shear stress `(σxy + σyx)/2`, N/m.
+    pub shear_stress_n_per_m: Vec<f64>,
+    /// Mean normal stress across the channel, compression positive, N/m.
+    pub normal_stress_n_per_m: Vec<f64>,
+    /// Kinetic energy, translational plus rotational, J.
+    pub kinetic_energy_j: Vec<f64>,
+    /// Cumulative frictional dissipation, J.
+    pub friction_dissipation_j: Vec<f64>,
+    /// Fraction of contacts sliding.
+    pub sliding_fraction: Vec<f64>,
+    /// Along-channel velocity across the channel, late in the run.
+    pub profile: VelocityProfile,
+    /// Its shear band, when the velocity changes across the channel.
+    pub band: Option<ShearBand>,
+    /// Slip events over all snapshots.
+    pub slip_events: Vec<SlipEvent>,
+    /// Peak-to-steady ratio of the shear stress magnitude, when defined.
+    pub peak_to_steady: Option<PeakToSteady>,
+    /// Snapshots read.
+    pub snapshots: usize,
+}
+
+impl RunMetrics {
+    /// The sliding fraction averaged over the observable samples.
+    pub fn mean_sliding_fraction(&self) -> f64 {
+        self.sliding_fraction.iter().sum::<f64>() / self.sliding_fraction.len().max(1) as f64
+    }
+}
+
+fn series(run: &RunFile, name: &str) -> Result<(Vec<f64>, Vec<f64>), Error> {
+    let s = run.observable(name)?;
+    Ok((s.time_s, s.value))
+}
+
+/// Reads `path` and computes its metrics.
+pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error> {
+    let run = RunFile::open(path)?;
+    let (time_s, stress) = series(&run, "mean_stress")?;
+    let (shear, normal): (Vec<f64>, Vec<f64>) = stress
+        .chunks_exact(4)
+        .map(|s| {
+            let c = channel_stress([s[0], s[1], s[2], s[3]]);
+            (c.shear_n_per_m, c.normal_n_per_m)
+        })
+        .unzip();
+    let (_, translational) = series(&run, "kinetic_translational")?;
+    let (_, rotational) = series(&run, "kinetic_rotational")?;
+    let kinetic = translational
+        .iter()
+        .zip(&rotational)
+        .map(|(a, b)| a + b)
+        .collect();
+    let (_, friction) = series(&run, "friction_dissipation")?;
+    let (_, sliding) = series(&run, "sliding_fraction")?;
+
+    let meta = run.metadata()?;
+    let floes = run.static_floes()?;
+    let snapshots = run.snapshot_count()?;
+    if snapshots == 0 {
+        return Err(Error::Usage(format!(
+            "{}: holds no snapshots to measure",
+            path.display()
+        )));
+    }
+    // At least the last snapshot.
+    let late_from =
+        (((1.0 - options.late_fraction) * snapshots as f64).floor() as usize).min(snapshots - 1);
+    let (mut y, mut u, mut w) = (Vec::new(), Vec::new(), Vec::new());
+    let mut detector = SlipEventDetector::new(options.slip)?;
+    for k in 0..snapshots {
+        let contacts = run.contacts(k)?;
+        detector.push(contacts.time_s, &contacts.pair, &contacts.slip_rate_m_per_s)?;
+        if k >= late_from {
+            let snap = run.snapshot(k)?;
+            for i in 0..floes.id.len() {
+                if !floes.prescribed[i] {
+                    y.push(snap.position[i][1]);
+                    u.push(snap.velocity[i][0]);
+                    w.push(floes.area_m2[i]);
+                }
+            }
+        }
+    }
+    let (y0, height) = (meta.domain.min_m[1], meta.domain.size_m[1]);
+    let profile = velocity_profile(&y, &u, &w, y0, y0 + height, options.profile_bins)?;
+    let band = shear_band(&profile).ok();
+    let magnitude: Vec<f64> = shear.iter().map(|s: &f64| s.abs()).collect();
+    let peak_to_steady = peak_to_steady(&time_s, &magnitude, options.steady_fraction).ok();
+    Ok(RunMetrics {
+        time_s,
+        shear_stress_n_per_m: shear,
+        normal_stress_n_per_m: normal,
+        kinetic_energy_j: kinetic,
+        friction_dissipation_j: friction,
+        sliding_fraction: sliding,
+        profile,
+        band,
+        slip_events: detector.finish(),
+        peak_to_steady,
+        snapshots,
+    })
+}

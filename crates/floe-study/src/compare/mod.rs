@@ -1,0 +1,133 @@
+//! `floe compare`: one scenario under several friction laws (same ice,
+//! forcing and seed; only `[friction]` differs), run to `DIR/<law>.h5`, then
+//! measured and reported side by side in `DIR/report.md`.
+
+pub mod metrics;
+pub mod report;
+
+use std::path::PathBuf;
+
+use floe_friction::FrictionLaw;
+use floe_scenario::law_variants::{reference_law, variant, LawChoice, Matching};
+
+use crate::error::Error;
+use crate::render::{render, ColourBy, Snapshots};
+use crate::run_file::{run, Provenance, RunArgs, RunHooks};
+use floe_scenario::Scenario;
+use metrics::{measure, MetricOptions};
+use report::{figures, markdown, Variant};
+
+/// What `floe compare` was asked to do.
+#[derive(Debug, Clone)]
+pub struct CompareArgs {
+    /// The scenario file.
+    pub scenario: PathBuf,
+    /// The laws, in report order.
+    pub laws: Vec<LawChoice>,
+    /// Output directory.
+    pub out_dir: PathBuf,
+    /// Worker threads for each run.
+    pub threads: Option<usize>,
+    /// Replace existing outputs.
+    pub force: bool,
+    /// How Amontons and the rate law are matched to rate-and-state.
+    pub matching: Matching,
+    /// Metric choices.
+    pub metrics: MetricOptions,
+    /// Who runs the comparison (recorded in each run file).
+    pub provenance: Provenance,
+}
+
+/// Runs the variants and writes the report; returns the report's path.
+/// `hooks` hear what each run says and may interrupt it.
+pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
+    let text = std::fs::read_to_string(&args.scenario).map_err(|e| Error::io(&args.scenario, e))?;
+    let origin = args.scenario.as_path();
+    // Checks the user's file as written first, so its errors point into it.
+    Scenario::from_text(&text, origin)?;
+    let (reference, reference_text) = reference_law(&text, origin, |t| {
+        Ok(Scenario::from_text(t, origin)?.contact_model().law.clone())
+    })?;
+    let report_path = args.out_dir.join("report.md");
+    let mut targets = vec![report_path.clone()];
+    for law in &args.laws {
+        targets.push(args.out_dir.join(format!("{}.h5", law.name())));
+        targets.push(args.out_dir.join(format!("{}.toml", law.name())));
+    }
+    if !args.force {
+        if let Some(existing) = targets.iter().find(|p| p.exists()) {
+            return Err(Error::WouldOverwrite(existing.clone()));
+        }
+    }
+    std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
+
+    let mut notes = Vec::new();
+    if args.laws.contains(&LawChoice::Amontons) {
+        notes.push(match args.matching.amontons_mu {
+            Some(mu) => format!("Amontons: mu = {mu} as given."),
+            None => {
+                let v = args.matching.reference_slip_m_per_s;
+                format!(
+                    "Amontons: mu = {:.4}, the rate-and-state steady state at the reference slip speed {v:e} m/s (`--reference-slip-speed`).",
+                    reference.mu_steady(v)
+                )
+            }
+        });
+    }
+    if args.laws.contains(&LawChoice::Rate) {
+        if let floe_friction::Law::RateState(rs) = &reference {
+            let v = args.matching.reference_slip_m_per_s;
+            notes.push(format!(
+                "Rate law: the rate-and-state mu0 = {} and V* = {} m/s, with C1 = A - B = {:.4}: the steady state of the published form, without memory. At the reference slip speed {v:e} m/s it gives mu = {:.4}; the rate-and-state law used here ({:?} form) gives {:.4} in steady state.",
+                rs.params.mu0,
+                rs.params.v_star_m_per_s,
+                rs.params.a - rs.params.b,
+                rs.params.mu_steady_published(v),
+                rs.form,
+                reference.mu_steady(v)
+            ));
+        }
+    }
+
+    let mut out = Vec::new();
+    for &law in &args.laws {
+        let (variant_text, friction) = variant(
+            &text,
+            origin,
+            law,
+            &reference,
+            &reference_text,
+            args.matching,
+        )?;
+        let scenario_file = args.out_dir.join(format!("{}.toml", law.name()));
+        std::fs::write(&scenario_file, &variant_text).map_err(|e| Error::io(&scenario_file, e))?;
+        let output = args.out_dir.join(format!("{}.h5", law.name()));
+        hooks.say(&format!("compare: {} -> {}", law.name(), output.display()));
+        let summary = run(
+            &RunArgs {
+                scenario: Some(scenario_file),
+                output: output.clone(),
+                threads: args.threads,
+                force: args.force,
+                resume: false,
+                max_steps: None,
+                provenance: args.provenance.clone(),
+            },
+            hooks,
+        )?;
+        hooks.say(&summary.describe(&output));
+        let map_dir = args.out_dir.join(law.name());
+        std::fs::create_dir_all(&map_dir).map_err(|e| Error::io(&map_dir, e))?;
+        render(&output, Snapshots::One(-1), ColourBy::Speed, &map_dir, true)?;
+        out.push(Variant {
+            name: law.name().to_string(),
+            friction_toml: friction,
+            metrics: measure(&output, &args.metrics)?,
+            file: PathBuf::from(format!("{}.h5", law.name())),
+        });
+    }
+    figures(&args.out_dir, &out)?;
+    let md = markdown(&args.scenario, &out, &notes);
+    std::fs::write(&report_path, md).map_err(|e| Error::io(&report_path, e))?;
+    Ok(report_path)
+}

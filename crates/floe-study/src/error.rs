@@ -1,0 +1,88 @@
+//! The one error type of runs, comparisons and sweeps: every failure is one
+//! message for the user, with the exit code a command line gives it.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+/// Everything a run, comparison or sweep can report to its user.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// A problem in a scenario or protocol file (located to line, column
+    /// and key) or in a setting.
+    #[error("{0}")]
+    Scenario(#[from] floe_scenario::ScenarioError),
+    /// A bad command-line value.
+    #[error("{0}")]
+    Usage(String),
+    /// A file that would be overwritten without `--force`.
+    #[error("{0}: already exists; pass --force to overwrite it")]
+    WouldOverwrite(PathBuf),
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating-system error.
+        source: std::io::Error,
+    },
+    /// Drawing a plot failed.
+    #[error("{path}: could not draw the plot: {message}")]
+    Plot {
+        /// The image file.
+        path: PathBuf,
+        /// What the plotting library said.
+        message: String,
+    },
+    /// The friction library refused a parameter or a fit failed.
+    #[error("{0}")]
+    Friction(#[from] floe_friction::FrictionError),
+    /// The DEM engine refused its input (outside a scenario file, e.g. a
+    /// damaged checkpoint).
+    #[error("{0}")]
+    Engine(#[from] floe_dem::DemError),
+    /// Writing or reading a run's HDF5 file failed.
+    #[error("{0}")]
+    Output(#[from] floe_io::IoError),
+    /// A metric could not be computed from a run's output.
+    #[error("{0}")]
+    Analysis(#[from] floe_analysis::AnalysisError),
+    /// The run was interrupted (Ctrl-C, SIGTERM) and stopped cleanly.
+    #[error("interrupted at step {step}; final snapshot and checkpoint written to {}; continue with `floe run --resume {}`", output.display(), output.display())]
+    Interrupted {
+        /// The run's output file.
+        output: PathBuf,
+        /// The step it stopped at.
+        step: u64,
+    },
+    /// The state went non-finite or floes overlapped beyond reason.
+    #[error("{message}; last snapshot written to {}, its checkpoint holds the last good state", output.display())]
+    BlowUp {
+        /// The run's output file.
+        output: PathBuf,
+        /// What happened, where, and the suggested time step.
+        message: String,
+    },
+}
+
+impl Error {
+    /// Process exit code: 2 for bad input (files or flags), 130 for an
+    /// interrupted run, 1 for everything else.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Error::Scenario(e) if e.is_input() => 2,
+            Error::Usage(_) | Error::WouldOverwrite(_) => 2,
+            // 128 + SIGINT, as a shell reports a process stopped by Ctrl-C.
+            Error::Interrupted { .. } => 130,
+            _ => 1,
+        }
+    }
+
+    /// An [`Error::Io`] for `path`.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}

@@ -1,0 +1,19 @@
+//! # floe-study
+//!
+//! What a study does with floe beyond stepping a world: runs a scenario
+//! into a run file and resumes it ([`run_file`]), runs one scenario under
+//! several friction laws and reports them side by side ([`compare`]), runs
+//! the cartesian product of settings ([`sweep`]), measures runs
+//! ([`compare::metrics`]), and draws them ([`render`], [`plot`]). The
+//! `floe` command line is a thin layer over this crate; study scripts
+//! (`examples/`) use it directly.
+#![deny(missing_docs)]
+
+pub mod compare;
+pub mod error;
+pub mod plot;
+pub mod render;
+pub mod run_file;
+pub mod sweep;
+
+pub use error::Error;

@@ -1,0 +1,214 @@
+//! PNG plots with plotters' pure-Rust bitmap backend and an embedded DejaVu
+//! font, so no system font or graphics package is needed.
+
+use std::path::Path;
+use std::sync::Once;
+
+use floe_friction::spring_slider::Sample;
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+use crate::error::Error;
+
+/// One named line on a chart.
+#[derive(Debug, Clone)]
+pub struct Line {
+    /// Legend text.
+    pub label: String,
+    /// (x, y) points in drawing order.
+    pub points: Vec<(f64, f64)>,
+    /// Draw markers at the points instead of joining them.
+    pub markers: bool,
+}
+
+impl Line {
+    /// A joined line.
+    pub fn new(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self {
+            label: label.into(),
+            points,
+            markers: false,
+        }
+    }
+
+    /// Points drawn as markers.
+    pub fn markers(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self {
+            label: label.into(),
+            points,
+            markers: true,
+        }
+    }
+}
+
+/// Axis titles and chart caption.
+#[derive(Debug, Clone, Copy)]
+pub struct Axes<'a> {
+    /// Caption above the chart.
+    pub title: &'a str,
+    /// x-axis title.
+    pub x: &'a str,
+    /// y-axis title.
+    pub y: &'a str,
+}
+
+/// Registers the embedded DejaVu font (once per process).
+pub(crate) fn register_font() {
+    static FONT: Once = Once::new();
+    FONT.call_once(|| {
+        // The bytes are a valid TTF shipped by the `dejavu` crate; failure here
+        // would only mean text-less plots, so it is not fatal.
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            dejavu::sans::regular(),
+        );
+    });
+}
+
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(23, 190, 207),
+];
+
+fn bounds(lines: &[Line]) -> ((f64, f64), (f64, f64)) {
+    let pts = lines
+        .iter()
+        .flat_map(|l| l.points.iter())
+        .filter(|(x, y)| x.is_finite() && y.is_finite());
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in pts {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !x0.is_finite() {
+        return ((0.0, 1.0), (0.0, 1.0));
+    }
+    let pad = |a: f64, b: f64| {
+        let d = if b > a {
+            0.05 * (b - a)
+        } else {
+            0.5 * a.abs().max(1e-12)
+        };
+        (a - d, b + d)
+    };
+    ((x0, if x1 > x0 { x1 } else { x0 + 1.0 }), pad(y0, y1))
+}
+
+type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+
+fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
+    let ((x0, x1), (y0, y1)) = bounds(lines);
+    let mut chart = ChartBuilder::on(area)
+        .caption(axes.title, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(65)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(axes.x)
+        .y_desc(axes.y)
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    for (i, line) in lines.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let pts = line
+            .points
+            .iter()
+            .copied()
+            .filter(|(x, y)| x.is_finite() && y.is_finite());
+        let series = if line.markers {
+            chart
+                .draw_series(pts.map(|p| Circle::new(p, 4, color.filled())))
+                .map_err(|e| e.to_string())?
+        } else {
+            chart
+                .draw_series(LineSeries::new(pts, color.stroke_width(2)))
+                .map_err(|e| e.to_string())?
+        };
+        if !line.label.is_empty() {
+            series.label(line.label.clone()).legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
+        }
+    }
+    if lines.iter().any(|l| !l.label.is_empty()) {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 14))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+/// Draws panels side by side into one PNG, each `(axes, lines)`.
+pub fn panels(path: &Path, panels: &[(Axes, Vec<Line>)]) -> Result<(), Error> {
+    grid(path, 1, panels)
+}
+
+/// Draws panels in `rows` rows (filled row by row) into one PNG.
+pub fn grid(path: &Path, rows: usize, panels: &[(Axes, Vec<Line>)]) -> Result<(), Error> {
+    register_font();
+    let err = |message: String| Error::Plot {
+        path: path.to_path_buf(),
+        message,
+    };
+    let rows = rows.max(1);
+    let cols = panels.len().div_ceil(rows).max(1);
+    let root = BitMapBackend::new(path, (620 * cols as u32, 460 * rows as u32)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+    let areas = root.split_evenly((rows, cols));
+    for (area, (axes, lines)) in areas.iter().zip(panels) {
+        draw_chart(area, *axes, lines).map_err(err)?;
+    }
+    root.present().map_err(|e| err(e.to_string()))
+}
+
+/// The spring-slider figure: friction against load-point displacement and
+/// against time.
+pub fn friction_figure(path: &Path, title: &str, samples: &[Sample]) -> Result<(), Error> {
+    let by_displacement: Vec<_> = samples
+        .iter()
+        .map(|s| (s.load_point_m * 1e3, s.mu))
+        .collect();
+    let by_time: Vec<_> = samples.iter().map(|s| (s.t_s, s.mu)).collect();
+    panels(
+        path,
+        &[
+            (
+                Axes {
+                    title,
+                    x: "load-point displacement (mm)",
+                    y: "friction coefficient mu",
+                },
+                vec![Line::new("", by_displacement)],
+            ),
+            (
+                Axes {
+                    title,
+                    x: "time (s)",
+                    y: "friction coefficient mu",
+                },
+                vec![Line::new("", by_time)],
+            ),
+        ],
+    )
+}

@@ -1,0 +1,135 @@
+//! A map of the floes coloured by a per-floe value, with a colour bar.
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::colour::ColourScale;
+use crate::error::Error;
+use crate::plot::register_font;
+
+/// Grey of floes that have no value (no contacts) and of walls.
+const NO_VALUE: RGBColor = RGBColor(200, 200, 200);
+const WALL: RGBColor = RGBColor(110, 110, 110);
+
+/// What to draw.
+#[derive(Debug, Clone, Copy)]
+pub struct FloeMap<'a> {
+    /// Caption.
+    pub title: &'a str,
+    /// Outlines in world coordinates, m.
+    pub polygons: &'a [Vec<(f64, f64)>],
+    /// The value of each floe (`None`: drawn grey).
+    pub values: &'a [Option<f64>],
+    /// Walls and other prescribed floes (drawn dark grey).
+    pub prescribed: &'a [bool],
+    /// Value to colour.
+    pub scale: ColourScale,
+    /// Colour-bar title, with unit.
+    pub label: &'a str,
+    /// Region to show, m: `((x_min, x_max), (y_min, y_max))`.
+    pub view: ((f64, f64), (f64, f64)),
+}
+
+/// Draws `map` into a PNG at `path`; axes in km.
+pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
+    register_font();
+    let err = |e: String| Error::Plot {
+        path: path.to_path_buf(),
+        message: e,
+    };
+    let ((x0, x1), (y0, y1)) = map.view;
+    let aspect = (y1 - y0) / (x1 - x0);
+    let width = 1400u32;
+    let plot_height = ((width - 160) as f64 * aspect).clamp(260.0, 1400.0) as u32;
+    let root = BitMapBackend::new(path, (width, plot_height + 90)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+    let (left, right) = root.split_horizontally(width - 150);
+    let km = 1e-3;
+    let mut chart = ChartBuilder::on(&left)
+        .caption(map.title, ("sans-serif", 20))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(x0 * km..x1 * km, y0 * km..y1 * km)
+        .map_err(|e| err(e.to_string()))?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x (km)")
+        .y_desc("y (km)")
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| err(e.to_string()))?;
+    let inside = |&(x, y): &(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
+    let fills = map.polygons.iter().enumerate().filter_map(|(i, poly)| {
+        // plotters does not clip to the plot area: skip floes entirely
+        // outside it and clamp the rest (walls reach beyond the view).
+        if !poly.iter().any(inside) && !map.prescribed[i] {
+            return None;
+        }
+        let colour = if map.prescribed[i] {
+            WALL
+        } else {
+            map.values[i].map_or(NO_VALUE, |v| map.scale.colour(v))
+        };
+        let pts: Vec<(f64, f64)> = poly
+            .iter()
+            .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
+            .collect();
+        Some(Polygon::new(pts, colour.filled()))
+    });
+    chart.draw_series(fills).map_err(|e| err(e.to_string()))?;
+    // Outlines only when floes are big enough on screen to show them.
+    let pixels_per_floe = (width as f64 - 220.0) / (map.polygons.len() as f64).sqrt().max(1.0);
+    if pixels_per_floe > 6.0 {
+        let outlines = map
+            .polygons
+            .iter()
+            .filter(|p| p.iter().any(inside))
+            .map(|poly| {
+                let mut pts: Vec<(f64, f64)> = poly
+                    .iter()
+                    .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
+                    .collect();
+                pts.push(pts[0]);
+                PathElement::new(pts, BLACK.mix(0.35).stroke_width(1))
+            });
+        chart
+            .draw_series(outlines)
+            .map_err(|e| err(e.to_string()))?;
+    }
+    colour_bar(&right, map.scale, map.label).map_err(err)?;
+    root.present().map_err(|e| err(e.to_string()))
+}
+
+type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+
+fn colour_bar(area: &Area, scale: ColourScale, label: &str) -> Result<(), String> {
+    let mut bar = ChartBuilder::on(area)
+        .margin_top(40)
+        .margin_bottom(50)
+        .margin_right(70)
+        .y_label_area_size(0)
+        .right_y_label_area_size(60)
+        .caption(label, ("sans-serif", 14))
+        .build_cartesian_2d(0.0..1.0, scale.lo..scale.hi)
+        .map_err(|e| e.to_string())?;
+    bar.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .label_style(("sans-serif", 13))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    let n = 128;
+    let dv = (scale.hi - scale.lo) / n as f64;
+    bar.draw_series((0..n).map(|k| {
+        let v = scale.lo + k as f64 * dv;
+        Rectangle::new(
+            [(0.0, v), (1.0, v + dv)],
+            scale.colour(v + 0.5 * dv).filled(),
+        )
+    }))
+    .map_err(|e| e.to_string())?;
+    Ok(())
+}

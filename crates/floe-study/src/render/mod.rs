@@ -1,0 +1,276 @@
+//! `floe render`: PNG maps of the floes of a run (coloured by speed, theta
+//! or pressure) and PNG plots of its observables.
+
+pub mod colour;
+pub mod floe_map;
+pub mod per_floe;
+
+use std::path::{Path, PathBuf};
+
+use floe_io::RunFile;
+
+use crate::error::Error;
+use crate::plot::{grid, Axes, Line};
+use colour::ColourScale;
+use floe_dem::run::format_sim_time;
+use floe_map::FloeMap;
+use per_floe::ContactView;
+
+/// Which snapshots to draw.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Snapshots {
+    /// One snapshot; negative counts from the end (-1 is the last).
+    One(i64),
+    /// Every K-th snapshot, starting with the first.
+    Every(usize),
+}
+
+/// What colours the floes of a map.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ColourBy {
+    /// Floe speed, m/s.
+    Speed,
+    /// Mean rate-and-state theta over the floe's contacts.
+    Theta,
+    /// Floe pressure from its contact forces, N/m (compression positive).
+    Stress,
+}
+
+impl ColourBy {
+    fn name(self) -> &'static str {
+        match self {
+            ColourBy::Speed => "speed",
+            ColourBy::Theta => "theta",
+            ColourBy::Stress => "stress",
+        }
+    }
+
+    fn label(self) -> &'static str {
+        match self {
+            ColourBy::Speed => "speed (m/s)",
+            ColourBy::Theta => "theta (mean over contacts)",
+            ColourBy::Stress => "pressure (kN/m)",
+        }
+    }
+}
+
+/// The snapshot indices `which` selects among `count`.
+pub fn select(which: Snapshots, count: usize) -> Result<Vec<usize>, Error> {
+    match which {
+        Snapshots::One(k) => {
+            let index = if k < 0 { count as i64 + k } else { k };
+            if index < 0 || index >= count as i64 {
+                return Err(Error::Usage(format!(
+                    "--snapshot {k}: the file has {count} snapshots (0..{})",
+                    count.saturating_sub(1)
+                )));
+            }
+            Ok(vec![index as usize])
+        }
+        Snapshots::Every(0) => Err(Error::Usage("--every must be at least 1".into())),
+        Snapshots::Every(k) => Ok((0..count).step_by(k).collect()),
+    }
+}
+
+/// Draws the selected snapshots and the observables into `out_dir`;
+/// returns the files written. Refuses to replace pictures unless `force`.
+pub fn render(
+    file: &Path,
+    which: Snapshots,
+    colour: ColourBy,
+    out_dir: &Path,
+    force: bool,
+) -> Result<Vec<PathBuf>, Error> {
+    let run = RunFile::open(file)?;
+    let meta = run.metadata()?;
+    let floes = run.static_floes()?;
+    let frames = select(which, run.snapshot_count()?)?;
+    let domain = meta.domain;
+    let period = [0, 1].map(|d| domain.periodic[d].then_some(domain.size_m[d]));
+    // Every value first, so that all frames share one colour scale.
+    let mut snapshots = Vec::with_capacity(frames.len());
+    let mut values = Vec::with_capacity(frames.len());
+    for &k in &frames {
+        let snap = run.snapshot(k)?;
+        let v: Vec<Option<f64>> = match colour {
+            ColourBy::Speed => snap
+                .velocity
+                .iter()
+                .map(|v| Some(v[0].hypot(v[1])))
+                .collect(),
+            ColourBy::Theta | ColourBy::Stress => {
+                let c = run.contacts(k)?;
+                let view = ContactView {
+                    pair: &c.pair,
+                    normal: &c.normal,
+                    normal_force_n: &c.normal_force_n,
+                    tangential_force_n: &c.tangential_force_n,
+                    point: &c.point,
+                    theta: &c.theta,
+                };
+                if colour == ColourBy::Theta {
+                    per_floe::mean_theta(floes.len(), &view)
+                } else {
+                    per_floe::pressure(&snap.position, &floes.area_m2, &view, period)
+                        .into_iter()
+                        .map(|p| p.map(|p| p * 1e-3))
+                        .collect()
+                }
+            }
+        };
+        values.push(v);
+        snapshots.push(snap);
+    }
+    let prescribed: Vec<bool> = floes.prescribed.clone();
+    let free_values = values
+        .iter()
+        .flat_map(|v| v.iter().zip(&prescribed))
+        .filter_map(|(v, &p)| if p { None } else { *v });
+    let scale = ColourScale::fit(free_values, colour == ColourBy::Theta);
+
+    let mut targets: Vec<PathBuf> = snapshots
+        .iter()
+        .map(|s| out_dir.join(format!("floes_{}_{:09}.png", colour.name(), s.step)))
+        .collect();
+    targets.push(out_dir.join("observables.png"));
+    if !force {
+        if let Some(existing) = targets.iter().find(|p| p.exists()) {
+            return Err(Error::WouldOverwrite(existing.clone()));
+        }
+    }
+    std::fs::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
+    let margin = 0.04 * domain.size_m[0].max(domain.size_m[1]);
+    let view = (
+        (
+            domain.min_m[0] - margin,
+            domain.min_m[0] + domain.size_m[0] + margin,
+        ),
+        (
+            domain.min_m[1] - margin,
+            domain.min_m[1] + domain.size_m[1] + margin,
+        ),
+    );
+    let name = file
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    for ((snap, v), target) in snapshots.iter().zip(&values).zip(&targets) {
+        let polygons: Vec<Vec<(f64, f64)>> = (0..floes.len())
+            .map(|i| {
+                let (s, c) = snap.angle[i].sin_cos();
+                let p = snap.position[i];
+                floes
+                    .local_vertices(i)
+                    .iter()
+                    .map(|q| (p[0] + c * q[0] - s * q[1], p[1] + s * q[0] + c * q[1]))
+                    .collect()
+            })
+            .collect();
+        let title = format!(
+            "{name}: step {}, t = {}",
+            snap.step,
+            format_sim_time(snap.time_s)
+        );
+        floe_map::draw(
+            target,
+            &FloeMap {
+                title: &title,
+                polygons: &polygons,
+                values: v,
+                prescribed: &prescribed,
+                scale,
+                label: colour.label(),
+                view,
+            },
+        )?;
+    }
+    observables_figure(&run, targets.last().expect("observables target"))?;
+    Ok(targets)
+}
+
+/// Time series of the observables: energies, work and dissipation, mean
+/// stress, contacts, friction.
+fn observables_figure(run: &RunFile, path: &Path) -> Result<(), Error> {
+    let hours = |t: &[f64]| t.iter().map(|t| t / 3600.0).collect::<Vec<_>>();
+    let line = |name: &str, label: &str, scale: f64| -> Result<Line, Error> {
+        let s = run.observable(name)?;
+        let t = hours(&s.time_s);
+        let width = s.value.len() / s.time_s.len().max(1);
+        Ok(Line::new(
+            label,
+            t.iter()
+                .enumerate()
+                .map(|(k, &t)| (t, s.value[k * width] * scale))
+                .collect(),
+        ))
+    };
+    let stress = run.observable("mean_stress")?;
+    let t = hours(&stress.time_s);
+    let component = |c: usize, label: &str| {
+        Line::new(
+            label,
+            t.iter()
+                .enumerate()
+                .map(|(k, &t)| (t, stress.value[4 * k + c] * 1e-3))
+                .collect(),
+        )
+    };
+    let panels = vec![
+        (
+            Axes {
+                title: "kinetic energy",
+                x: "time (h)",
+                y: "energy (MJ)",
+            },
+            vec![
+                line("kinetic_translational", "translational", 1e-6)?,
+                line("kinetic_rotational", "rotational", 1e-6)?,
+            ],
+        ),
+        (
+            Axes {
+                title: "work and dissipation (cumulative)",
+                x: "time (h)",
+                y: "energy (MJ)",
+            },
+            vec![
+                line("forcing_work", "forcing work", 1e-6)?,
+                line("boundary_work", "wall work", 1e-6)?,
+                line("friction_dissipation", "friction", 1e-6)?,
+                line("damping_dissipation", "damping", 1e-6)?,
+            ],
+        ),
+        (
+            Axes {
+                title: "mean stress (tension positive)",
+                x: "time (h)",
+                y: "stress (kN/m)",
+            },
+            vec![component(0, "xx"), component(1, "xy"), component(3, "yy")],
+        ),
+        (
+            Axes {
+                title: "contacts",
+                x: "time (h)",
+                y: "number of contacts",
+            },
+            vec![line("contacts", "", 1.0)?],
+        ),
+        (
+            Axes {
+                title: "sliding fraction",
+                x: "time (h)",
+                y: "fraction of contacts sliding",
+            },
+            vec![line("sliding_fraction", "", 1.0)?],
+        ),
+        (
+            Axes {
+                title: "mean friction coefficient",
+                x: "time (h)",
+                y: "sum |F_t| / sum F_n",
+            },
+            vec![line("mean_mu", "", 1.0)?],
+        ),
+    ];
+    grid(path, 2, &panels)
+}

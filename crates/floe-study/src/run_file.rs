@@ -1,0 +1,308 @@
+//! A scenario run into a run file: the scenario file in, an HDF5 file
+//! (H5MD layout) out, with checkpoints to resume from, and a clean stop on
+//! an interrupt or a numerical blow-up. The stepping loop is
+//! [`floe_dem::run::drive`]; the file is written by its observer, the
+//! [`RunWriter`]. What the user sees (set-up lines, progress) and how a
+//! run is interrupted come from the caller's [`RunHooks`].
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use floe_dem::forcing::Forcing;
+use floe_dem::run::{self, format_sim_time, Cadence, Ending, Progress, Silent};
+use floe_dem::world::World;
+use floe_io::{DomainBox, OutputOptions, RunFile, RunMetadata, RunWriter};
+use floe_scenario::Scenario;
+
+use crate::error::Error;
+
+/// What a run tells its caller as it goes, and how the caller stops it.
+pub trait RunHooks: Sync {
+    /// A line for the user: what was built, what is resumed.
+    fn say(&self, line: &str);
+    /// A progress reporter for steps `first_step..total_steps`, the run
+    /// ending at simulated time `end_time_s`.
+    fn progress(&self, first_step: u64, total_steps: u64, end_time_s: f64) -> Box<dyn Progress>;
+    /// The flag that stops the run after the current step (set from a
+    /// signal handler: Ctrl-C, a scheduler's SIGTERM).
+    fn interrupt(&self) -> &AtomicBool;
+}
+
+/// Hooks that say nothing, show no progress and never interrupt (for
+/// library use and tests).
+pub struct Quiet;
+
+static NEVER: AtomicBool = AtomicBool::new(false);
+
+impl RunHooks for Quiet {
+    fn say(&self, _line: &str) {}
+    fn progress(&self, _: u64, _: u64, _: f64) -> Box<dyn Progress> {
+        Box::new(Silent)
+    }
+    fn interrupt(&self) -> &AtomicBool {
+        &NEVER
+    }
+}
+
+/// Who made a run file, for its provenance record.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Provenance {
+    /// The program's version.
+    pub floe_version: String,
+    /// The git commit it was built from (`unknown` outside a checkout).
+    pub git_commit: String,
+    /// The command line that started the run.
+    pub command_line: Vec<String>,
+    /// Who ran it.
+    pub author: String,
+}
+
+impl Provenance {
+    /// This library's version and the process's command line and user; the
+    /// commit as the caller knows it.
+    pub fn of_this_process(git_commit: &str) -> Self {
+        Provenance {
+            floe_version: env!("CARGO_PKG_VERSION").to_string(),
+            git_commit: git_commit.to_string(),
+            command_line: std::env::args().collect(),
+            author: std::env::var("USER").unwrap_or_else(|_| "unknown".into()),
+        }
+    }
+}
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct RunArgs {
+    /// The scenario file (absent with `resume`).
+    pub scenario: Option<PathBuf>,
+    /// The HDF5 output file.
+    pub output: PathBuf,
+    /// Worker threads (default: the scenario's `threads`, else all cores).
+    pub threads: Option<usize>,
+    /// Replace an existing output file.
+    pub force: bool,
+    /// Continue the run in `output` from its last checkpoint.
+    pub resume: bool,
+    /// Take at most this many steps in this invocation, then write a
+    /// checkpoint and stop (continue with `resume`): for batch jobs with a
+    /// wall-clock limit, and for tests of resuming.
+    pub max_steps: Option<u64>,
+    /// Who is running it.
+    pub provenance: Provenance,
+}
+
+/// What a finished run did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// Steps taken by this invocation.
+    pub steps_taken: u64,
+    /// The run's step count at the end.
+    pub final_step: u64,
+    /// The step the scenario ends at.
+    pub total_steps: u64,
+    /// Simulated time at the end, s.
+    pub final_time_s: f64,
+    /// Wall-clock time of the stepping loop, s.
+    pub wall_s: f64,
+    /// Threads used.
+    pub threads: usize,
+}
+
+impl RunSummary {
+    /// One line for the terminal.
+    pub fn describe(&self, output: &Path) -> String {
+        let state = if self.final_step >= self.total_steps {
+            "completed".to_string()
+        } else {
+            format!(
+                "paused; continue with `floe run --resume {}`",
+                output.display()
+            )
+        };
+        format!(
+            "{}: {state} at step {}/{} (t = {}), {} steps in {:.1} s ({:.1} steps/s, {} threads)",
+            output.display(),
+            self.final_step,
+            self.total_steps,
+            format_sim_time(self.final_time_s),
+            self.steps_taken,
+            self.wall_s,
+            self.steps_taken as f64 / self.wall_s.max(1e-9),
+            self.threads
+        )
+    }
+}
+
+/// Runs (or resumes) a scenario to completion, or to the step budget.
+pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
+    if args.resume {
+        if args.scenario.is_some() {
+            return Err(Error::Usage(
+                "--resume continues the scenario stored in the output file; do not give a scenario file".into(),
+            ));
+        }
+        return resume(args, hooks);
+    }
+    let path = args.scenario.as_ref().ok_or_else(|| {
+        Error::Usage("give a scenario file, or --resume to continue a run".into())
+    })?;
+    let scenario = Scenario::load(path)?;
+    if args.output.exists() && !args.force {
+        return Err(Error::WouldOverwrite(args.output.clone()));
+    }
+    let threads = thread_count(args.threads.or(scenario.threads()))?;
+    let pool = pool(threads)?;
+    pool.install(|| {
+        let setup = scenario.build()?;
+        for line in &setup.report {
+            hooks.say(line);
+        }
+        if args.force && args.output.exists() {
+            std::fs::remove_file(&args.output).map_err(|e| Error::io(&args.output, e))?;
+        }
+        let domain = scenario.domain();
+        let p = &args.provenance;
+        let metadata = RunMetadata {
+            scenario_toml: scenario.text().to_string(),
+            scenario_path: path.display().to_string(),
+            floe_version: p.floe_version.clone(),
+            git_commit: p.git_commit.clone(),
+            command_line: p.command_line.clone(),
+            threads,
+            author: p.author.clone(),
+            domain: DomainBox {
+                min_m: [domain.min_m.x, domain.min_m.y],
+                size_m: [domain.size_m.x, domain.size_m.y],
+                periodic: domain.periodic,
+            },
+        };
+        // The output's directory is made if missing, as `-o out/run.h5` suggests.
+        if let Some(parent) = args.output.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(parent).map_err(|e| Error::io(&args.output, e))?;
+        }
+        let mut writer = RunWriter::create(
+            &args.output,
+            &metadata,
+            setup.world.floes(),
+            &OutputOptions::default(),
+        )?;
+        writer.set_status("running")?;
+        let mut world = setup.world;
+        run::start(&world, &mut writer, domain.area_m2())?;
+        advance(&scenario, &mut world, &mut writer, args, threads, hooks)
+    })
+}
+
+fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
+    let metadata = RunFile::open(&args.output)?.metadata()?;
+    let origin = PathBuf::from(format!(
+        "{} (scenario stored in {})",
+        metadata.scenario_path,
+        args.output.display()
+    ));
+    let scenario = Scenario::from_text(&metadata.scenario_toml, &origin)?;
+    let threads = thread_count(args.threads.or(scenario.threads()))?;
+    let pool = pool(threads)?;
+    pool.install(|| {
+        let parts = scenario.engine_parts();
+        // Checkpoints of format 3 hold the time step; older ones take the
+        // scenario's, found by building its floes.
+        let (mut writer, state, info) =
+            RunWriter::reopen_for_resume(&args.output, || scenario.time_step().ok())?;
+        hooks.say(&format!(
+            "resuming {} from step {} (t = {})",
+            args.output.display(),
+            info.step,
+            format_sim_time(info.time_s)
+        ));
+        let mut world = World::resume(state, parts.model, parts.forcing, parts.periodicity)?;
+        writer.set_status("running")?;
+        advance(&scenario, &mut world, &mut writer, args, threads, hooks)
+    })
+}
+
+/// The stepping loop and the status it leaves in the file.
+fn advance(
+    scenario: &Scenario,
+    world: &mut World<Forcing>,
+    writer: &mut RunWriter,
+    args: &RunArgs,
+    threads: usize,
+    hooks: &dyn RunHooks,
+) -> Result<RunSummary, Error> {
+    let dt = world.dt_s();
+    let total_steps = ((scenario.duration_s() / dt).round() as u64).max(1);
+    let out = scenario.output();
+    let cadence = Cadence::from_seconds(
+        out.snapshot_every_s,
+        out.observables_every_s,
+        out.checkpoint_every_s,
+        dt,
+    );
+    let first_step = world.steps();
+    let pause_at = args.max_steps.map(|n| first_step.saturating_add(n));
+    let mut progress = hooks.progress(first_step, total_steps, total_steps as f64 * dt);
+    let started = Instant::now();
+    let ending = run::drive(
+        world,
+        total_steps,
+        pause_at,
+        cadence,
+        scenario.domain().area_m2(),
+        writer,
+        hooks.interrupt(),
+        progress.as_mut(),
+    )?;
+    let summary = RunSummary {
+        steps_taken: world.steps() - first_step,
+        final_step: world.steps(),
+        total_steps,
+        final_time_s: world.time_s(),
+        wall_s: started.elapsed().as_secs_f64(),
+        threads,
+    };
+    match ending {
+        Ending::Completed => {
+            writer.set_status("completed")?;
+            writer.flush()?;
+            Ok(summary)
+        }
+        Ending::Interrupted { step } => {
+            writer.set_status(&format!("interrupted at step {step}"))?;
+            writer.flush()?;
+            Err(Error::Interrupted {
+                output: args.output.clone(),
+                step,
+            })
+        }
+        Ending::Paused { step } => {
+            writer.set_status(&format!("paused at step {step}"))?;
+            writer.flush()?;
+            Ok(summary)
+        }
+        Ending::BlewUp(blow_up) => {
+            writer.set_status(&format!("stopped: {blow_up}"))?;
+            writer.flush()?;
+            Err(Error::BlowUp {
+                output: args.output.clone(),
+                message: blow_up.to_string(),
+            })
+        }
+    }
+}
+
+fn thread_count(requested: Option<usize>) -> Result<usize, Error> {
+    match requested {
+        Some(0) => Err(Error::Usage("--threads must be at least 1".into())),
+        Some(n) => Ok(n),
+        None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+    }
+}
+
+fn pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| Error::Usage(format!("cannot start {threads} threads: {e}")))
+}

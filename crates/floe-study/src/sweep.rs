@@ -1,0 +1,296 @@
+//! `floe sweep`: a scenario over the cartesian product of `--set` values,
+//! run in parallel up to the thread budget (or written out with `--emit`
+//! for an HPC job array), with the metrics of every variant tabulated.
+//!
+//! A sweep directory holds `variants.csv` (the manifest: id, the swept
+//! values, scenario and output file names), one `variant_NNN.toml` per
+//! variant, their `variant_NNN.h5` outputs once run, and `results.csv` /
+//! `results.md`. `floe sweep --gather DIR` tabulates whatever outputs are
+//! there, so a job array's results are collected the same way.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+
+use floe_io::RunFile;
+
+use crate::compare::metrics::{measure, MetricOptions, RunMetrics};
+use crate::error::Error;
+use floe_dem::run::{Progress, Silent};
+use floe_scenario::settings::{apply, cartesian, label, Setting};
+use floe_scenario::Scenario;
+
+use crate::run_file::{run, Provenance, RunArgs, RunHooks};
+
+/// What `floe sweep` was asked to do.
+#[derive(Debug, Clone)]
+pub struct SweepArgs {
+    /// The base scenario.
+    pub scenario: PathBuf,
+    /// The swept keys and their values.
+    pub settings: Vec<Setting>,
+    /// The sweep directory.
+    pub out_dir: PathBuf,
+    /// Total thread budget (default: all cores).
+    pub threads: Option<usize>,
+    /// Replace existing files.
+    pub force: bool,
+    /// Only write the variants' scenario files and the manifest.
+    pub emit_only: bool,
+    /// Metric choices.
+    pub metrics: MetricOptions,
+    /// Who runs the sweep (recorded in each run file).
+    pub provenance: Provenance,
+}
+
+/// The caller's hooks without progress reports: variants run side by side.
+struct WithoutProgress<'a>(&'a dyn RunHooks);
+
+impl RunHooks for WithoutProgress<'_> {
+    fn say(&self, line: &str) {
+        self.0.say(line);
+    }
+    fn progress(&self, _: u64, _: u64, _: f64) -> Box<dyn Progress> {
+        Box::new(Silent)
+    }
+    fn interrupt(&self) -> &std::sync::atomic::AtomicBool {
+        self.0.interrupt()
+    }
+}
+
+const MANIFEST: &str = "variants.csv";
+
+/// Writes the variants (and runs them unless `emit_only`); returns the
+/// results table, or the manifest when only emitting.
+/// `hooks` hear what the runs say and may interrupt them.
+pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
+    if args.settings.is_empty() {
+        return Err(Error::Usage(
+            "give at least one --set KEY=VALUE[,VALUE...]".into(),
+        ));
+    }
+    let text = std::fs::read_to_string(&args.scenario).map_err(|e| Error::io(&args.scenario, e))?;
+    Scenario::from_text(&text, &args.scenario)?;
+    let combos = cartesian(&args.settings);
+    let manifest = args.out_dir.join(MANIFEST);
+    if manifest.exists() && !args.force {
+        return Err(Error::WouldOverwrite(manifest));
+    }
+    std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
+    let mut rows = Vec::with_capacity(combos.len());
+    for (id, choice) in combos.iter().enumerate() {
+        let variant_text = apply(&text, &args.scenario, &args.settings, choice)?;
+        let name = format!("variant_{:03}", id + 1);
+        let origin = PathBuf::from(format!(
+            "{} with {}",
+            args.scenario.display(),
+            label(&args.settings, choice)
+        ));
+        // Each variant must be a valid scenario before anything runs.
+        Scenario::from_text(&variant_text, &origin)?;
+        let file = args.out_dir.join(format!("{name}.toml"));
+        if file.exists() && !args.force {
+            return Err(Error::WouldOverwrite(file));
+        }
+        std::fs::write(&file, variant_text).map_err(|e| Error::io(&file, e))?;
+        rows.push(Row {
+            name,
+            values: args
+                .settings
+                .iter()
+                .zip(choice)
+                .map(|(s, &k)| s.values[k].clone())
+                .collect(),
+        });
+    }
+    write_manifest(&manifest, &args.settings, &rows)?;
+    if args.emit_only {
+        let script = args.out_dir.join("array.slurm");
+        std::fs::write(&script, slurm_array(rows.len())).map_err(|e| Error::io(&script, e))?;
+        return Ok(manifest);
+    }
+    let budget = match args.threads {
+        Some(0) => return Err(Error::Usage("--threads must be at least 1".into())),
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    let jobs = budget.min(rows.len()).max(1);
+    let per_job = (budget / jobs).max(1);
+    let next = AtomicUsize::new(0);
+    let failures = Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..jobs {
+            scope.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::SeqCst);
+                let Some(row) = rows.get(k) else { break };
+                let output = args.out_dir.join(format!("{}.h5", row.name));
+                let result = run(
+                    &RunArgs {
+                        scenario: Some(args.out_dir.join(format!("{}.toml", row.name))),
+                        output: output.clone(),
+                        threads: Some(per_job),
+                        force: args.force,
+                        resume: false,
+                        max_steps: None,
+                        provenance: args.provenance.clone(),
+                    },
+                    &WithoutProgress(hooks),
+                );
+                match result {
+                    Ok(summary) => hooks.say(&format!("sweep: {}", summary.describe(&output))),
+                    Err(e) => {
+                        hooks.say(&format!("sweep: {}: {e}", row.name));
+                        failures.lock().expect("no panics").push(row.name.clone());
+                        if matches!(e, Error::Interrupted { .. }) {
+                            // Leave the remaining variants unstarted.
+                            next.store(usize::MAX / 2, Ordering::SeqCst);
+                        }
+                    }
+                }
+            });
+        }
+    });
+    let table = gather(&args.out_dir, &args.metrics)?;
+    let failed = failures.into_inner().expect("no panics");
+    if !failed.is_empty() {
+        hooks.say(&format!(
+            "sweep: {} of {} variants did not complete ({}); their rows say why",
+            failed.len(),
+            rows.len(),
+            failed.join(", ")
+        ));
+    }
+    Ok(table)
+}
+
+/// A Slurm job-array script that runs (or resumes) every variant; see docs/hpc.md.
+fn slurm_array(variants: usize) -> String {
+    format!(
+        r#"#!/bin/bash
+# Written by `floe sweep --emit`; see docs/hpc.md. Adjust the resources.
+#SBATCH --job-name=floe-sweep
+#SBATCH --array=1-{variants}
+#SBATCH --cpus-per-task=8
+#SBATCH --time=04:00:00
+#SBATCH --signal=B:TERM@120
+set -euo pipefail
+cd "$SLURM_SUBMIT_DIR"
+v=$(printf 'variant_%03d' "$SLURM_ARRAY_TASK_ID")
+if [ -f "$v.h5" ]; then
+    exec floe run --resume "$v.h5" --threads "$SLURM_CPUS_PER_TASK" --quiet
+fi
+exec floe run "$v.toml" -o "$v.h5" --threads "$SLURM_CPUS_PER_TASK" --quiet
+"#
+    )
+}
+
+struct Row {
+    name: String,
+    values: Vec<String>,
+}
+
+fn write_manifest(path: &Path, settings: &[Setting], rows: &[Row]) -> Result<(), Error> {
+    let mut w = csv::Writer::from_path(path).map_err(|e| csv_error(path, e))?;
+    let mut header = vec!["variant".to_string()];
+    header.extend(settings.iter().map(Setting::dotted));
+    w.write_record(&header).map_err(|e| csv_error(path, e))?;
+    for r in rows {
+        let mut rec = vec![r.name.clone()];
+        rec.extend(r.values.iter().cloned());
+        w.write_record(&rec).map_err(|e| csv_error(path, e))?;
+    }
+    w.flush().map_err(|e| Error::io(path, e))
+}
+
+fn csv_error(path: &Path, e: csv::Error) -> Error {
+    Error::Usage(format!("{}: {e}", path.display()))
+}
+
+/// The metric columns of the results table.
+const COLUMNS: [&str; 8] = [
+    "status",
+    "peak_to_steady",
+    "steady_shear_kn_per_m",
+    "band_equivalent_width_km",
+    "band_10_90_width_km",
+    "slip_events",
+    "mean_sliding_fraction",
+    "friction_dissipation_mj",
+];
+
+fn metric_cells(m: &RunMetrics) -> Vec<String> {
+    let opt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or(String::new(), f);
+    let mean_sliding = m.mean_sliding_fraction();
+    vec![
+        opt(m.peak_to_steady.map(|p| p.ratio), &|x| format!("{x:.4}")),
+        opt(m.peak_to_steady.map(|p| p.steady * 1e-3), &|x| {
+            format!("{x:.4}")
+        }),
+        opt(m.band.map(|b| b.equivalent_width_m * 1e-3), &|x| {
+            format!("{x:.3}")
+        }),
+        opt(m.band.map(|b| b.width_10_90_m * 1e-3), &|x| {
+            format!("{x:.3}")
+        }),
+        m.slip_events.len().to_string(),
+        format!("{mean_sliding:.4}"),
+        opt(m.friction_dissipation_j.last().map(|x| x * 1e-6), &|x| {
+            format!("{x:.4}")
+        }),
+    ]
+}
+
+/// Tabulates the outputs listed in `dir/variants.csv` into `results.csv`
+/// and `results.md`; variants whose output is missing or incomplete get a
+/// row saying so. Returns the CSV's path.
+pub fn gather(dir: &Path, options: &MetricOptions) -> Result<PathBuf, Error> {
+    let manifest = dir.join(MANIFEST);
+    let mut reader = csv::Reader::from_path(&manifest).map_err(|e| csv_error(&manifest, e))?;
+    let header: Vec<String> = reader
+        .headers()
+        .map_err(|e| csv_error(&manifest, e))?
+        .iter()
+        .map(String::from)
+        .collect();
+    let mut table = Vec::new();
+    for rec in reader.records() {
+        let rec = rec.map_err(|e| csv_error(&manifest, e))?;
+        let mut row: Vec<String> = rec.iter().map(String::from).collect();
+        let output = dir.join(format!("{}.h5", row[0]));
+        let (status, cells) = if !output.exists() {
+            ("missing".to_string(), Vec::new())
+        } else {
+            let status = RunFile::open(&output).and_then(|f| f.status())?;
+            if status == "completed" {
+                (status, metric_cells(&measure(&output, options)?))
+            } else {
+                (status, Vec::new())
+            }
+        };
+        row.push(status);
+        row.extend(cells);
+        row.resize(header.len() + COLUMNS.len(), String::new());
+        table.push(row);
+    }
+    let mut full_header = header.clone();
+    full_header.extend(COLUMNS.iter().map(|c| c.to_string()));
+    let csv_path = dir.join("results.csv");
+    let mut w = csv::Writer::from_path(&csv_path).map_err(|e| csv_error(&csv_path, e))?;
+    w.write_record(&full_header)
+        .map_err(|e| csv_error(&csv_path, e))?;
+    for row in &table {
+        w.write_record(row).map_err(|e| csv_error(&csv_path, e))?;
+    }
+    w.flush().map_err(|e| Error::io(&csv_path, e))?;
+    let mut md = format!(
+        "| {} |\n|{}\n",
+        full_header.join(" | "),
+        "---|".repeat(full_header.len())
+    );
+    for row in &table {
+        md.push_str(&format!("| {} |\n", row.join(" | ")));
+    }
+    let md_path = dir.join("results.md");
+    std::fs::write(&md_path, md).map_err(|e| Error::io(&md_path, e))?;
+    Ok(csv_path)
+}

@@ -1,0 +1,67 @@
+//! `floe sweep`'s grid: parsing `--set`, the cartesian product, and editing
+//! a scenario's text without disturbing the rest of it.
+
+use std::path::Path;
+
+use floe_scenario::settings::{apply, cartesian, label, parse_setting};
+
+#[test]
+fn set_values_split_at_top_level_commas_only() {
+    let s = parse_setting("wind.velocity_m_per_s=[5.0, 0.0],[10.0,0.0]").unwrap();
+    assert_eq!(s.key, vec!["wind", "velocity_m_per_s"]);
+    assert_eq!(s.values, vec!["[5.0, 0.0]", "[10.0,0.0]"]);
+    let s = parse_setting("friction.preset=\"lab\",\"tank\"").unwrap();
+    assert_eq!(s.values, vec!["\"lab\"", "\"tank\""]);
+    let s = parse_setting(" friction.a = 0.25, 0.31 ,0.37").unwrap();
+    assert_eq!(s.values, vec!["0.25", "0.31", "0.37"]);
+    for bad in [
+        "friction.a",
+        "friction.a=",
+        "friction.a=0.3,",
+        "friction..a=1",
+        "x=lab",
+    ] {
+        let e = parse_setting(bad).unwrap_err().to_string();
+        assert!(e.contains(bad.trim()), "{bad}: {e}");
+    }
+}
+
+#[test]
+fn cartesian_product_counts_and_orders() {
+    let a = parse_setting("friction.a=1,2,3").unwrap();
+    let b = parse_setting("seed=7,8").unwrap();
+    let combos = cartesian(&[a.clone(), b.clone()]);
+    assert_eq!(combos.len(), 6);
+    assert_eq!(combos[0], vec![0, 0]);
+    assert_eq!(combos[1], vec![0, 1], "last setting fastest");
+    assert_eq!(combos[5], vec![2, 1]);
+    let mut unique = combos.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), 6);
+    assert_eq!(label(&[a, b], &combos[3]), "friction.a=2 seed=8");
+}
+
+#[test]
+fn apply_replaces_only_the_swept_keys() {
+    let text = "# my channel\nseed = 1\n\n[friction]\nlaw = \"rate-state\" # tank\na = 0.31\n\n[ice]\nthickness_m = 1.0\n";
+    let settings = [
+        parse_setting("friction.a=0.25,0.37").unwrap(),
+        parse_setting("seed=5").unwrap(),
+        parse_setting("output.snapshot_every_s=60").unwrap(),
+    ];
+    let out = apply(text, Path::new("x.toml"), &settings, &[1, 0, 0]).unwrap();
+    assert!(
+        out.contains("# my channel") && out.contains("# tank"),
+        "comments kept:\n{out}"
+    );
+    let v: toml::Table = out.parse().unwrap();
+    assert_eq!(v["friction"]["a"].as_float(), Some(0.37));
+    assert_eq!(v["friction"]["law"].as_str(), Some("rate-state"));
+    assert_eq!(v["seed"].as_integer(), Some(5));
+    assert_eq!(v["ice"]["thickness_m"].as_float(), Some(1.0));
+    assert_eq!(v["output"]["snapshot_every_s"].as_integer(), Some(60));
+    let not_a_table = parse_setting("seed.x=1").unwrap();
+    let e = apply(text, Path::new("x.toml"), &[not_a_table], &[0]).unwrap_err();
+    assert!(e.to_string().contains("seed.x"), "{e}");
+}
