@@ -90,7 +90,7 @@ fn free_drift() {
         turning_angle_deg: 20.0,
         ..DragParameters::ocean()
     };
-    let f = 2.0 * floe_dem::forcing::EARTH_ROTATION_RATE_RAD_S * 75f64.to_radians().sin();
+    let f = 2.0 * floe_dem::forcing::EARTH_ROTATION_RATE_RAD_PER_S * 75f64.to_radians().sin();
     let rho_h = 917.0 * 2.0;
     let expected = free_drift_velocity(
         Vec2::new(10.0, 0.0),
@@ -212,4 +212,23 @@ fn the_minimal_example_in_the_docs_builds() {
     let s = Scenario::from_text(&docs[start..end], Path::new("docs/scenarios.md")).unwrap();
     let n = s.build().unwrap().world.floes().len();
     assert!((440..520).contains(&n), "{n} floes");
+}
+
+/// docs/scenarios.md holds the law registry's parameter tables as the
+/// registry prints them (regenerate with
+/// `cargo run -p floe-friction --example law_tables`).
+#[test]
+fn the_scenario_docs_hold_the_law_registry_tables() {
+    let docs = include_str!("../docs/scenarios.md");
+    let begin = "<!-- law tables: generated, do not edit by hand -->\n";
+    let end = "<!-- end of law tables -->";
+    let start = docs.find(begin).expect("begin marker") + begin.len();
+    let stop = docs[start..].find(end).expect("end marker") + start;
+    let expected = floe_friction::LawRegistry::builtin().markdown();
+    assert_eq!(
+        docs[start..stop].trim_end(),
+        expected.trim_end(),
+        "docs/scenarios.md's law tables differ from the registry's; replace them with \
+         the output of `cargo run -p floe-friction --example law_tables`"
+    );
 }

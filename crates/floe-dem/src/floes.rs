@@ -78,9 +78,9 @@ impl Floe {
         shape: &FloeShape,
         position: Vec2,
         thickness_m: f64,
-        density_kg_m3: f64,
+        density_kg_per_m3: f64,
     ) -> Self {
-        let rho_h = density_kg_m3 * thickness_m;
+        let rho_h = density_kg_per_m3 * thickness_m;
         Floe {
             id,
             position,
@@ -275,12 +275,12 @@ impl Floes {
     pub fn from_polygons(
         polygons: &[Vec<Vec2>],
         thickness_m: &[f64],
-        density_kg_m3: f64,
+        density_kg_per_m3: f64,
     ) -> Result<Self, DemError> {
-        if !(density_kg_m3.is_finite() && density_kg_m3 > 0.0) {
+        if !(density_kg_per_m3.is_finite() && density_kg_per_m3 > 0.0) {
             return Err(DemError::InvalidParameter {
-                name: "density_kg_m3",
-                value: density_kg_m3,
+                name: "density_kg_per_m3",
+                value: density_kg_per_m3,
                 reason: "must be > 0",
             });
         }
@@ -303,7 +303,7 @@ impl Floes {
                 });
             }
             let (shape, centroid) = FloeShape::from_world(i, poly)?;
-            f.insert(Floe::new(i as u64, &shape, centroid, h, density_kg_m3))?;
+            f.insert(Floe::new(i as u64, &shape, centroid, h, density_kg_per_m3))?;
         }
         Ok(f)
     }

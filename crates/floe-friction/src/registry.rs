@@ -221,11 +221,11 @@ impl LawRegistry {
             for p in e.params {
                 let default = match p.default {
                     ParamDefault::Required => "**required**".to_string(),
-                    ParamDefault::Number(x) => format!("{x}"),
+                    ParamDefault::Number(x) => short(x),
                     ParamDefault::ByPreset(f) => format!(
                         "lab {}, tank {}",
-                        f(crate::params::Preset::Lab),
-                        f(crate::params::Preset::Tank)
+                        short(f(crate::params::Preset::Lab)),
+                        short(f(crate::params::Preset::Tank))
                     ),
                     ParamDefault::Word(w) => format!("`{w}`"),
                     ParamDefault::Form => {
@@ -233,9 +233,11 @@ impl LawRegistry {
                     }
                 };
                 let valid = p.kind.describe();
-                let valid = valid
-                    .strip_prefix("a finite number ")
-                    .map_or(valid.clone(), str::to_string);
+                let valid = match valid.strip_prefix("a finite number") {
+                    Some("") => "any number".to_string(),
+                    Some(rest) => rest.trim().to_string(),
+                    None => valid,
+                };
                 out.push_str(&format!(
                     "| `{}` | {} | {default} | {valid} | {} |\n",
                     p.key, p.unit, p.meaning
@@ -245,6 +247,17 @@ impl LawRegistry {
         }
         out
     }
+}
+
+/// A default as docs print it: at most ten significant digits (`A - B`
+/// is -0.07200000000000001 in binary).
+fn short(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 12 {
+        return plain;
+    }
+    let rounded: f64 = format!("{x:.9e}").parse().unwrap_or(x);
+    format!("{rounded}")
 }
 
 #[cfg(test)]

@@ -865,8 +865,8 @@ fn resolve_field(
             VelocityField::LinearShear {
                 y_min_m: r.y_min_m,
                 y_max_m: r.y_max_m,
-                velocity_at_y_min_m_s: Vec2::new(a, b),
-                velocity_at_y_max_m_s: Vec2::new(c, d),
+                velocity_at_y_min_m_per_s: Vec2::new(a, b),
+                velocity_at_y_max_m_per_s: Vec2::new(c, d),
             },
             s.span(),
             "shear",
@@ -877,7 +877,7 @@ fn resolve_field(
             VelocityField::Gyre {
                 center_m: Vec2::new(r.center_m[0], r.center_m[1]),
                 core_radius_m: r.core_radius_m,
-                max_speed_m_s: r.max_speed_m_per_s,
+                max_speed_m_per_s: r.max_speed_m_per_s,
             },
             g.span(),
             "gyre",
@@ -906,7 +906,7 @@ fn resolve_drag(
     mut drag: DragParameters,
 ) -> Result<DragParameters, ScenarioError> {
     if let Some(v) = &raw.density_kg_per_m3 {
-        drag.density_kg_m3 = f.non_negative(v, &format!("{table}.density_kg_per_m3"))?;
+        drag.density_kg_per_m3 = f.non_negative(v, &format!("{table}.density_kg_per_m3"))?;
     }
     if let Some(v) = &raw.drag_coefficient {
         drag.drag_coefficient = f.non_negative(v, &format!("{table}.drag_coefficient"))?;

@@ -25,27 +25,21 @@
 //! [`Coriolis::LatitudeDeg`]`(75.0)` gives `f = 1.409e-4 /s`; Subzero.jl
 //! defaults to `f = 1.4e-4 /s`.
 
-use serde::{Deserialize, Serialize};
-
 use crate::{DemError, Vec2};
 
 /// Earth's rotation rate Ω, rad/s (sidereal day).
-pub const EARTH_ROTATION_RATE_RAD_S: f64 = 7.2921e-5;
+pub const EARTH_ROTATION_RATE_RAD_PER_S: f64 = 7.2921e-5;
 
-/// The Coriolis parameter of a run. TOML: `coriolis = "off"`,
-/// `coriolis = { latitude_deg = 75.0 }` or `coriolis = { f_per_s = 1.4e-4 }`.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The Coriolis parameter of a run (a scenario's `[coriolis]` table,
+/// docs/scenarios.md).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Coriolis {
     /// `f = 0`: no Coriolis force and no sea-surface tilt.
     #[default]
-    #[serde(rename = "off")]
     Off,
     /// `f = 2 Ω sin(latitude)`, latitude in degrees, north positive, `|·| ≤ 90`.
-    #[serde(rename = "latitude_deg")]
     LatitudeDeg(f64),
     /// `f` given directly, 1/s (negative in the Southern Hemisphere).
-    #[serde(rename = "f_per_s")]
     ParameterPerS(f64),
 }
 
@@ -55,7 +49,9 @@ impl Coriolis {
     pub fn parameter_per_s(&self) -> f64 {
         match *self {
             Coriolis::Off => 0.0,
-            Coriolis::LatitudeDeg(lat) => 2.0 * EARTH_ROTATION_RATE_RAD_S * lat.to_radians().sin(),
+            Coriolis::LatitudeDeg(lat) => {
+                2.0 * EARTH_ROTATION_RATE_RAD_PER_S * lat.to_radians().sin()
+            }
             Coriolis::ParameterPerS(f) => f,
         }
     }
@@ -84,15 +80,15 @@ impl Coriolis {
 }
 
 /// Coriolis force, N: `−m f k × u` for mass `mass_kg` (kg), Coriolis
-/// parameter `f_per_s` (1/s) and velocity `velocity_m_s` (m/s).
+/// parameter `f_per_s` (1/s) and velocity `velocity_m_per_s` (m/s).
 #[inline]
-pub fn coriolis_force(mass_kg: f64, f_per_s: f64, velocity_m_s: Vec2) -> Vec2 {
-    -(mass_kg * f_per_s) * velocity_m_s.perp()
+pub fn coriolis_force(mass_kg: f64, f_per_s: f64, velocity_m_per_s: Vec2) -> Vec2 {
+    -(mass_kg * f_per_s) * velocity_m_per_s.perp()
 }
 
 /// Sea-surface tilt force, N: `−m g ∇η = m f k × U_w` for a surface tilted in
-/// geostrophic balance with the current `current_m_s` (m/s).
+/// geostrophic balance with the current `current_m_per_s` (m/s).
 #[inline]
-pub fn sea_surface_tilt_force(mass_kg: f64, f_per_s: f64, current_m_s: Vec2) -> Vec2 {
-    (mass_kg * f_per_s) * current_m_s.perp()
+pub fn sea_surface_tilt_force(mass_kg: f64, f_per_s: f64, current_m_per_s: Vec2) -> Vec2 {
+    (mass_kg * f_per_s) * current_m_per_s.perp()
 }

@@ -48,19 +48,17 @@
 //! no rotational drag). The moment `∫ r³ dA` is the shape's
 //! ([`polygon_r3_moment`], in [`crate::geometry`]).
 
-use serde::{Deserialize, Serialize};
-
 pub use crate::geometry::polygon_r3_moment;
 use crate::{DemError, Vec2};
 
 /// Air density, kg/m³: 1.2 (Subzero.jl `ρa`; dry air near 0 °C is 1.29, and
 /// CICE-family codes often use 1.3).
-pub const AIR_DENSITY_KG_M3: f64 = 1.2;
+pub const AIR_DENSITY_KG_PER_M3: f64 = 1.2;
 /// Ice–air drag coefficient (10 m wind, neutral): 1.2e-3, DEMSI's value
 /// (project notes); Subzero.jl uses 1e-3.
 pub const AIR_DRAG_COEFFICIENT: f64 = 1.2e-3;
 /// Sea-water density, kg/m³: 1027 (Subzero.jl `ρo`).
-pub const SEAWATER_DENSITY_KG_M3: f64 = 1027.0;
+pub const SEAWATER_DENSITY_KG_PER_M3: f64 = 1027.0;
 /// Ice–ocean drag coefficient: 5.5e-3, the upper DEMSI value (DEMSI
 /// 0.0045–0.0055 per the project notes; Subzero.jl uses 3e-3). 5.5e-3 with
 /// `C_a = 1.2e-3` is also the classic pair of Hibler (1979), there used with
@@ -68,11 +66,10 @@ pub const SEAWATER_DENSITY_KG_M3: f64 = 1027.0;
 pub const OCEAN_DRAG_COEFFICIENT: f64 = 5.5e-3;
 
 /// Quadratic drag of one fluid (air or ocean) on the ice.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DragParameters {
     /// Fluid density `ρ`, kg/m³; `≥ 0`.
-    pub density_kg_m3: f64,
+    pub density_kg_per_m3: f64,
     /// Dimensionless drag coefficient `C_d`; `≥ 0`.
     pub drag_coefficient: f64,
     /// Turning angle `φ`, degrees, positive counterclockwise (Northern
@@ -88,7 +85,7 @@ impl DragParameters {
     /// neglected.
     pub const fn air() -> Self {
         DragParameters {
-            density_kg_m3: AIR_DENSITY_KG_M3,
+            density_kg_per_m3: AIR_DENSITY_KG_PER_M3,
             drag_coefficient: AIR_DRAG_COEFFICIENT,
             turning_angle_deg: 0.0,
             relative_to_ice: false,
@@ -99,7 +96,7 @@ impl DragParameters {
     /// to the ice.
     pub const fn ocean() -> Self {
         DragParameters {
-            density_kg_m3: SEAWATER_DENSITY_KG_M3,
+            density_kg_per_m3: SEAWATER_DENSITY_KG_PER_M3,
             drag_coefficient: OCEAN_DRAG_COEFFICIENT,
             turning_angle_deg: 0.0,
             relative_to_ice: true,
@@ -109,24 +106,24 @@ impl DragParameters {
     /// `ρ C_d`, kg/m³.
     #[inline]
     pub fn rho_cd(&self) -> f64 {
-        self.density_kg_m3 * self.drag_coefficient
+        self.density_kg_per_m3 * self.drag_coefficient
     }
 
     /// The relative velocity `U_rel` (m/s) for a fluid velocity and an ice
     /// velocity (m/s).
     #[inline]
-    pub fn relative_velocity(&self, fluid_m_s: Vec2, ice_m_s: Vec2) -> Vec2 {
+    pub fn relative_velocity(&self, fluid_m_per_s: Vec2, ice_m_per_s: Vec2) -> Vec2 {
         if self.relative_to_ice {
-            fluid_m_s - ice_m_s
+            fluid_m_per_s - ice_m_per_s
         } else {
-            fluid_m_s
+            fluid_m_per_s
         }
     }
 
     /// Stress on the ice, Pa: `ρ C_d |U_rel| R(φ) U_rel`. Never allocates.
     #[inline]
-    pub fn stress(&self, fluid_m_s: Vec2, ice_m_s: Vec2) -> Vec2 {
-        let u = self.relative_velocity(fluid_m_s, ice_m_s);
+    pub fn stress(&self, fluid_m_per_s: Vec2, ice_m_per_s: Vec2) -> Vec2 {
+        let u = self.relative_velocity(fluid_m_per_s, ice_m_per_s);
         let k = self.rho_cd() * u.length();
         if self.turning_angle_deg == 0.0 {
             k * u
@@ -136,16 +133,16 @@ impl DragParameters {
     }
 
     /// Rotational drag torque, N m, on a floe spinning at
-    /// `relative_angular_velocity_rad_s` (`ω − ζ/2`, counterclockwise
+    /// `relative_angular_velocity_rad_per_s` (`ω − ζ/2`, counterclockwise
     /// positive) with `∫ r³ dA = r3_moment_m5` (m⁵):
     /// `−ρ C_d cos φ |ω| ω ∫ r³ dA`. Never allocates.
     #[inline]
     pub fn rotational_torque(
         &self,
-        relative_angular_velocity_rad_s: f64,
+        relative_angular_velocity_rad_per_s: f64,
         r3_moment_m5: f64,
     ) -> f64 {
-        let w = relative_angular_velocity_rad_s;
+        let w = relative_angular_velocity_rad_per_s;
         let cos_phi = if self.turning_angle_deg == 0.0 {
             1.0
         } else {
@@ -161,9 +158,9 @@ impl DragParameters {
     pub fn validate(&self) -> Result<(), DemError> {
         let checks: [(&'static str, f64, bool, &'static str); 3] = [
             (
-                "density_kg_m3",
-                self.density_kg_m3,
-                self.density_kg_m3.is_finite() && self.density_kg_m3 >= 0.0,
+                "density_kg_per_m3",
+                self.density_kg_per_m3,
+                self.density_kg_per_m3.is_finite() && self.density_kg_per_m3 >= 0.0,
                 "must be finite and non-negative",
             ),
             (

@@ -23,28 +23,23 @@
 //! (an empty time series is zero, extra samples of the longer of `times_s`
 //! and `values` are ignored), but the values are then not meaningful.
 
-use serde::{Deserialize, Serialize};
-
-use super::serde_vec2::{vec2, vec2_seq};
 use crate::{DemError, Vec2};
 
 /// A prescribed 2-D velocity field, m/s, of position (m) and time (s).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum VelocityField {
-    /// The same velocity everywhere and always, m/s. TOML: `{ uniform = [10.0, 0.0] }`.
-    Uniform(#[serde(with = "vec2")] Vec2),
+    /// The same velocity everywhere and always, m/s.
+    Uniform(Vec2),
     /// Spatially uniform, piecewise linear in time between samples, held at
     /// the first (last) sample before (after) the series.
     TimeSeries {
         /// Sample times, s, strictly increasing, at least one.
         times_s: Vec<f64>,
         /// Velocities at `times_s`, m/s, as `[x, y]` pairs; same length as `times_s`.
-        #[serde(with = "vec2_seq")]
         values: Vec<Vec2>,
     },
     /// A channel shear profile: the velocity varies linearly in `y` from
-    /// `velocity_at_y_min_m_s` at `y_min_m` to `velocity_at_y_max_m_s` at
+    /// `velocity_at_y_min_m_per_s` at `y_min_m` to `velocity_at_y_max_m_per_s` at
     /// `y_max_m`, and is constant (clamped) outside `[y_min_m, y_max_m]`.
     /// Uniform in `x` and in time.
     LinearShear {
@@ -53,22 +48,19 @@ pub enum VelocityField {
         /// Upper edge of the shear zone, m; `> y_min_m`.
         y_max_m: f64,
         /// Velocity at and below `y_min_m`, m/s.
-        #[serde(with = "vec2")]
-        velocity_at_y_min_m_s: Vec2,
+        velocity_at_y_min_m_per_s: Vec2,
         /// Velocity at and above `y_max_m`, m/s.
-        #[serde(with = "vec2")]
-        velocity_at_y_max_m_s: Vec2,
+        velocity_at_y_max_m_per_s: Vec2,
     },
     /// A Rankine vortex: solid-body rotation inside `core_radius_m`, speed
     /// decaying as `1/r` outside. Steady.
     Gyre {
         /// Centre of the vortex, m.
-        #[serde(with = "vec2")]
         center_m: Vec2,
         /// Core radius `R`, m, where the speed peaks; `> 0`.
         core_radius_m: f64,
         /// Speed at `r = R`, m/s; positive counterclockwise (seen from above).
-        max_speed_m_s: f64,
+        max_speed_m_per_s: f64,
     },
     /// Another field multiplied by a time envelope (wind blows, stops,
     /// restarts).
@@ -91,8 +83,7 @@ impl Default for VelocityField {
 /// held at the first (last) factor before (after) the series. For example
 /// `times_s = [0, 3600, 3700, 7200, 7300]`, `factors = [1, 1, 0, 0, 1]`: on
 /// for an hour, ramped off in 100 s, off for an hour, ramped back on.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Envelope {
     /// Sample times, s, strictly increasing, at least one.
     pub times_s: Vec<f64>,
@@ -248,29 +239,30 @@ impl VelocityField {
             VelocityField::LinearShear {
                 y_min_m,
                 y_max_m,
-                velocity_at_y_min_m_s,
-                velocity_at_y_max_m_s,
+                velocity_at_y_min_m_per_s,
+                velocity_at_y_max_m_per_s,
             } => {
                 let s = ((position_m.y - y_min_m) / (y_max_m - y_min_m)).clamp(0.0, 1.0);
                 if s.is_nan() {
-                    return *velocity_at_y_min_m_s;
+                    return *velocity_at_y_min_m_per_s;
                 }
-                *velocity_at_y_min_m_s + s * (*velocity_at_y_max_m_s - *velocity_at_y_min_m_s)
+                *velocity_at_y_min_m_per_s
+                    + s * (*velocity_at_y_max_m_per_s - *velocity_at_y_min_m_per_s)
             }
             VelocityField::Gyre {
                 center_m,
                 core_radius_m,
-                max_speed_m_s,
+                max_speed_m_per_s,
             } => {
                 let r = position_m - *center_m;
                 let d2 = r.length_squared();
                 let rc = *core_radius_m;
                 if d2 <= rc * rc {
                     // Solid body: angular velocity V/R.
-                    (max_speed_m_s / rc) * r.perp()
+                    (max_speed_m_per_s / rc) * r.perp()
                 } else {
                     // Irrotational: speed V R / d along k × r̂ = (V R / d²) k × r.
-                    (max_speed_m_s * rc / d2) * r.perp()
+                    (max_speed_m_per_s * rc / d2) * r.perp()
                 }
             }
             VelocityField::Scaled { field, envelope } => {
@@ -290,12 +282,13 @@ impl VelocityField {
             VelocityField::LinearShear {
                 y_min_m,
                 y_max_m,
-                velocity_at_y_min_m_s,
-                velocity_at_y_max_m_s,
+                velocity_at_y_min_m_per_s,
+                velocity_at_y_max_m_per_s,
             } => {
                 let y = position_m.y;
                 if y >= *y_min_m && y <= *y_max_m && y_max_m > y_min_m {
-                    -(velocity_at_y_max_m_s.x - velocity_at_y_min_m_s.x) / (y_max_m - y_min_m)
+                    -(velocity_at_y_max_m_per_s.x - velocity_at_y_min_m_per_s.x)
+                        / (y_max_m - y_min_m)
                 } else {
                     0.0
                 }
@@ -303,11 +296,11 @@ impl VelocityField {
             VelocityField::Gyre {
                 center_m,
                 core_radius_m,
-                max_speed_m_s,
+                max_speed_m_per_s,
             } => {
                 let d2 = (position_m - *center_m).length_squared();
                 if d2 <= core_radius_m * core_radius_m {
-                    2.0 * max_speed_m_s / core_radius_m
+                    2.0 * max_speed_m_per_s / core_radius_m
                 } else {
                     0.0
                 }
@@ -343,8 +336,8 @@ impl VelocityField {
             VelocityField::LinearShear {
                 y_min_m,
                 y_max_m,
-                velocity_at_y_min_m_s,
-                velocity_at_y_max_m_s,
+                velocity_at_y_min_m_per_s,
+                velocity_at_y_max_m_per_s,
             } => {
                 finite(*y_min_m, "linear-shear.y_min_m")?;
                 finite(*y_max_m, "linear-shear.y_max_m")?;
@@ -355,16 +348,22 @@ impl VelocityField {
                         reason: "must be greater than y_min_m",
                     });
                 }
-                finite_vec(*velocity_at_y_min_m_s, "linear-shear.velocity_at_y_min_m_s")?;
-                finite_vec(*velocity_at_y_max_m_s, "linear-shear.velocity_at_y_max_m_s")
+                finite_vec(
+                    *velocity_at_y_min_m_per_s,
+                    "linear-shear.velocity_at_y_min_m_per_s",
+                )?;
+                finite_vec(
+                    *velocity_at_y_max_m_per_s,
+                    "linear-shear.velocity_at_y_max_m_per_s",
+                )
             }
             VelocityField::Gyre {
                 center_m,
                 core_radius_m,
-                max_speed_m_s,
+                max_speed_m_per_s,
             } => {
                 finite_vec(*center_m, "gyre.center_m")?;
-                finite(*max_speed_m_s, "gyre.max_speed_m_s")?;
+                finite(*max_speed_m_per_s, "gyre.max_speed_m_per_s")?;
                 if !(core_radius_m.is_finite() && *core_radius_m > 0.0) {
                     return Err(DemError::InvalidParameter {
                         name: "gyre.core_radius_m",

@@ -78,9 +78,9 @@ fn solve_relative(s: Vec2, cw: f64, theta_rad: f64, a: f64) -> Vec2 {
 }
 
 /// The steady free-drift ice velocity, m/s, under a uniform, steady wind
-/// `wind_m_s` and current `current_m_s` (m/s): the `u` at which wind drag +
+/// `wind_m_per_s` and current `current_m_per_s` (m/s): the `u` at which wind drag +
 /// ocean drag + Coriolis (+ sea-surface tilt) vanish. `coriolis_f_per_s` is
-/// `f` (1/s; 0 for none), `mass_per_area_kg_m2` is `ρ_ice h` (kg/m²; only
+/// `f` (1/s; 0 for none), `mass_per_area_kg_per_m2` is `ρ_ice h` (kg/m²; only
 /// used with `f ≠ 0`). The ocean turning angle and any air turning angle are
 /// included. Method in the module docs; independent of any time stepping.
 ///
@@ -92,12 +92,12 @@ fn solve_relative(s: Vec2, cw: f64, theta_rad: f64, a: f64) -> Vec2 {
 /// relative to the ice does not converge (only when `ρ_a C_a` is not small
 /// compared with `ρ_w C_w`).
 pub fn free_drift_velocity(
-    wind_m_s: Vec2,
-    current_m_s: Vec2,
+    wind_m_per_s: Vec2,
+    current_m_per_s: Vec2,
     air: &DragParameters,
     ocean: &DragParameters,
     coriolis_f_per_s: f64,
-    mass_per_area_kg_m2: f64,
+    mass_per_area_kg_per_m2: f64,
     sea_surface_tilt: bool,
 ) -> Result<Vec2, DemError> {
     air.validate()?;
@@ -124,34 +124,34 @@ pub fn free_drift_velocity(
             reason: "must be finite",
         });
     }
-    if !(mass_per_area_kg_m2.is_finite() && mass_per_area_kg_m2 >= 0.0) {
+    if !(mass_per_area_kg_per_m2.is_finite() && mass_per_area_kg_per_m2 >= 0.0) {
         return Err(DemError::InvalidParameter {
-            name: "mass_per_area_kg_m2",
-            value: mass_per_area_kg_m2,
+            name: "mass_per_area_kg_per_m2",
+            value: mass_per_area_kg_per_m2,
             reason: "must be finite and non-negative",
         });
     }
-    let a = mass_per_area_kg_m2 * coriolis_f_per_s;
+    let a = mass_per_area_kg_per_m2 * coriolis_f_per_s;
     let theta = ocean.turning_angle_deg.to_radians();
     let s_current = if sea_surface_tilt {
         Vec2::ZERO
     } else {
-        a * current_m_s.perp()
+        a * current_m_per_s.perp()
     };
     let solve = |u_ice: Vec2| {
-        let s = s_current - air.stress(wind_m_s, u_ice);
-        current_m_s - solve_relative(s, cw, theta, a)
+        let s = s_current - air.stress(wind_m_per_s, u_ice);
+        current_m_per_s - solve_relative(s, cw, theta, a)
     };
     if !air.relative_to_ice {
         return Ok(solve(Vec2::ZERO));
     }
     const MAX_ITERATIONS: usize = 200;
-    let mut u = current_m_s;
+    let mut u = current_m_per_s;
     for _ in 0..MAX_ITERATIONS {
         let next = solve(u);
         let step = (next - u).length();
         u = next;
-        if step <= 64.0 * f64::EPSILON * (u.length() + current_m_s.length()) {
+        if step <= 64.0 * f64::EPSILON * (u.length() + current_m_per_s.length()) {
             return Ok(u);
         }
     }

@@ -52,26 +52,25 @@ pub mod drag;
 pub mod external;
 pub mod fields;
 pub mod free_drift;
-mod serde_vec2;
 
-pub use coriolis::{coriolis_force, sea_surface_tilt_force, Coriolis, EARTH_ROTATION_RATE_RAD_S};
+pub use coriolis::{
+    coriolis_force, sea_surface_tilt_force, Coriolis, EARTH_ROTATION_RATE_RAD_PER_S,
+};
 pub use drag::{
-    polygon_r3_moment, rotate, DragParameters, AIR_DENSITY_KG_M3, AIR_DRAG_COEFFICIENT,
-    OCEAN_DRAG_COEFFICIENT, SEAWATER_DENSITY_KG_M3,
+    polygon_r3_moment, rotate, DragParameters, AIR_DENSITY_KG_PER_M3, AIR_DRAG_COEFFICIENT,
+    OCEAN_DRAG_COEFFICIENT, SEAWATER_DENSITY_KG_PER_M3,
 };
 pub use external::{ExternalForces, NoForcing};
 pub use fields::{Envelope, VelocityField};
 pub use free_drift::free_drift_velocity;
 
-use serde::{Deserialize, Serialize};
-
 use crate::{DemError, Vec2};
 
-/// Wind and ocean forcing of every floe. Read from a scenario file: every
-/// key may be omitted and then takes its [`Default`] value; unknown keys are
-/// rejected. Call [`Forcing::validate`] after reading.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+/// Wind and ocean forcing of every floe. Scenario files describe it in
+/// their `[wind]`, `[ocean]` and `[coriolis]` tables (floe-scenario reads
+/// them; docs/scenarios.md); [`Default`] gives the values of the table
+/// above. Call [`Forcing::validate`] on one built by hand.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Forcing {
     /// Wind velocity (10 m), m/s.
     pub wind: VelocityField,
@@ -155,7 +154,7 @@ impl Forcing {
     }
 
     /// The steady free-drift velocity (m/s) of ice of mass per area
-    /// `mass_per_area_kg_m2` (`ρ_ice h`, kg/m²) under the wind and current
+    /// `mass_per_area_kg_per_m2` (`ρ_ice h`, kg/m²) under the wind and current
     /// found at `position_m` (m) and `t_s` (s), taken as uniform and steady.
     /// See [`free_drift_velocity`].
     ///
@@ -165,7 +164,7 @@ impl Forcing {
         &self,
         t_s: f64,
         position_m: Vec2,
-        mass_per_area_kg_m2: f64,
+        mass_per_area_kg_per_m2: f64,
     ) -> Result<Vec2, DemError> {
         free_drift_velocity(
             self.wind.velocity(position_m, t_s),
@@ -173,7 +172,7 @@ impl Forcing {
             &self.air,
             &self.ocean,
             self.coriolis.parameter_per_s(),
-            mass_per_area_kg_m2,
+            mass_per_area_kg_per_m2,
             self.sea_surface_tilt,
         )
     }

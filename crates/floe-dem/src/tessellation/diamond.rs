@@ -8,7 +8,6 @@ use crate::error::DemError;
 use crate::Vec2;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use serde::{Deserialize, Serialize};
 
 /// A clipped cell whose area is below this fraction of the full cell area
 /// (`side^2 sin(acute)`) is a sliver, dropped while the dropped area stays
@@ -70,7 +69,7 @@ pub fn max_jitter_fraction(acute_angle_deg: f64) -> f64 {
 /// - Thickness: one draw per floe, in output order, from `thickness` seeded
 ///   by a stream of `seed` independent of the jitter stream.
 /// - Output order: by lattice row `j`, then `i`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct DiamondLattice {
     /// Domain to fill (m).
     pub domain: Rect,

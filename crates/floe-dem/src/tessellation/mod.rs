@@ -33,7 +33,6 @@ use crate::Vec2;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::Distribution;
-use serde::{Deserialize, Serialize};
 
 /// Largest number of floes (for the lattice: of candidate cells overlapping
 /// the domain) a generator accepts. Requests above it fail with
@@ -170,13 +169,11 @@ impl Tessellation {
 }
 
 /// The rectangular domain to fill, world coordinates (m).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rect {
     /// Lower-left corner (m).
-    #[serde(with = "vec2_serde")]
     pub min: Vec2,
     /// Upper-right corner (m).
-    #[serde(with = "vec2_serde")]
     pub max: Vec2,
 }
 
@@ -252,8 +249,7 @@ impl Rect {
 
 /// Distribution of floe thickness (all values in m). Sampling is seeded and
 /// deterministic; every sample is finite and > 0.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ThicknessDistribution {
     /// Every floe has the same thickness.
     Uniform {
@@ -549,21 +545,6 @@ where
         }
         prev = cur;
         dp = dc;
-    }
-}
-
-/// Serde for [`Vec2`] as `[x, y]` (glam's serde feature is not enabled).
-pub(crate) mod vec2_serde {
-    use crate::Vec2;
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-    pub fn serialize<S: Serializer>(v: &Vec2, s: S) -> Result<S::Ok, S::Error> {
-        [v.x, v.y].serialize(s)
-    }
-
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec2, D::Error> {
-        let [x, y] = <[f64; 2]>::deserialize(d)?;
-        Ok(Vec2::new(x, y))
     }
 }
 

@@ -6,7 +6,6 @@ use super::{
 };
 use crate::error::DemError;
 use crate::Vec2;
-use serde::{Deserialize, Serialize};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 
 /// Irregular floes: the Voronoi cells of `count` random sites, restricted to
@@ -23,7 +22,7 @@ use spade::{DelaunayTriangulation, Point2, Triangulation};
 /// full rebuild.
 ///
 /// Output order is site order; thickness is one draw per floe in that order.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct VoronoiFloes {
     /// Domain to fill (m).
     pub domain: Rect,
