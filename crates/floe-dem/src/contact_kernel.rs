@@ -120,8 +120,7 @@ impl ContactRecord {
 /// (`FrictionLaw::step`, or `Law::step_batch` for many contacts at once, as
 /// the world does), then [`finish_friction`]. The record is updated in
 /// place, not returned: copying the 168 B record and the friction step's
-/// items in and out was about 1 % of a step's instructions
-/// (docs/performance.md).
+/// items in and out was about 1 % of a step's instructions.
 #[inline]
 pub fn contact_before_friction(
     model: &ContactModel,

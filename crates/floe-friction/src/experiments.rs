@@ -125,7 +125,7 @@ pub struct StepResult {
     /// minimum after a step down.
     pub mu_peak: f64,
     /// Friction at the end of the run at the second speed (steady state if the
-    /// system is stable; see [`RateStateParams::critical_stiffness_n_per_m`]).
+    /// system is stable; see `RateStateParams::critical_stiffness_n_per_m`).
     pub mu_ss_after: f64,
     /// Analytic steady state at the second speed, for comparison.
     pub mu_ss_after_analytic: f64,

@@ -98,7 +98,7 @@ pub const SOLVER_GUESS: usize = 1;
 /// iteration at `q + trend`. A contact's slip rate changes smoothly from
 /// step to step, so this linear extrapolation starts the solve about ten
 /// times closer to the root than the last root does, and the solve then
-/// mostly takes a single evaluation (docs/performance.md). Zero for a new
+/// mostly takes a single evaluation. Zero for a new
 /// contact and after a step without a solve. It steers only where the
 /// solve starts, not what it converges to.
 pub const SOLVER_TREND: usize = 2;
@@ -361,7 +361,7 @@ enum Prepared {
 }
 
 /// Solves advanced in lockstep by [`RateState::step_batch`]. Measured on a
-/// sheared 1e4-floe DEM pack (docs/performance.md).
+/// sheared 1e4-floe DEM pack.
 const LANES: usize = 4;
 
 /// What an idle lane holds: finite values, evaluated and discarded.
@@ -444,7 +444,7 @@ impl RateState {
     /// then all the `asinh`s) rather than point by point: each stage's calls
     /// are independent, so the processor overlaps them, where one lane's
     /// chain of dependent calls was longer than it can look ahead (about
-    /// 8 % of a sheared 1e4-floe step, docs/performance.md). One formula
+    /// 8 % of a sheared 1e4-floe step). One formula
     /// serves both: `residual` is this with `N = 1`, so every lane of
     /// `step_batch` gives bitwise what `step` gives.
     #[inline(always)]
@@ -455,7 +455,7 @@ impl RateState {
     ) -> [Eval<EndOfStep>; N] {
         // Each stage a plain loop over arrays set up front: built with
         // `std::array::from_fn` the stages cost about 200 instructions per
-        // contact in copies (callgrind, docs/performance.md).
+        // contact in copies.
         let p = &self.params;
         let mut speed = [0.0; N];
         for l in 0..N {

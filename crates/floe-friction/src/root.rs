@@ -75,13 +75,8 @@ const MAX_EVALUATIONS: u32 = 400;
 /// `|u|, |w| <= 1/2` (`h4 = r''''/r'` is not formed and is taken to be of
 /// the order of the other terms, as it is for the laws' residuals). It
 /// serves only to end the iteration, whose steps stay Halley's. (Relative
-/// to `|x|`: it was chosen when a law's unknown was linear in the slip rate
-/// near zero. The unknowns are now logarithms of
-/// slip rates, `q = ln(|V|/V*)`, for which an absolute tolerance would do,
-/// and the relative test asks for more digits than needed where `V` nears
-/// `V*`. `tol max(|x|, 1)` was tried: on the sheared 1e4-floe pack 3,325
-/// instructions per contact and step against 3,320, no gain, so the results
-/// were not changed for it: docs/performance.md.) That last correction is
+/// to `|x|`; with the unknowns logarithms of slip rates an absolute floor
+/// would also do, and gained nothing measurable.) That last correction is
 /// taken without evaluating the residual again, the payload carried to
 /// `x + dx` by `advance(payload, dx)`, which must be accurate to the same
 /// order.
@@ -91,7 +86,7 @@ const MAX_EVALUATIONS: u32 = 400;
 /// at the laws' `tol`; `(tol |x|)^(1/3)` without a third derivative) takes
 /// one evaluation: in a settled sheared DEM pack, started from the
 /// extrapolated last root, all but a few in a thousand rate-and-state
-/// solves (docs/performance.md).
+/// solves.
 #[inline]
 pub(crate) fn solve<T: Copy>(
     mut f: impl FnMut(f64) -> Eval<T>,

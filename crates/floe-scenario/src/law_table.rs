@@ -1,7 +1,7 @@
 //! A friction law's table in a file (`[friction]` of a scenario, `[law]` of
 //! a spring-slider protocol): its keys are read generically and checked
 //! against the law's parameter table in the
-//! [`LawRegistry`](floe_friction::LawRegistry), so that a law registered
+//! [`floe_friction::LawRegistry`], so that a law registered
 //! there is read here without a line of this crate changing.
 
 use std::collections::BTreeMap;

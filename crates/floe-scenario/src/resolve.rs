@@ -761,7 +761,7 @@ fn resolve_contact(
         }
     }
     let empty = RawLawTable::new();
-    let (fr, table_span) = friction.map_or((&empty, 0..0), |t| (t.get_ref(), t.span()));
+    let fr = friction.map_or(&empty, |t| t.get_ref());
     let preset = match fr.get("preset") {
         None => Preset::Tank,
         Some(p) => {
@@ -792,7 +792,6 @@ fn resolve_contact(
             }
         }
     };
-    let _ = table_span;
     m.law = law_from_table(
         f,
         fr,

@@ -1,7 +1,7 @@
 //! A scenario run into a run file: the scenario file in, an HDF5 file
 //! (H5MD layout) out, with checkpoints to resume from, and a clean stop on
 //! an interrupt or a numerical blow-up. The stepping loop is
-//! [`floe_dem::run::drive`]; the file is written by its observer, the
+//! [`floe_dem::run::drive()`]; the file is written by its observer, the
 //! [`RunWriter`]. What the user sees (set-up lines, progress) and how a
 //! run is interrupted come from the caller's [`RunHooks`].
 

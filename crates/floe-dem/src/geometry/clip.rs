@@ -557,7 +557,7 @@ const CROSSING: u8 = 2;
 /// subject edge. Cutting an edge that lies on an earlier clip line makes a
 /// vertex of the clip polygon instead. So the contact chord comes with the
 /// clipping, where searching every pair of edges for crossings was 13 % of a
-/// step's instructions (docs/performance.md).
+/// step's instructions.
 // Indexed loops on purpose: see the first comment in the body.
 #[allow(clippy::needless_range_loop)]
 fn clip_convex<const N: usize, const M: usize>(
@@ -572,7 +572,7 @@ fn clip_convex<const N: usize, const M: usize>(
     // first so that no index is checked, and element-wise copies: for the
     // few vertices of a floe, `copy_from_slice`, `fill` and the iterator
     // adaptors were library calls and overhead, a quarter of the clipper's
-    // instructions (docs/performance.md).
+    // instructions.
     debug_assert!(clip.len < N && clip.v[clip.len] == clip.v[0]);
     let ns = subject.len.min(N - 1).min(M - 1);
     for k in 0..ns {

@@ -4,7 +4,7 @@
 //! A cell grid rather than parry's BVH: floes of a tessellation have nearly
 //! equal sizes, for which a grid of cells one floe diameter wide finds all
 //! neighbours in the 3x3 block around a cell, is rebuilt in linear time and
-//! needs no tree balancing (the cost is measured in docs/performance.md).
+//! needs no tree balancing (the cost is in docs/performance.md).
 //! Pairs are produced sorted by (a, b) with a < b, whatever the thread count.
 //!
 //! Bounding circles alone keep pairs that cannot touch before the next

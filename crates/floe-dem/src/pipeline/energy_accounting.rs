@@ -2,7 +2,7 @@
 //! friction and dashpots over a step, summed into the
 //! [`EnergyLedger`].
 //!
-//! Every sum runs over fixed blocks ([`ENERGY_CHUNK`]) in parallel, then
+//! Every sum runs over fixed blocks (`ENERGY_CHUNK`) in parallel, then
 //! over the blocks in order: the same sums for any thread count. The
 //! contacts' powers depend on the contact list alone (not on how the
 //! narrow phase cut its work), so a resumed run sums them as the

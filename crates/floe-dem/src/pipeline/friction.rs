@@ -5,8 +5,8 @@
 //!
 //! The narrow phase computes each contact's load (normal force, tangential
 //! stiffness, relative tangential velocity) and hands it to a
-//! [`FrictionBatch`]; when the batch is full, or the task's pairs are done,
-//! [`FrictionBatch::flush`] steps the law for all waiting contacts side by
+//! `FrictionBatch`; when the batch is full, or the task's pairs are done,
+//! `FrictionBatch::flush` steps the law for all waiting contacts side by
 //! side and completes their records ([`finish_friction`]).
 
 use floe_friction::{
@@ -19,7 +19,7 @@ use crate::contacts::ContactRecord;
 
 /// Contacts whose friction is stepped together: found by the narrow phase,
 /// held until this many wait, then advanced side by side (64 and 128 were
-/// measured no better, docs/performance.md).
+/// measured no better).
 pub const FRICTION_BATCH: usize = 32;
 
 /// The friction state of a contact that has just formed: steady sliding at

@@ -1,9 +1,9 @@
 //! The integrator: velocity Verlet (kick-drift-kick), second order for
 //! position-dependent forces, and the stable time step.
 //!
-//! A step is `v += a dt/2; x += v dt` ([`drift`]), then the forces at the
+//! A step is `v += a dt/2; x += v dt` (`drift`), then the forces at the
 //! new positions (with the half-step velocity for drag, damping and
-//! friction), then `v += a dt/2` ([`kick`]). Floes with prescribed motion
+//! friction), then `v += a dt/2` (`kick`). Floes with prescribed motion
 //! drift at their velocity and are never kicked.
 
 use rayon::prelude::*;

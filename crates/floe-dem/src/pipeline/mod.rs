@@ -39,7 +39,7 @@ use narrow_phase::NarrowPhase;
 /// sets how often the candidate list is rebuilt (far pairs are left out by
 /// a distance bound, not by the skin): at 0.05 a floe at 0.1 m/s needs
 /// about 2,700 one-second steps to cross half the skin, and a rebuild costs
-/// about one step (docs/performance.md).
+/// about one step.
 pub const SKIN_FRACTION: f64 = 0.05;
 
 /// Which stage of a step comes next.
