@@ -77,6 +77,70 @@ pub struct World<F: ExternalForces> {
     periodicity: Periodicity,
 }
 
+/// A record of the state keyed by a pair of floe handles `(a, b)`, `a < b`.
+trait HandlePair: Copy {
+    fn pair(&self) -> (u32, u32);
+    fn set_pair(&mut self, pair: (u32, u32));
+}
+
+impl HandlePair for ContactRecord {
+    fn pair(&self) -> (u32, u32) {
+        (self.a, self.b)
+    }
+    fn set_pair(&mut self, (a, b): (u32, u32)) {
+        (self.a, self.b) = (a, b);
+    }
+}
+
+impl HandlePair for BrokenContact {
+    fn pair(&self) -> (u32, u32) {
+        (self.a, self.b)
+    }
+    fn set_pair(&mut self, (a, b): (u32, u32)) {
+        (self.a, self.b) = (a, b);
+    }
+}
+
+/// Takes the records of floe `h` out of `list`, with their floes' `ids`,
+/// and moves the handles after `h` down one (the floe is leaving).
+fn take_pairs_of<T: HandlePair>(list: &mut Vec<T>, h: usize, ids: &[u64]) -> Vec<([u64; 2], T)> {
+    let touches = |(a, b): (u32, u32)| a as usize == h || b as usize == h;
+    let taken = list
+        .iter()
+        .filter(|r| touches(r.pair()))
+        .map(|r| ([ids[r.pair().0 as usize], ids[r.pair().1 as usize]], *r))
+        .collect();
+    let shift = |x: u32| if x as usize > h { x - 1 } else { x };
+    list.retain(|r| !touches(r.pair()));
+    for r in list.iter_mut() {
+        let (a, b) = r.pair();
+        r.set_pair((shift(a), shift(b)));
+    }
+    taken
+}
+
+/// Moves the handles from `h` up one (a floe arrived at `h`) and puts the
+/// `records` of its pairs, named by ids, back in pair order. Every id is
+/// in `floes` (checked by the caller).
+fn put_pairs_back<T: HandlePair>(
+    list: &mut Vec<T>,
+    h: usize,
+    floes: &Floes,
+    records: Vec<([u64; 2], T)>,
+) {
+    let shift = |x: u32| if x as usize >= h { x + 1 } else { x };
+    for r in list.iter_mut() {
+        let (a, b) = r.pair();
+        r.set_pair((shift(a), shift(b)));
+    }
+    let handle = |id: u64| floes.handle_of(id).expect("checked by the caller") as u32;
+    for ([x, y], mut r) in records {
+        r.set_pair((handle(x), handle(y)));
+        let at = list.partition_point(|q| q.pair() < r.pair());
+        list.insert(at, r);
+    }
+}
+
 /// A floe taken out of a world with what it owns there: its forces from
 /// the last evaluation, its contacts and its remembered broken contacts.
 /// [`World::insert_detached`] puts it back.
@@ -462,29 +526,8 @@ impl<F: ExternalForces> World<F> {
         self.between_steps(id)?;
         let h = self.handle(id)?;
         let s = &mut self.state;
-        let ids = |a: u32, b: u32| [s.floes.id[a as usize], s.floes.id[b as usize]];
-        let touches = |a: u32, b: u32| a as usize == h || b as usize == h;
-        let contacts: Vec<([u64; 2], ContactRecord)> = s
-            .contacts
-            .iter()
-            .filter(|c| touches(c.a, c.b))
-            .map(|c| (ids(c.a, c.b), *c))
-            .collect();
-        let broken: Vec<([u64; 2], BrokenContact)> = s
-            .broken
-            .iter()
-            .filter(|c| touches(c.a, c.b))
-            .map(|c| (ids(c.a, c.b), *c))
-            .collect();
-        let shift = |x: u32| if x as usize > h { x - 1 } else { x };
-        s.contacts.retain(|c| !touches(c.a, c.b));
-        for c in &mut s.contacts {
-            (c.a, c.b) = (shift(c.a), shift(c.b));
-        }
-        s.broken.retain(|c| !touches(c.a, c.b));
-        for c in &mut s.broken {
-            (c.a, c.b) = (shift(c.a), shift(c.b));
-        }
+        let contacts = take_pairs_of(&mut s.contacts, h, &s.floes.id);
+        let broken = take_pairs_of(&mut s.broken, h, &s.floes.id);
         let detached = DetachedFloe {
             floe: s.floes.remove(h),
             force: s.force.remove(h),
@@ -531,24 +574,8 @@ impl<F: ExternalForces> World<F> {
         }
         let s = &mut self.state;
         let h = s.floes.insert(d.floe)?;
-        let shift = |x: u32| if x as usize >= h { x + 1 } else { x };
-        for c in &mut s.contacts {
-            (c.a, c.b) = (shift(c.a), shift(c.b));
-        }
-        for c in &mut s.broken {
-            (c.a, c.b) = (shift(c.a), shift(c.b));
-        }
-        let handle = |id: u64| s.floes.handle_of(id).expect("checked above") as u32;
-        for ([x, y], mut c) in d.contacts {
-            (c.a, c.b) = (handle(x), handle(y));
-            let at = s.contacts.partition_point(|r| (r.a, r.b) < (c.a, c.b));
-            s.contacts.insert(at, c);
-        }
-        for ([x, y], mut c) in d.broken {
-            (c.a, c.b) = (handle(x), handle(y));
-            let at = s.broken.partition_point(|r| (r.a, r.b) < (c.a, c.b));
-            s.broken.insert(at, c);
-        }
+        put_pairs_back(&mut s.contacts, h, &s.floes, d.contacts);
+        put_pairs_back(&mut s.broken, h, &s.floes, d.broken);
         s.force.insert(h, d.force);
         s.torque.insert(h, d.torque);
         s.external_force.insert(h, d.external_force);
