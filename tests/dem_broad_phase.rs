@@ -414,3 +414,28 @@ fn a_rotation_allowance_that_is_not_positive_is_refused() {
     assert!(w.set_max_rotation_rad(0.05).is_ok());
     assert_eq!(w.broad_phase().max_rotation_rad(), 0.05);
 }
+
+/// Floes far apart do not make the cell grid grow with their distance:
+/// cells are widened to at most about four per floe, and the pairs found
+/// (none here) are those of cells one reach wide. A grid of 10 m cells
+/// over 1e15 m would need 1e14 cells.
+#[test]
+fn floes_far_apart_do_not_grow_the_grid() {
+    let polys: Vec<Vec<Vec2>> = [0.0, 1e15, -3e14]
+        .iter()
+        .map(|&x| bar(Vec2::new(x, 0.5 * x), 10.0, 10.0))
+        .collect();
+    let floes = Floes::from_polygons(&polys, &[1.0; 3], RHO_ICE).unwrap();
+    let mut w = world(floes, Periodicity::default());
+    for _ in 0..3 {
+        w.step();
+    }
+    assert!(w.broad_phase().pairs.is_empty());
+    assert!(w.contacts().is_empty());
+    // Beside a touching pair, far floes leave the pair in the list.
+    let mut polys = polys;
+    polys.push(bar(Vec2::new(0.0, 9.99), 10.0, 10.0));
+    let floes = Floes::from_polygons(&polys, &[1.0; 4], RHO_ICE).unwrap();
+    let w = world(floes, Periodicity::default());
+    assert_eq!(w.contacts().len(), 1);
+}

@@ -213,21 +213,42 @@ fn contact_memory_survives_the_floe_arrays_shifting() {
     assert_eq!(reference.energy(), shifted.energy());
 }
 
-/// Floes handed to the set in any order make the same world: the set
-/// orders them by id, and with them every sum over contacts.
+/// Floes added to a running world, in any order, make the same run: the
+/// set orders them by id (each arrival shifts the handles of the floes
+/// after it, and their forces, contacts and memory with them), and they
+/// form contacts as they come. Half the squares are in from the start; the
+/// others arrive in batches of six between steps, each batch in ascending
+/// id order in one world and in another order in the other.
 #[test]
-fn the_order_floes_are_added_in_does_not_matter() {
-    let mut floes = bouncing_box(false);
-    let mut a = world_of(floes.clone());
-    floes.reverse();
-    floes.swap(3, 17);
-    let mut b = world_of(floes);
-    for _ in 0..1500 {
+fn floes_added_to_a_running_world_in_any_order_make_the_same_run() {
+    let all = bouncing_box(false);
+    let (walls, squares): (Vec<Floe>, Vec<Floe>) = all.into_iter().partition(|f| f.id >= 100);
+    let (first, later): (Vec<Floe>, Vec<Floe>) = squares.into_iter().partition(|f| f.id % 2 == 0);
+    let start = || world_of(walls.iter().chain(&first).cloned().collect());
+    let (mut a, mut b) = (start(), start());
+    for batch in later.chunks(6) {
+        let mut shuffled = batch.to_vec();
+        shuffled.reverse();
+        shuffled.swap(0, 2);
+        for f in batch {
+            a.insert_floe(f.clone()).unwrap();
+        }
+        for f in shuffled {
+            b.insert_floe(f).unwrap();
+        }
+        for _ in 0..200 {
+            a.step();
+            b.step();
+        }
+    }
+    for _ in 0..1000 {
         a.step();
         b.step();
     }
-    assert!(!a.broken_contacts().is_empty());
-    assert_eq!(format!("{:?}", a.state()), format!("{:?}", b.state()));
+    assert_eq!(a.floes().len(), 40);
+    assert!(a.contacts().len() > 5 && !a.broken_contacts().is_empty());
+    let (sa, sb) = (format!("{:?}", a.state()), format!("{:?}", b.state()));
+    assert!(sa == sb, "the two orders of arrival gave different runs");
 }
 
 /// The four stages called one by one are the step; out of order they panic.
@@ -316,6 +337,31 @@ fn impossible_edits_are_refused_and_change_nothing() {
     let before = format!("{:?}", w.state());
     assert!(w.insert_detached(twin).is_err());
     unchanged(&w, &before);
+    // A pair listed twice.
+    let mut doubled = d.clone();
+    doubled.contacts.push(doubled.contacts[0]);
+    let before = format!("{:?}", w.state());
+    let e = w.insert_detached(doubled).unwrap_err();
+    assert!(e.to_string().contains("listed twice"), "{e}");
+    unchanged(&w, &before);
+    // A free floe the time step is too long for (a thousandth the mass).
+    let mut light = Floe::new(
+        77,
+        &FloeShape::from_world(0, &square(Vec2::new(9e3, 9e3), 1.0))
+            .unwrap()
+            .0,
+        Vec2::new(9e3, 9e3),
+        1e-3,
+        RHO_ICE,
+    );
+    let e = w.insert_floe(light.clone()).unwrap_err();
+    assert!(matches!(e, DemError::UnstableTimeStep { .. }), "{e}");
+    unchanged(&w, &before);
+    light = light.prescribed(Vec2::ZERO);
+    w.insert_floe(light).unwrap();
+    let e = w.set_motion(77, floe_dem::floes::Motion::Free).unwrap_err();
+    assert!(matches!(e, DemError::UnstableTimeStep { .. }), "{e}");
+    let _ = w.remove_floe(77).unwrap();
     // Inside a step.
     w.drift();
     let before = format!("{:?}", w.state());

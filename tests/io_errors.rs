@@ -55,7 +55,7 @@ fn a_missing_file_is_not_found() {
     let e = RunFile::open(&path).err().expect("missing");
     assert!(matches!(e, IoError::NotFound { .. }), "{e}");
     names(&e, &path);
-    let e = RunWriter::reopen_for_resume(&path, || None)
+    let e = RunWriter::reopen_for_resume(&path, || None, 3)
         .err()
         .expect("missing");
     assert!(matches!(e, IoError::NotFound { .. }), "{e}");
@@ -74,7 +74,7 @@ fn a_file_that_is_not_hdf5_is_named_as_such() {
         let e = RunFile::open(&path).err().expect("not HDF5");
         assert!(matches!(e, IoError::NotHdf5 { .. }), "{e}");
         assert!(names(&e, &path).contains("not an HDF5 file"));
-        let e = RunWriter::reopen_for_resume(&path, || None)
+        let e = RunWriter::reopen_for_resume(&path, || None, 3)
             .err()
             .expect("not HDF5");
         assert!(matches!(e, IoError::NotHdf5 { .. }), "{e}");
@@ -111,7 +111,7 @@ fn an_hdf5_file_not_written_by_floe_is_refused() {
             .write_scalar(&"halmd".parse::<hdf5::types::VarLenUnicode>().unwrap())
             .unwrap();
     }
-    let e = RunWriter::reopen_for_resume(&other, || None)
+    let e = RunWriter::reopen_for_resume(&other, || None, 3)
         .err()
         .expect("not floe");
     assert!(names(&e, &other).contains("halmd"), "{e}");
@@ -126,7 +126,7 @@ fn a_file_without_checkpoint_cannot_be_resumed() {
     assert_eq!(f.checkpoint().unwrap(), None);
     assert_eq!(f.checkpoint_state(|| None).unwrap(), None);
     drop(f);
-    let e = RunWriter::reopen_for_resume(&path, || None)
+    let e = RunWriter::reopen_for_resume(&path, || None, 3)
         .err()
         .expect("no checkpoint");
     assert!(matches!(e, IoError::NoCheckpoint { .. }), "{e}");
@@ -151,7 +151,7 @@ fn a_damaged_checkpoint_is_detected_by_its_checksum() {
         bytes[100] ^= 0x10;
         ds.write_raw(&bytes).unwrap();
     }
-    let e = RunWriter::reopen_for_resume(&path, || None)
+    let e = RunWriter::reopen_for_resume(&path, || None, 3)
         .err()
         .expect("damaged");
     assert!(matches!(e, IoError::CorruptCheckpoint { .. }), "{e}");
@@ -206,7 +206,7 @@ fn a_truncated_or_scrambled_file_is_an_error_not_a_panic() {
             }
             f.checkpoint_state(|| None)?;
             drop(f);
-            RunWriter::reopen_for_resume(&p, || None)?;
+            RunWriter::reopen_for_resume(&p, || None, 3)?;
             Ok(())
         })();
         let e = outcome
@@ -264,7 +264,7 @@ fn requests_that_do_not_fit_the_file_are_errors() {
     drop(f);
     // A world with other floes than the file's: one taken out, or one
     // taken out and another put in its place.
-    let (mut w, _, _) = RunWriter::reopen_for_resume(&path, || None).unwrap();
+    let (mut w, _, _) = RunWriter::reopen_for_resume(&path, || None, 3).unwrap();
     let (mut world, _) = pack();
     let mut taken = world.remove_floe(3).unwrap();
     let e = w.write_snapshot(&world).expect_err("floe count");
@@ -286,7 +286,7 @@ fn checkpoint_bytes_that_pass_the_checksum_but_lie_are_refused_without_panic() {
     }
     let state = world.state();
     let good = encode(state, &OutputCounts::default(), 3);
-    let (back, _) = decode(&good, || None).unwrap();
+    let (back, _) = decode(&good, || None, None).unwrap();
     assert_eq!(format!("{back:?}"), format!("{state:?}"));
     // Re-sign a damaged payload so that only the structural checks remain.
     let resign = |mut b: Vec<u8>| {
@@ -297,23 +297,23 @@ fn checkpoint_bytes_that_pass_the_checksum_but_lie_are_refused_without_panic() {
         b
     };
     for cut in [HEADER_LEN, HEADER_LEN + 9, good.len() / 2, good.len() - 1] {
-        let e = decode(&resign(good[..cut].to_vec()), || None).expect_err("truncated");
+        let e = decode(&resign(good[..cut].to_vec()), || None, None).expect_err("truncated");
         assert!(e.contains("truncated") || e.contains("exceeds"), "{e}");
     }
     // A vector length of 2^60 (the floe count, after the three counts).
     let mut huge = good.clone();
     huge[HEADER_LEN + 24..HEADER_LEN + 32].copy_from_slice(&(1u64 << 60).to_le_bytes());
-    assert!(decode(&resign(huge), || None).is_err());
+    assert!(decode(&resign(huge), || None, None).is_err());
     // Every byte of the payload in turn set to 0xff: errors or a state, never a panic.
     for at in (HEADER_LEN..good.len()).step_by(7) {
         let mut b = good.clone();
         b[at] = 0xff;
-        let _ = decode(&resign(b), || None);
+        let _ = decode(&resign(b), || None, None);
     }
     // The checksum itself.
     let mut b = good.clone();
     b[good.len() - 3] ^= 1;
-    assert!(decode(&b, || None)
+    assert!(decode(&b, || None, None)
         .expect_err("checksum")
         .contains("checksum"));
 }

@@ -137,7 +137,7 @@ fn kill_9_at_any_moment_leaves_a_file_that_resumes_bitwise() {
             early += 1;
             continue;
         }
-        match RunWriter::reopen_for_resume(&path, || None) {
+        match RunWriter::reopen_for_resume(&path, || None, 3) {
             Ok((mut w, state, info)) => {
                 if let Some(r) = reported {
                     // The checkpoint after the last reported one may have

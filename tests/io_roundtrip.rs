@@ -276,7 +276,7 @@ fn a_resumed_file_drops_what_followed_the_checkpoint_and_ends_as_the_uninterrupt
         assert_eq!(f.checkpoint().unwrap().unwrap().step, 600);
         assert_eq!(f.observable("mean_mu").unwrap().step.len(), 28);
     }
-    let (mut w, state, info) = RunWriter::reopen_for_resume(&parts_path, || None).unwrap();
+    let (mut w, state, info) = RunWriter::reopen_for_resume(&parts_path, || None, 3).unwrap();
     assert_eq!(info.step, 600);
     {
         let f = RunFile::open(&parts_path).unwrap();

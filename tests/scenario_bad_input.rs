@@ -291,6 +291,24 @@ fn keys_that_do_not_apply_and_unknown_kinds_are_refused() {
         "friction.law",
         &["unknown law `coulomb`"],
     );
+    // A misspelt law beside a preset is reported as the unknown law.
+    let t = format!("{BASE}\n[friction]\nlaw = \"rate-stat\"\npreset = \"lab\"\n");
+    check(
+        &t,
+        "\"rate-stat\"",
+        0,
+        "friction.law",
+        &["unknown law `rate-stat`"],
+    );
+    // A key that does not apply, in an inline table: located at that key.
+    let t = format!("friction = {{ law = \"amontons\", mu = 0.3, bogus = 1.0 }}\n{BASE}");
+    check(
+        &t,
+        "bogus",
+        0,
+        "friction.bogus",
+        &["unknown key `bogus`", "`mu`"],
+    );
     let t = format!("{BASE}\n[friction]\nlaw = \"amontons\"\n");
     check(&t, "\"amontons\"", 0, "friction.law", &["needs `mu`"]);
     let t = format!("{BASE}\n[friction]\nstate_law = \"sticky\"\n");

@@ -340,6 +340,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 resume,
                 max_steps,
                 provenance: provenance(),
+                laws: LawRegistry::builtin(),
             };
             let summary = run::run(&args, &TerminalHooks { progress: !quiet })?;
             Ok(summary.describe(&args.output))
@@ -373,6 +374,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 },
                 metrics: metrics.options(),
                 provenance: provenance(),
+                registry: LawRegistry::builtin(),
             };
             let report = compare::compare(&args, &TerminalHooks { progress: !quiet })?;
             Ok(format!("report: {}", report.display()))
@@ -404,6 +406,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 emit_only: emit,
                 metrics: metrics.options(),
                 provenance: provenance(),
+                laws: LawRegistry::builtin(),
             };
             let path = sweep::sweep(&args, &TerminalHooks { progress: false })?;
             Ok(if emit {

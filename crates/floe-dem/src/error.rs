@@ -39,6 +39,13 @@ pub enum DemError {
         /// What is wrong.
         reason: String,
     },
+    /// The contact model cannot be used (a friction law whose state does
+    /// not fit a contact).
+    #[error("invalid contact model: {reason}")]
+    InvalidModel {
+        /// What is wrong.
+        reason: String,
+    },
     /// The time step is above the stability limit of the explicit integrator.
     #[error("dt = {dt_s} s is above the stable limit {limit_s:.3e} s ({reason})")]
     UnstableTimeStep {

@@ -116,47 +116,88 @@ impl Floe {
         }
     }
 
-    /// Checks what the engine relies on: 3 to [`MAX_VERTICES`] vertices,
-    /// finite state, positive mass, inertia, area, radius and thickness.
+    /// Checks what the engine relies on (see [`check_floe`]).
     fn validate(&self) -> Result<(), DemError> {
-        let bad = |reason: String| {
-            Err(DemError::FloeEdit {
-                id: self.id,
-                reason,
-            })
-        };
-        if !(3..=MAX_VERTICES).contains(&self.vertices.len()) {
-            return bad(format!(
-                "{} vertices (a floe has 3 to {MAX_VERTICES})",
-                self.vertices.len()
-            ));
-        }
-        let finite = self.position.is_finite()
-            && self.angle.is_finite()
-            && self.velocity.is_finite()
-            && self.angular_velocity.is_finite()
-            && self.r3_moment_m5.is_finite()
-            && self.vertices.iter().all(|v| v.is_finite())
-            && match self.motion {
-                Motion::Free => true,
-                Motion::Prescribed { velocity } => velocity.is_finite(),
-            };
-        if !finite {
-            return bad("a non-finite position, velocity, angle or vertex".into());
-        }
-        for (name, v) in [
-            ("thickness", self.thickness_m),
-            ("mass", self.mass_kg),
-            ("moment of inertia", self.inertia_kg_m2),
-            ("area", self.area_m2),
-            ("radius", self.radius_m),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return bad(format!("{name} {v} must be > 0"));
-            }
-        }
-        Ok(())
+        check_floe(&FloeRef {
+            position: self.position,
+            angle: self.angle,
+            velocity: self.velocity,
+            angular_velocity: self.angular_velocity,
+            thickness_m: self.thickness_m,
+            mass_kg: self.mass_kg,
+            inertia_kg_m2: self.inertia_kg_m2,
+            area_m2: self.area_m2,
+            radius_m: self.radius_m,
+            r3_moment_m5: self.r3_moment_m5,
+            motion: self.motion,
+            vertices: &self.vertices,
+        })
+        .map_err(|reason| DemError::FloeEdit {
+            id: self.id,
+            reason,
+        })
     }
+}
+
+/// One floe's values, borrowed, for [`check_floe`].
+struct FloeRef<'a> {
+    position: Vec2,
+    angle: f64,
+    velocity: Vec2,
+    angular_velocity: f64,
+    thickness_m: f64,
+    mass_kg: f64,
+    inertia_kg_m2: f64,
+    area_m2: f64,
+    radius_m: f64,
+    r3_moment_m5: f64,
+    motion: Motion,
+    vertices: &'a [Vec2],
+}
+
+/// What the engine relies on of a floe: 3 to [`MAX_VERTICES`] vertices,
+/// finite state, positive thickness, mass, inertia and area, and a
+/// bounding radius that reaches every vertex (the broad phase's cells and
+/// bounds assume it).
+fn check_floe(f: &FloeRef<'_>) -> Result<(), String> {
+    if !(3..=MAX_VERTICES).contains(&f.vertices.len()) {
+        return Err(format!(
+            "{} vertices (a floe has 3 to {MAX_VERTICES})",
+            f.vertices.len()
+        ));
+    }
+    let finite = f.position.is_finite()
+        && f.angle.is_finite()
+        && f.velocity.is_finite()
+        && f.angular_velocity.is_finite()
+        && f.r3_moment_m5.is_finite()
+        && f.vertices.iter().all(|v| v.is_finite())
+        && match f.motion {
+            Motion::Free => true,
+            Motion::Prescribed { velocity } => velocity.is_finite(),
+        };
+    if !finite {
+        return Err("a non-finite position, velocity, angle or vertex".into());
+    }
+    for (name, v) in [
+        ("thickness", f.thickness_m),
+        ("mass", f.mass_kg),
+        ("moment of inertia", f.inertia_kg_m2),
+        ("area", f.area_m2),
+        ("radius", f.radius_m),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(format!("{name} {v} must be > 0"));
+        }
+    }
+    let reach = f.vertices.iter().map(|v| v.length()).fold(0.0, f64::max);
+    if f.radius_m < reach * (1.0 - 1e-12) {
+        return Err(format!(
+            "bounding radius {} m does not reach its farthest vertex, {reach} m away",
+            f.radius_m
+        ));
+    }
+    Ok(())
 }
 
 /// The floe arrays, indexed by handle. Read them through [`Floes`]; build
@@ -249,9 +290,21 @@ impl FloeColumns {
 
 /// Every floe's state and properties: the arrays of [`FloeColumns`] (read
 /// through `Deref`), sorted by id, changed only through methods.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Floes {
     columns: FloeColumns,
+}
+
+impl Default for Floes {
+    /// The empty set.
+    fn default() -> Self {
+        Floes {
+            columns: FloeColumns {
+                vertex_start: vec![0],
+                ..FloeColumns::default()
+            },
+        }
+    }
 }
 
 impl Deref for Floes {
@@ -337,14 +390,38 @@ impl Floes {
         if c.id.windows(2).any(|w| w[0] >= w[1]) {
             return bad("floe ids are not strictly increasing".into());
         }
-        let offsets_valid = c.vertex_start.len() == n + 1
-            && c.vertex_start[0] == 0
-            && c.vertex_start
-                .windows(2)
-                .all(|w| (3..=MAX_VERTICES).contains(&(w[1] as usize).wrapping_sub(w[0] as usize)))
-            && c.vertex_start.last().map(|&v| v as usize) == Some(c.vertices.len());
+        let offsets_valid = (n == 0 && c.vertex_start.len() <= 1 && c.vertices.is_empty())
+            || c.vertex_start.len() == n + 1
+                && c.vertex_start[0] == 0
+                && c.vertex_start.windows(2).all(|w| {
+                    (3..=MAX_VERTICES).contains(&(w[1] as usize).wrapping_sub(w[0] as usize))
+                })
+                && c.vertex_start.last().map(|&v| v as usize) == Some(c.vertices.len());
         if !offsets_valid {
             return bad("vertex offsets do not give each floe 3 or more vertices".into());
+        }
+        for h in 0..n {
+            check_floe(&FloeRef {
+                position: c.position[h],
+                angle: c.angle[h],
+                velocity: c.velocity[h],
+                angular_velocity: c.angular_velocity[h],
+                thickness_m: c.thickness_m[h],
+                mass_kg: c.mass_kg[h],
+                inertia_kg_m2: c.inertia_kg_m2[h],
+                area_m2: c.area_m2[h],
+                radius_m: c.radius_m[h],
+                r3_moment_m5: c.r3_moment_m5[h],
+                motion: c.motion[h],
+                vertices: c.local_vertices(h),
+            })
+            .map_err(|reason| DemError::InvalidFloeColumns {
+                reason: format!("floe id {}: {reason}", c.id[h]),
+            })?;
+        }
+        let mut columns = columns;
+        if columns.vertex_start.is_empty() {
+            columns.vertex_start.push(0);
         }
         Ok(Floes { columns })
     }
@@ -381,9 +458,6 @@ impl Floes {
             }
             Err(h) => h,
         };
-        if c.vertex_start.is_empty() {
-            c.vertex_start.push(0);
-        }
         let nv = floe.vertices.len();
         if c.vertices.len() + nv > u32::MAX as usize {
             return Err(DemError::FloeEdit {
@@ -534,6 +608,35 @@ mod tests {
         assert!(a.insert(square(5, 0.0)).is_err(), "duplicate id refused");
         assert_eq!(a, b, "a refused insertion changes nothing");
         assert_eq!(Floes::from_columns(a.columns().clone()).unwrap(), a);
+    }
+
+    /// Arrays a damaged or crafted checkpoint could hold, with a floe the
+    /// engine cannot step, are refused: each of these crashed or ran on
+    /// before the per-floe checks.
+    #[test]
+    fn columns_with_impossible_floes_are_refused() {
+        let mut a = Floes::new();
+        for id in [1, 2] {
+            a.insert(square(id, 0.0)).unwrap();
+        }
+        type Damage = fn(&mut FloeColumns);
+        let cases: [(&str, Damage); 5] = [
+            ("non-finite", |c| c.position[1].x = f64::INFINITY),
+            ("radius", |c| c.radius_m[0] = f64::NAN),
+            ("mass", |c| c.mass_kg[1] = -1.0),
+            ("farthest vertex", |c| c.radius_m[0] *= 0.5),
+            ("vertex", |c| c.vertices[3].y = f64::NAN),
+        ];
+        for (what, damage) in cases {
+            let mut c = a.columns().clone();
+            damage(&mut c);
+            let e = Floes::from_columns(c).expect_err(what).to_string();
+            assert!(e.contains(what), "{what}: {e}");
+        }
+        // The empty set round-trips.
+        let empty = Floes::new();
+        assert_eq!(Floes::from_columns(empty.columns().clone()).unwrap(), empty);
+        assert_eq!(Floes::from_columns(FloeColumns::default()).unwrap(), empty);
     }
 
     #[test]

@@ -60,11 +60,12 @@ use crate::forcing::ExternalForces;
 use crate::periodicity::Periodicity;
 use crate::pipeline::broad_phase::BroadPhase;
 use crate::pipeline::force_gathering::ForceBuffers;
-use crate::pipeline::integrator;
+use crate::pipeline::integrator::{self, floe_stable_step};
 use crate::pipeline::narrow_phase::{ContactSet, DetectionInput};
 use crate::pipeline::{Pipeline, Stage};
 use crate::state::WorldState;
 use crate::Vec2;
+use floe_friction::{FrictionLaw, LAW_STATE_SLOTS};
 
 pub use crate::pipeline::integrator::{stable_time_step, STABILITY_SAFETY};
 
@@ -212,6 +213,15 @@ impl<F: ExternalForces> World<F> {
         forcing: F,
         periodicity: Periodicity,
     ) -> Result<Self, DemError> {
+        let slots = model.law.state_slots();
+        if slots > LAW_STATE_SLOTS {
+            return Err(DemError::InvalidModel {
+                reason: format!(
+                    "law `{}` declares {slots} state slots per contact; a contact holds {LAW_STATE_SLOTS}",
+                    model.law.name()
+                ),
+            });
+        }
         let dt_s = state.dt_s;
         if !(dt_s.is_finite() && dt_s > 0.0) {
             return Err(DemError::InvalidParameter {
@@ -490,17 +500,49 @@ impl<F: ExternalForces> World<F> {
     }
 
     /// Sets how floe `id` moves; a prescribed velocity is also its velocity.
+    /// Refuses to free a floe the time step is too long for.
     pub fn set_motion(&mut self, id: u64, motion: Motion) -> Result<(), DemError> {
         let h = self.handle(id)?;
-        if let Motion::Prescribed { velocity } = motion {
-            if !velocity.is_finite() {
+        match motion {
+            Motion::Prescribed { velocity } if !velocity.is_finite() => {
                 return Err(DemError::FloeEdit {
                     id,
                     reason: "a prescribed velocity must be finite".into(),
-                });
+                })
             }
+            Motion::Free => {
+                let f = &self.state.floes;
+                self.check_stable(
+                    id,
+                    floe_stable_step(
+                        f.mass_kg[h],
+                        f.inertia_kg_m2[h],
+                        f.thickness_m[h],
+                        f.area_m2[h],
+                        f.radius_m[h],
+                        &self.model,
+                    ),
+                )?;
+            }
+            Motion::Prescribed { .. } => {}
         }
         self.state.floes.set_motion(h, motion);
+        Ok(())
+    }
+
+    /// Refuses a free floe whose stable time step `limit_s` is below the
+    /// world's.
+    fn check_stable(&self, id: u64, limit_s: f64) -> Result<(), DemError> {
+        if self.state.dt_s > limit_s {
+            return Err(DemError::UnstableTimeStep {
+                dt_s: self.state.dt_s,
+                limit_s,
+                reason: format!(
+                    "floe {id} against a like neighbour, E = {} Pa",
+                    self.model.youngs_modulus_pa
+                ),
+            });
+        }
         Ok(())
     }
 
@@ -571,6 +613,33 @@ impl<F: ExternalForces> World<F> {
                     ),
                 });
             }
+        }
+        let twice = |pairs: Vec<[u64; 2]>| {
+            let mut sorted = pairs;
+            sorted.sort_unstable();
+            sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+        };
+        let repeated = twice(d.contacts.iter().map(|(ids, _)| *ids).collect())
+            .or_else(|| twice(d.broken.iter().map(|(ids, _)| *ids).collect()));
+        if let Some([x, y]) = repeated {
+            return Err(DemError::FloeEdit {
+                id,
+                reason: format!("the pair of floes {x} and {y} is listed twice"),
+            });
+        }
+        if let Motion::Free = d.floe.motion {
+            let f = &d.floe;
+            self.check_stable(
+                id,
+                floe_stable_step(
+                    f.mass_kg,
+                    f.inertia_kg_m2,
+                    f.thickness_m,
+                    f.area_m2,
+                    f.radius_m,
+                    &self.model,
+                ),
+            )?;
         }
         let s = &mut self.state;
         let h = s.floes.insert(d.floe)?;

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::amontons::Amontons;
-use crate::law::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome, LAW_STATE_SLOTS};
+use crate::law::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 use crate::rate_dependent::RateDependent;
 use crate::rate_state::RateState;
 
@@ -101,7 +101,7 @@ impl FrictionLaw for Law {
             Law::Amontons(l) => l.state_slots(),
             Law::RateDependent(l) => l.state_slots(),
             Law::RateState(l) => l.state_slots(),
-            Law::Custom(l) => l.law().state_slots().min(LAW_STATE_SLOTS),
+            Law::Custom(l) => l.law().state_slots(),
         }
     }
 

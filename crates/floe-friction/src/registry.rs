@@ -8,6 +8,7 @@
 use crate::amontons::{self, Amontons};
 use crate::any_law::Law;
 use crate::error::FrictionError;
+use crate::law::{FrictionLaw, LAW_STATE_SLOTS};
 use crate::law_table::{LawContext, LawParams, ParamDefault, ParamKind, ParamSpec, ParamValue};
 use crate::rate_dependent::{self, RateDependent};
 use crate::rate_state::{self, RateState};
@@ -200,11 +201,22 @@ impl LawRegistry {
             };
             values.push((spec.key, value));
         }
-        (entry.build)(&LawParams::new(values)).map_err(|message| LawParamError {
+        let law = (entry.build)(&LawParams::new(values)).map_err(|message| LawParamError {
             key: None,
             value_at_fault: false,
             message,
-        })
+        })?;
+        if law.state_slots() > LAW_STATE_SLOTS {
+            return Err(LawParamError {
+                key: None,
+                value_at_fault: false,
+                message: format!(
+                    "law `{name}` declares {} state slots per contact; a contact holds {LAW_STATE_SLOTS}",
+                    law.state_slots()
+                ),
+            });
+        }
+        Ok(law)
     }
 
     /// The parameter tables as Markdown, one table per law (docs/scenarios.md

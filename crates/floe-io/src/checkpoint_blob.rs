@@ -466,10 +466,13 @@ fn version_of(bytes: &[u8]) -> u32 {
 /// The state and counts of checkpoint `bytes`, after checking the header,
 /// the checksum and the state's consistency. Versions before 3 do not
 /// store the time step: `fallback_dt_s` gives it (the scenario's), and is
-/// not called for version 3.
+/// not called for version 3. With `law_state_slots`, a version-3
+/// checkpoint whose friction states hold another number of slots is
+/// refused (it was written under another law).
 pub fn decode(
     bytes: &[u8],
     fallback_dt_s: impl FnOnce() -> Option<f64>,
+    law_state_slots: Option<usize>,
 ) -> DecResult<(WorldState, OutputCounts)> {
     let payload = verify(bytes)?;
     let d = &mut Dec {
@@ -516,6 +519,14 @@ pub fn decode(
     }
     let floes = Floes::from_columns(columns).map_err(|e| e.to_string())?;
     let slots = d.slots()?;
+    if let Some(expected) = law_state_slots.filter(|_| d.version >= 3) {
+        if slots != expected {
+            return Err(format!(
+                "its contacts hold {slots} law-state slots each, the friction law declares \
+                 {expected}: it was written under another law"
+            ));
+        }
+    }
     let contacts = d.vec(8, |d| {
         Ok(ContactRecord {
             a: d.u32()?,
@@ -640,7 +651,8 @@ mod tests {
         // the owned-floe count.
         let frictions = state.contacts.len() + state.broken.len();
         assert_eq!(v2.len() - v1.len(), 8 * frictions);
-        assert_eq!(v3.len() + 8, v2.len() + 8 + 2 * 4);
+        let (dt, slot_counts, owned) = (8, 2 * 4, 8);
+        assert_eq!(v3.len(), v2.len() + dt + slot_counts - owned);
         let mut expected = state.clone();
         expected
             .contacts
@@ -651,20 +663,20 @@ mod tests {
             .iter_mut()
             .for_each(|c| c.friction.law_state[SOLVER_TREND] = 0.0);
         let dt = || Some(state.dt_s);
-        let (back, _) = decode(&v1, dt).unwrap();
+        let (back, _) = decode(&v1, dt, None).unwrap();
         assert_eq!(format!("{back:?}"), format!("{expected:?}"));
         for old in [&v1, &v2] {
-            let e = decode(old, || None).expect_err("no time step");
+            let e = decode(old, || None, None).expect_err("no time step");
             assert!(e.contains("does not store the time step"), "{e}");
         }
-        let (back, _) = decode(&v2, dt).unwrap();
+        let (back, _) = decode(&v2, dt, None).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
-        let (back, _) = decode(&v3, || panic!("version 3 stores dt")).unwrap();
+        let (back, _) = decode(&v3, || panic!("version 3 stores dt"), Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
         // A version from the future is refused, by name.
         let mut v4 = v3.clone();
         v4[8..12].copy_from_slice(&4u32.to_le_bytes());
-        let e = decode(&v4, dt).expect_err("version 4");
+        let e = decode(&v4, dt, None).expect_err("version 4");
         assert!(e.contains("format version 4"), "{e}");
     }
 
@@ -681,15 +693,18 @@ mod tests {
         let frictions = state.contacts.len() + state.broken.len();
         assert!(frictions > 0);
         assert_eq!(three.len() - none.len(), 3 * 8 * frictions);
-        let (back, _) = decode(&none, || None).unwrap();
+        let (back, _) = decode(&none, || None, Some(0)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
+        // Read for a law of another slot count: refused.
+        let e = decode(&three, || None, Some(0)).expect_err("3 slots for a 0-slot law");
+        assert!(e.contains("another law"), "{e}");
         // More slots than a contact state holds is refused.
         let mut bad = encode(&state, &counts, 0);
         let at = bad.len() - payload_tail(&state);
         bad[at..at + 4].copy_from_slice(&((LAW_STATE_SLOTS + 1) as u32).to_le_bytes());
         let payload = bad[HEADER_LEN..].to_vec();
         bad[24..32].copy_from_slice(&fnv1a64(&payload).to_le_bytes());
-        let e = decode(&bad, || None).expect_err("too many slots");
+        let e = decode(&bad, || None, None).expect_err("too many slots");
         assert!(e.contains("law state slots"), "{e}");
     }
 

@@ -417,7 +417,10 @@ impl RunFile {
         &self,
         fallback_dt_s: impl FnOnce() -> Option<f64>,
     ) -> Result<Option<WorldState>, IoError> {
-        Ok(read_checkpoint(&self.file, &self.path, fallback_dt_s)?.map(|(_, state, _)| state))
+        Ok(
+            read_checkpoint(&self.file, &self.path, fallback_dt_s, None)?
+                .map(|(_, state, _)| state),
+        )
     }
 }
 
@@ -446,6 +449,7 @@ pub(crate) fn read_checkpoint(
     file: &hdf5::File,
     path: &Path,
     fallback_dt_s: impl FnOnce() -> Option<f64>,
+    law_state_slots: Option<usize>,
 ) -> Result<Option<(usize, WorldState, OutputCounts)>, IoError> {
     let Some(slot) = valid_slot(file, path)? else {
         return Ok(None);
@@ -466,7 +470,8 @@ pub(crate) fn read_checkpoint(
         Ok((read_rows::<u8>(&ds, 0..len)?, step))
     })()
     .map_err(|e| corrupt(e.to_string()))?;
-    let (state, counts) = checkpoint_blob::decode(&bytes, fallback_dt_s).map_err(corrupt)?;
+    let (state, counts) =
+        checkpoint_blob::decode(&bytes, fallback_dt_s, law_state_slots).map_err(corrupt)?;
     if state.steps != step {
         return Err(corrupt(format!(
             "the state is at step {} but the slot says {step}",

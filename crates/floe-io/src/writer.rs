@@ -587,16 +587,19 @@ impl RunWriter {
     /// dataset to what had been written when the checkpoint was taken, so
     /// the continued file ends as an uninterrupted run's would. Returns the
     /// writer, the state to resume from and where it stands. A checkpoint
-    /// of format 1 or 2 takes its time step from `fallback_dt_s`.
+    /// of format 1 or 2 takes its time step from `fallback_dt_s`; one of
+    /// format 3 must hold `law_state_slots` per contact (the law's).
     pub fn reopen_for_resume(
         path: &Path,
         fallback_dt_s: impl FnOnce() -> Option<f64>,
+        law_state_slots: usize,
     ) -> Result<(Self, WorldState, CheckpointInfo), IoError> {
         let file = h5::open_run(path, true)?;
-        let (slot, state, counts) = reader::read_checkpoint(&file, path, fallback_dt_s)?
-            .ok_or_else(|| IoError::NoCheckpoint {
-                path: path.to_path_buf(),
-            })?;
+        let (slot, state, counts) =
+            reader::read_checkpoint(&file, path, fallback_dt_s, Some(law_state_slots))?
+                .ok_or_else(|| IoError::NoCheckpoint {
+                    path: path.to_path_buf(),
+                })?;
         let slot_name = format!("/{}/{}", layout::CHECKPOINT, layout::SLOTS[slot]);
         let corrupt = |reason: String| IoError::CorruptCheckpoint {
             path: path.to_path_buf(),

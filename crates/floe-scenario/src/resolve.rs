@@ -762,6 +762,27 @@ fn resolve_contact(
     }
     let empty = RawLawTable::new();
     let fr = friction.map_or(&empty, |t| t.get_ref());
+    // The law's name first: a misspelt law is reported as that, not as a
+    // key that does not apply to it.
+    if let Some(law) = fr.get("law") {
+        let known = law
+            .get_ref()
+            .as_str()
+            .is_some_and(|n| registry.get(n).is_some());
+        if !known {
+            return Err(f.error(
+                law.span(),
+                "friction.law",
+                format!(
+                    "unknown law {}, expected {}",
+                    law.get_ref()
+                        .as_str()
+                        .map_or_else(|| law.get_ref().to_string(), |n| format!("`{n}`")),
+                    registry.names_text()
+                ),
+            ));
+        }
+    }
     let preset = match fr.get("preset") {
         None => Preset::Tank,
         Some(p) => {

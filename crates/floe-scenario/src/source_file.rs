@@ -68,14 +68,19 @@ impl SourceFile {
     }
 
     /// Where the key of the `key = value` whose value is at `value` starts
-    /// (for messages about the key rather than its value).
+    /// (for messages about the key rather than its value): back over
+    /// `=` and the key before it, in a table or an inline table alike.
     pub fn key_start(&self, value: Range<usize>) -> Range<usize> {
         let start = value.start.min(self.text.len());
-        let line_start = self.text[..start].rfind('\n').map_or(0, |i| i + 1);
-        let indent = self.text[line_start..start]
-            .find(|c: char| !c.is_whitespace())
-            .unwrap_or(0);
-        line_start + indent..value.end
+        let before = self.text[..start].trim_end_matches([' ', '\t']);
+        let Some(before_eq) = before.strip_suffix('=') else {
+            return value;
+        };
+        let key_end = before_eq.trim_end_matches([' ', '\t']).len();
+        let key_start = before_eq[..key_end]
+            .rfind(|c: char| !(c.is_alphanumeric() || "_-.\"'".contains(c)))
+            .map_or(0, |i| i + 1);
+        key_start..value.end
     }
 
     /// An input error at `span` about `key`.

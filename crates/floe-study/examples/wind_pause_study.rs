@@ -90,6 +90,7 @@ fn study() -> Result<(), CliError> {
                     },
                     metrics: MetricOptions::default(),
                     provenance: Provenance::of_this_process("unknown"),
+                    registry: floe_friction::LawRegistry::builtin(),
                 },
                 &Printed,
             )?;

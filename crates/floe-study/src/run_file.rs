@@ -12,6 +12,7 @@ use std::time::Instant;
 use floe_dem::forcing::Forcing;
 use floe_dem::run::{self, format_sim_time, Cadence, Ending, Progress, Silent};
 use floe_dem::world::World;
+use floe_friction::{FrictionLaw, LawRegistry};
 use floe_io::{DomainBox, OutputOptions, RunFile, RunMetadata, RunWriter};
 use floe_scenario::Scenario;
 
@@ -90,6 +91,10 @@ pub struct RunArgs {
     pub max_steps: Option<u64>,
     /// Who is running it.
     pub provenance: Provenance,
+    /// The friction laws the scenario may name ([`LawRegistry::builtin`]
+    /// and any the caller registered); a resume reads the stored scenario
+    /// with them too.
+    pub laws: LawRegistry,
 }
 
 /// What a finished run did.
@@ -147,7 +152,7 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
     let path = args.scenario.as_ref().ok_or_else(|| {
         Error::Usage("give a scenario file, or --resume to continue a run".into())
     })?;
-    let scenario = Scenario::load(path)?;
+    let scenario = Scenario::load_with(path, &args.laws)?;
     if args.output.exists() && !args.force {
         return Err(Error::WouldOverwrite(args.output.clone()));
     }
@@ -201,15 +206,18 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         metadata.scenario_path,
         args.output.display()
     ));
-    let scenario = Scenario::from_text(&metadata.scenario_toml, &origin)?;
+    let scenario = Scenario::from_text_with(&metadata.scenario_toml, &origin, &args.laws)?;
     let threads = thread_count(args.threads.or(scenario.threads()))?;
     let pool = pool(threads)?;
     pool.install(|| {
         let parts = scenario.engine_parts();
         // Checkpoints of format 3 hold the time step; older ones take the
         // scenario's, found by building its floes.
-        let (mut writer, state, info) =
-            RunWriter::reopen_for_resume(&args.output, || scenario.time_step().ok())?;
+        let (mut writer, state, info) = RunWriter::reopen_for_resume(
+            &args.output,
+            || scenario.time_step().ok(),
+            parts.model.law.state_slots(),
+        )?;
         hooks.say(&format!(
             "resuming {} from step {} (t = {})",
             args.output.display(),

@@ -17,6 +17,7 @@ use floe_io::RunFile;
 use crate::compare::metrics::{measure, MetricOptions, RunMetrics};
 use crate::error::Error;
 use floe_dem::run::{Progress, Silent};
+use floe_friction::LawRegistry;
 use floe_scenario::settings::{apply, cartesian, label, Setting};
 use floe_scenario::Scenario;
 
@@ -41,6 +42,8 @@ pub struct SweepArgs {
     pub metrics: MetricOptions,
     /// Who runs the sweep (recorded in each run file).
     pub provenance: Provenance,
+    /// The friction laws the scenario may name.
+    pub laws: LawRegistry,
 }
 
 /// The caller's hooks without progress reports: variants run side by side.
@@ -70,7 +73,7 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
         ));
     }
     let text = std::fs::read_to_string(&args.scenario).map_err(|e| Error::io(&args.scenario, e))?;
-    Scenario::from_text(&text, &args.scenario)?;
+    Scenario::from_text_with(&text, &args.scenario, &args.laws)?;
     let combos = cartesian(&args.settings);
     let manifest = args.out_dir.join(MANIFEST);
     if manifest.exists() && !args.force {
@@ -87,7 +90,7 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
             label(&args.settings, choice)
         ));
         // Each variant must be a valid scenario before anything runs.
-        Scenario::from_text(&variant_text, &origin)?;
+        Scenario::from_text_with(&variant_text, &origin, &args.laws)?;
         let file = args.out_dir.join(format!("{name}.toml"));
         if file.exists() && !args.force {
             return Err(Error::WouldOverwrite(file));
@@ -133,6 +136,7 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
                         resume: false,
                         max_steps: None,
                         provenance: args.provenance.clone(),
+                        laws: args.laws.clone(),
                     },
                     &WithoutProgress(hooks),
                 );

@@ -205,11 +205,31 @@ impl BroadPhase {
             return;
         }
         let r_max = radius.iter().copied().fold(0.0, f64::max);
-        let cell = (2.0 * r_max + self.skin_m).max(f64::MIN_POSITIVE);
         let (mut lo, mut hi) = (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY));
         for p in position {
             lo = lo.min(*p);
             hi = hi.max(*p);
+        }
+        // Cells one reach wide, but at most about four per floe however far
+        // apart the floes are (a grid growing with their distance exhausts
+        // memory): cells are only ever widened, so every pair within reach
+        // still lies in neighbouring cells, and the pairs found are the same.
+        let extent =
+            |lo: f64, hi: f64, period: Option<Period>| period.map_or(hi - lo, |p| p.length_m);
+        let (ex, ey) = (
+            extent(lo.x, hi.x, periodic.x),
+            extent(lo.y, hi.y, periodic.y),
+        );
+        let most = (4 * n + 64) as f64;
+        let cells_for = |c: f64| ((ex / c).floor() + 1.0) * ((ey / c).floor() + 1.0);
+        let mut cell = (2.0 * r_max + self.skin_m).max(f64::MIN_POSITIVE);
+        // NaN extents (non-finite positions) widen the cells to infinity.
+        let too_many = |c: f64| {
+            use std::cmp::Ordering::Greater;
+            matches!(cells_for(c).partial_cmp(&most), Some(Greater) | None)
+        };
+        while too_many(cell) && cell.is_finite() {
+            cell = (2.0 * cell).max((ex * ey / most).sqrt());
         }
         // Along a periodic axis the grid covers exactly one period, so that
         // cells at its two ends are neighbours; elsewhere it covers the floes.

@@ -114,32 +114,52 @@ pub(crate) fn kick(
         .collect_into_vec(forcing_partials);
 }
 
-/// The largest stable time step and the floe that sets it: `0.3 x 2/omega`
-/// with `omega^2 = k / m_eff` for the stiffest contact the floe can have
-/// with a like neighbour: contact length a diameter, `k = kappa 2 r`,
-/// `m_eff = min(m/2, I / r^2)` (translation or rotation at the rim).
+/// The largest stable time step and the floe that sets it: the smallest
+/// of [`floe_stable_step`] over the free floes.
 pub fn stable_time_step(floes: &FloeColumns, model: &ContactModel) -> (f64, usize) {
     let mut best = (f64::INFINITY, 0);
     for i in 0..floes.len() {
         if !floes.is_free(i) {
             continue;
         }
-        let body = Body {
-            position: Vec2::ZERO,
-            velocity: Vec2::ZERO,
-            angular_velocity: 0.0,
-            mass_kg: floes.mass_kg[i],
-            thickness_m: floes.thickness_m[i],
-            area_m2: floes.area_m2[i],
-            free: true,
-        };
-        let k = overlap_stiffness(model, &body, &body) * 2.0 * floes.radius_m[i];
-        let r = floes.radius_m[i];
-        let m_eff = (0.5 * floes.mass_kg[i]).min(floes.inertia_kg_m2[i] / (r * r));
-        let limit = STABILITY_SAFETY * 2.0 * (m_eff / k).sqrt();
+        let limit = floe_stable_step(
+            floes.mass_kg[i],
+            floes.inertia_kg_m2[i],
+            floes.thickness_m[i],
+            floes.area_m2[i],
+            floes.radius_m[i],
+            model,
+        );
         if limit < best.0 {
             best = (limit, i);
         }
     }
     best
+}
+
+/// The largest stable time step of a free floe: `0.3 x 2/omega` with
+/// `omega^2 = k / m_eff` for the stiffest contact it can have with a like
+/// neighbour: contact length a diameter, `k = kappa 2 r`,
+/// `m_eff = min(m/2, I / r^2)` (translation or rotation at the rim).
+pub fn floe_stable_step(
+    mass_kg: f64,
+    inertia_kg_m2: f64,
+    thickness_m: f64,
+    area_m2: f64,
+    radius_m: f64,
+    model: &ContactModel,
+) -> f64 {
+    let body = Body {
+        position: Vec2::ZERO,
+        velocity: Vec2::ZERO,
+        angular_velocity: 0.0,
+        mass_kg,
+        thickness_m,
+        area_m2,
+        free: true,
+    };
+    let k = overlap_stiffness(model, &body, &body) * 2.0 * radius_m;
+    let r = radius_m;
+    let m_eff = (0.5 * mass_kg).min(inertia_kg_m2 / (r * r));
+    STABILITY_SAFETY * 2.0 * (m_eff / k).sqrt()
 }

@@ -7,7 +7,7 @@ pub mod report;
 
 use std::path::PathBuf;
 
-use floe_friction::FrictionLaw;
+use floe_friction::{FrictionLaw, LawRegistry};
 use floe_scenario::law_variants::{reference_law, variant, LawChoice, Matching};
 
 use crate::error::Error;
@@ -36,6 +36,8 @@ pub struct CompareArgs {
     pub metrics: MetricOptions,
     /// Who runs the comparison (recorded in each run file).
     pub provenance: Provenance,
+    /// The friction laws the scenario may name.
+    pub registry: LawRegistry,
 }
 
 /// Runs the variants and writes the report; returns the report's path.
@@ -44,9 +46,12 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
     let text = std::fs::read_to_string(&args.scenario).map_err(|e| Error::io(&args.scenario, e))?;
     let origin = args.scenario.as_path();
     // Checks the user's file as written first, so its errors point into it.
-    Scenario::from_text(&text, origin)?;
+    Scenario::from_text_with(&text, origin, &args.registry)?;
     let (reference, reference_text) = reference_law(&text, origin, |t| {
-        Ok(Scenario::from_text(t, origin)?.contact_model().law.clone())
+        Ok(Scenario::from_text_with(t, origin, &args.registry)?
+            .contact_model()
+            .law
+            .clone())
     })?;
     let report_path = args.out_dir.join("report.md");
     let mut targets = vec![report_path.clone()];
@@ -112,6 +117,7 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
                 resume: false,
                 max_steps: None,
                 provenance: args.provenance.clone(),
+                laws: args.registry.clone(),
             },
             hooks,
         )?;
