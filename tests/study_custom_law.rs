@@ -24,6 +24,7 @@ fn args(
         force: true,
         resume: false,
         max_steps: None,
+        step_limit: floe_scenario::MAX_RUN_STEPS,
         provenance: Provenance::of_this_process("test"),
         laws,
     }

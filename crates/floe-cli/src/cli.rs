@@ -56,6 +56,11 @@ pub enum Command {
         /// (continue with --resume; for batch jobs with a time limit).
         #[arg(long, value_name = "STEPS")]
         max_steps: Option<u64>,
+        /// Most time steps the scenario may take (default 1e9): a run
+        /// longer than this is refused before it starts, naming dt_s or
+        /// duration_s.
+        #[arg(long, value_name = "N", default_value_t = floe_scenario::MAX_RUN_STEPS, value_parser = step_count)]
+        step_limit: f64,
         /// No progress bar or progress lines.
         #[arg(long, short)]
         quiet: bool,
@@ -76,10 +81,10 @@ pub enum Command {
         #[arg(long, short)]
         output: PathBuf,
         /// Slip speed at which Amontons' mu equals the rate-and-state steady state, m/s.
-        #[arg(long, default_value_t = 1e-2, value_name = "M_PER_S")]
+        #[arg(long, default_value_t = 1e-2, value_name = "M_PER_S", value_parser = positive)]
         reference_slip_speed: f64,
         /// Give Amontons' mu explicitly instead.
-        #[arg(long, value_name = "MU")]
+        #[arg(long, value_name = "MU", value_parser = non_negative)]
         amontons_mu: Option<f64>,
         /// Worker threads per run.
         #[arg(long)]
@@ -147,13 +152,13 @@ pub enum Command {
 #[derive(Debug, Clone, clap::Args)]
 pub struct MetricArgs {
     /// Bins across the channel for the velocity profile.
-    #[arg(long, default_value_t = 25)]
+    #[arg(long, default_value_t = 25, value_parser = profile_bins)]
     pub profile_bins: usize,
     /// A slip event: the slip rate jumps by at least this factor between snapshots...
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = 10.0, value_parser = above_one)]
     pub slip_jump: f64,
     /// ...to at least this slip rate, m/s.
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = 1e-3, value_parser = positive)]
     pub slip_min_rate: f64,
 }
 
@@ -233,6 +238,9 @@ pub enum SliderCommand {
         /// Overwrite existing output files.
         #[arg(long)]
         force: bool,
+        /// Most time steps the protocol may take (default 1e9, about 40 s).
+        #[arg(long, value_name = "N", default_value_t = floe_friction::experiments::MAX_SLIDER_STEPS, value_parser = step_count)]
+        step_limit: f64,
     },
     /// Fit constant, rate-dependent and rate-and-state models to a measured series.
     Fit {
@@ -266,6 +274,9 @@ pub struct ExperimentArgs {
     /// Time step in seconds (default 0.001, as in the paper).
     #[arg(long, value_name = "SECONDS")]
     pub dt: Option<f64>,
+    /// Most time steps a run may take (default 1e9, about 40 s).
+    #[arg(long, value_name = "N", default_value_t = floe_friction::experiments::MAX_SLIDER_STEPS, value_parser = step_count)]
+    pub step_limit: f64,
 }
 
 /// `--preset`
@@ -312,7 +323,52 @@ impl ExperimentArgs {
             },
             normal_load_n: self.normal_load,
             dt_s: self.dt,
+            step_limit: self.step_limit,
         }
+    }
+}
+
+/// A finite number > 0.
+fn positive(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
+        _ => Err(format!("expected a finite number > 0, got `{text}`")),
+    }
+}
+
+/// A finite number >= 0.
+fn non_negative(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x >= 0.0 && x.is_finite() => Ok(x),
+        _ => Err(format!("expected a finite number >= 0, got `{text}`")),
+    }
+}
+
+/// A finite factor > 1.
+fn above_one(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x > 1.0 && x.is_finite() => Ok(x),
+        _ => Err(format!("expected a finite factor > 1, got `{text}`")),
+    }
+}
+
+/// Bins of the velocity profile: 1 to 10,000.
+fn profile_bins(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(n) if (1..=10_000).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "expected a whole number from 1 to 10000, got `{text}`"
+        )),
+    }
+}
+
+/// A step limit: a number >= 1 (1e9 and 1000000000 alike).
+fn step_count(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(n) if n >= 1.0 && n.is_finite() => Ok(n),
+        _ => Err(format!(
+            "expected a number of steps >= 1, e.g. 1e10, got `{text}`"
+        )),
     }
 }
 
@@ -330,6 +386,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             force,
             resume,
             max_steps,
+            step_limit,
             quiet,
         } => {
             let args = RunArgs {
@@ -339,6 +396,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 force,
                 resume,
                 max_steps,
+                step_limit,
                 provenance: provenance(),
                 laws: LawRegistry::builtin(),
             };
@@ -357,11 +415,6 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             quiet,
             metrics,
         } => {
-            if !(reference_slip_speed.is_finite() && reference_slip_speed > 0.0) {
-                return Err(CliError::Usage(format!(
-                    "--reference-slip-speed {reference_slip_speed}: must be a positive speed in m/s"
-                )));
-            }
             let args = CompareArgs {
                 scenario,
                 laws: LawChoice::parse_list(&laws, &LawRegistry::builtin())?,
@@ -476,8 +529,9 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             protocol,
             out,
             force,
+            step_limit,
         }) => {
-            let s = slider::run(&protocol, &out, force)?;
+            let s = slider::run(&protocol, &out, force, step_limit)?;
             Ok(format!(
                 "{} steps, {} s simulated, {} rows: {}/{{{}}}",
                 s.steps,

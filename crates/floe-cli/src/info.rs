@@ -10,7 +10,12 @@ use floe_dem::run::format_sim_time;
 
 /// A human-readable description of the run in `file`.
 pub fn describe(file: &Path) -> Result<String, CliError> {
-    let run = RunFile::open(file)?;
+    // Retried: the file may be one a run is writing.
+    Ok(RunFile::read_retrying(file, describe_open)?)
+}
+
+fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
+    let file = run.path();
     let meta = run.metadata()?;
     let floes = run.static_floes()?;
     let snapshots = run.snapshot_count()?;
@@ -19,7 +24,7 @@ pub fn describe(file: &Path) -> Result<String, CliError> {
         let _ = writeln!(out, "{key:<12} {value}");
     };
     line("file", file.display().to_string());
-    line("status", run.status()?);
+    line("status", floe_io::run_status::describe(&run.status()?));
     line("scenario", meta.scenario_path.clone());
     line(
         "created by",

@@ -15,8 +15,11 @@ pub fn flag() -> &'static AtomicBool {
     INSTALL.call_once(|| {
         let installed = ctrlc::set_handler(|| {
             if INTERRUPTED.swap(true, Ordering::SeqCst) {
-                eprintln!("\nsecond interrupt: stopping now; the last checkpoint stays valid");
-                std::process::exit(130);
+                eprintln!(
+                    "\nsecond interrupt: stopping now; the last checkpoint stays valid \
+                     (resume with `floe run --resume`)"
+                );
+                stop_now();
             }
             eprintln!(
                 "\ninterrupt: finishing this step and writing a final snapshot and checkpoint \
@@ -30,4 +33,15 @@ pub fn flag() -> &'static AtomicBool {
         }
     });
     &INTERRUPTED
+}
+
+/// Ends the process at once, as kill -9 would: no exit handlers, so the
+/// HDF5 library's own (which would flush the run file while the stepping
+/// thread may be half-way through a write) never run. The file is left as
+/// the last flush made it, which is what resuming relies on.
+#[allow(unsafe_code)]
+fn stop_now() -> ! {
+    // SAFETY: _exit takes no pointers, touches no Rust state and is
+    // async-signal-safe.
+    unsafe { libc::_exit(130) }
 }

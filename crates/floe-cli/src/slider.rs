@@ -1,12 +1,15 @@
 //! `floe slider ...`: the paper's spring-slider experiments.
 
+use floe_scenario::numbers::sig;
 use std::path::{Path, PathBuf};
 
-use floe_friction::experiments::{hold_test, velocity_step, Preset, PAPER_DT_S};
+use floe_friction::experiments::{
+    hold_test, hold_test_duration_s, velocity_step, velocity_step_duration_s, Preset, PAPER_DT_S,
+};
 use floe_friction::fit::{compare_models, Experiment, ModelComparison};
 use floe_friction::protocol::Protocol;
 use floe_friction::spring_slider::{Apparatus, OutputThinning, Sample, SpringSlider};
-use floe_friction::{Form, Law, RateDependent, RateState, StateLaw};
+use floe_friction::{Form, Law, LawRegistry, RateDependent, RateState, StateLaw};
 use serde::Serialize;
 
 use crate::series_csv::{read_fit_data, write_series};
@@ -27,6 +30,34 @@ pub struct ExperimentOptions {
     pub normal_load_n: Option<f64>,
     /// Time step override, s.
     pub dt_s: Option<f64>,
+    /// Most time steps a run may take
+    /// ([`floe_friction::experiments::MAX_SLIDER_STEPS`] unless raised).
+    pub step_limit: f64,
+}
+
+/// Refuses a run of `duration_s` at `dt_s` above `step_limit` steps,
+/// naming what made it long.
+fn check_steps(
+    duration_s: f64,
+    options: &ExperimentOptions,
+    dt_s: f64,
+    what: &str,
+) -> Result<(), CliError> {
+    let steps = duration_s / dt_s;
+    if steps.is_finite() && steps <= options.step_limit {
+        return Ok(());
+    }
+    let dt = match options.dt_s {
+        Some(_) => format!("--dt {}", sig(dt_s)),
+        None => format!("the default dt {} s", sig(dt_s)),
+    };
+    Err(CliError::Usage(format!(
+        "{what} at {dt}: a {} s test is {} time steps, above the limit of {}; \
+         a longer --dt, a shorter test, or --step-limit N",
+        sig(duration_s),
+        sig(steps),
+        sig(options.step_limit)
+    )))
 }
 
 impl ExperimentOptions {
@@ -69,6 +100,16 @@ pub fn hold(options: &ExperimentOptions, holds_s: &[f64]) -> Result<Vec<HoldLine
         )));
     }
     let (law, apparatus) = options.law_and_apparatus()?;
+    let speed = options.preset.speed_m_per_s();
+    for &h in holds_s {
+        let duration = hold_test_duration_s(&law, apparatus, speed, h);
+        check_steps(
+            duration,
+            options,
+            apparatus.dt_s,
+            &format!("--hold {}", sig(h)),
+        )?;
+    }
     Ok(holds_s
         .iter()
         .map(|&h| {
@@ -104,6 +145,13 @@ pub fn step(options: &ExperimentOptions, from: f64, to: f64) -> Result<StepLine,
         }
     }
     let (law, apparatus) = options.law_and_apparatus()?;
+    let duration = velocity_step_duration_s(&law, from, to);
+    check_steps(
+        duration,
+        options,
+        apparatus.dt_s,
+        &format!("--from {} --to {}", sig(from), sig(to)),
+    )?;
     let r = velocity_step(law, apparatus, from, to);
     Ok(StepLine {
         mu_ss_before: r.mu_ss_before,
@@ -225,8 +273,19 @@ pub const RUN_FILES: [&str; 3] = ["series.csv", "summary.json", "friction.png"];
 
 /// `floe slider run PROTOCOL --out DIR`: writes series.csv, summary.json and
 /// friction.png, refusing to overwrite them unless `force`.
-pub fn run(protocol_path: &Path, out: &Path, force: bool) -> Result<RunSummary, CliError> {
-    let setup = protocol_file::load(protocol_path)?;
+pub fn run(
+    protocol_path: &Path,
+    out: &Path,
+    force: bool,
+    step_limit: f64,
+) -> Result<RunSummary, CliError> {
+    let setup = protocol_file::load_with(protocol_path, &LawRegistry::builtin(), step_limit)?;
+    let outputs: Vec<PathBuf> = RUN_FILES.iter().map(|f| out.join(f)).collect();
+    floe_study::same_file::refuse_overwriting_input(
+        protocol_path,
+        "protocol file",
+        outputs.iter().map(PathBuf::as_path),
+    )?;
     if !force {
         if let Some(existing) = RUN_FILES.iter().map(|f| out.join(f)).find(|p| p.exists()) {
             return Err(CliError::WouldOverwrite(existing));

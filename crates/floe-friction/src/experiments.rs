@@ -83,6 +83,33 @@ fn transient_slip_m(law: &Law) -> f64 {
     }
 }
 
+/// Most time steps a spring-slider command takes unless told otherwise
+/// (about 40 s at 40 ns a step): far more than any of the paper's
+/// experiments, and a guard against a hold or a speed that would run for
+/// days.
+pub const MAX_SLIDER_STEPS: f64 = 1e9;
+
+/// Simulated time of [`hold_test`], s: the slide to steady state, the hold
+/// and the reslide (the part of it that reloads the spring taken at its
+/// largest, `mu_ss N / k`).
+pub fn hold_test_duration_s(
+    law: &Law,
+    apparatus: Apparatus,
+    speed_m_per_s: f64,
+    hold_s: f64,
+) -> f64 {
+    let l = transient_slip_m(law);
+    let reload_m =
+        law.mu_steady(speed_m_per_s).abs() * apparatus.normal_load_n / apparatus.stiffness_n_per_m;
+    (2.0 * SETTLE_SLIPS * l + reload_m) / speed_m_per_s + hold_s
+}
+
+/// Simulated time of [`velocity_step`], s.
+pub fn velocity_step_duration_s(law: &Law, from_m_per_s: f64, to_m_per_s: f64) -> f64 {
+    let l = transient_slip_m(law);
+    SETTLE_SLIPS * l / from_m_per_s.abs() + 2.0 * SETTLE_SLIPS * l / to_m_per_s.abs()
+}
+
 /// Slide at `speed` to steady state, hold for `hold_s`, reslide at `speed`.
 ///
 /// The slider starts in steady state and slides a further 20 `L` before the

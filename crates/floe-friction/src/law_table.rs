@@ -143,6 +143,8 @@ pub enum ParamValue {
 impl fmt::Display for ParamValue {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            // Scientific past 16 characters: 1e300, not its 301 digits.
+            ParamValue::Number(x) if format!("{x}").len() > 16 => write!(f, "{x:e}"),
             ParamValue::Number(x) => write!(f, "{x}"),
             ParamValue::Word(w) => write!(f, "`{w}`"),
         }

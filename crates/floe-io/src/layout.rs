@@ -77,3 +77,7 @@ pub fn observable_samples(
         ("mean_mu", "1", vec![o.mean_mu]),
     ]
 }
+
+/// `/parameters` attribute: FNV-1a 64 checksum of `scenario_toml` as
+/// written at creation, checked on resume.
+pub const SCENARIO_CHECKSUM: &str = "scenario_checksum";

@@ -20,6 +20,7 @@ pub mod layout;
 pub mod metadata;
 pub mod observer;
 pub mod reader;
+pub mod run_status;
 pub mod writer;
 
 pub use error::IoError;

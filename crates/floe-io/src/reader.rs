@@ -149,6 +149,31 @@ impl RunFile {
         })
     }
 
+    /// Opens `path` and applies `read` to it, again on a fresh open if
+    /// that fails with an HDF5 error or inconsistent content: a run being
+    /// written flushes its metadata while a reader opens and reads, and a
+    /// reader can catch an index that points past the end it saw at open
+    /// ("addr overflow", about 2 % of `floe info` calls on a file written
+    /// every 20 ms). The next try sees a consistent file; only a damaged
+    /// one fails every try (about 3 s in all).
+    pub fn read_retrying<T>(
+        path: &Path,
+        read: impl Fn(&RunFile) -> Result<T, IoError>,
+    ) -> Result<T, IoError> {
+        const TRIES: u32 = 8;
+        let mut wait = std::time::Duration::from_millis(20);
+        for _ in 1..TRIES {
+            match RunFile::open(path).and_then(|run| read(&run)) {
+                Err(IoError::Hdf5 { .. } | IoError::Invalid { .. }) => {
+                    std::thread::sleep(wait);
+                    wait *= 2;
+                }
+                done => return done,
+            }
+        }
+        RunFile::open(path).and_then(|run| read(&run))
+    }
+
     /// The file.
     pub fn path(&self) -> &Path {
         &self.path

@@ -13,7 +13,7 @@ use floe_friction::FrictionLaw;
 use hdf5::Group;
 
 use crate::appendable::{Appendable, Storage};
-use crate::checkpoint_blob::{self, OutputCounts};
+use crate::checkpoint_blob::{self, fnv1a64, OutputCounts};
 use crate::error::{invalid, Context, IoError};
 use crate::h5;
 use crate::layout;
@@ -224,6 +224,11 @@ impl RunWriter {
             g.new_dataset::<hdf5::types::VarLenUnicode>()
                 .create("scenario_toml")?
                 .write_scalar(&h5::vlen(&meta.scenario_toml)?)?;
+            h5::write_scalar(
+                &g,
+                layout::SCENARIO_CHECKSUM,
+                fnv1a64(meta.scenario_toml.as_bytes()),
+            )?;
             h5::write_str(&g, "scenario_path", &meta.scenario_path)?;
             h5::write_str(&g, "floe_version", &meta.floe_version)?;
             h5::write_str(&g, "git_commit", &meta.git_commit)?;
@@ -595,6 +600,7 @@ impl RunWriter {
         law_state_slots: usize,
     ) -> Result<(Self, WorldState, CheckpointInfo), IoError> {
         let file = h5::open_run(path, true)?;
+        check_scenario_unchanged(&file, path)?;
         let (slot, state, counts) =
             reader::read_checkpoint(&file, path, fallback_dt_s, Some(law_state_slots))?
                 .ok_or_else(|| IoError::NoCheckpoint {
@@ -719,5 +725,41 @@ impl RunWriter {
             state,
             info,
         ))
+    }
+}
+
+/// Refuses to resume a file whose stored scenario was edited after the run
+/// began (files from before the checksum was recorded are not checked).
+fn check_scenario_unchanged(file: &hdf5::File, path: &Path) -> Result<(), IoError> {
+    let what = || "checking the stored scenario".to_string();
+    let g = file.group(layout::PARAMETERS).at(path, what)?;
+    if !g
+        .attr_names()
+        .at(path, what)?
+        .iter()
+        .any(|n| n == layout::SCENARIO_CHECKSUM)
+    {
+        return Ok(());
+    }
+    let recorded: u64 = g
+        .attr(layout::SCENARIO_CHECKSUM)
+        .and_then(|a| a.read_scalar())
+        .at(path, what)?;
+    let text = g
+        .dataset("scenario_toml")
+        .and_then(|d| d.read_scalar::<hdf5::types::VarLenUnicode>())
+        .at(path, what)?;
+    let now = fnv1a64(text.as_str().as_bytes());
+    if now == recorded {
+        Ok(())
+    } else {
+        Err(IoError::Invalid {
+            path: path.to_path_buf(),
+            reason: format!(
+                "the stored scenario (/parameters/scenario_toml) was changed after the run began \
+                 (checksum {now:016x}, recorded {recorded:016x}); a run resumes only with the \
+                 scenario it started with: start a new run from the edited scenario instead"
+            ),
+        })
     }
 }

@@ -5,6 +5,7 @@
 //! `[[floe]]` tables in file order; then the prescribed blocks of a
 //! double-shear set-up; then the wall segments, wall by wall in file order.
 
+use std::ops::Not;
 use std::ops::Range;
 
 use floe_dem::floes::{Floe, Floes};
@@ -17,7 +18,7 @@ use floe_friction::Law;
 use crate::built_floes::BuiltFloes;
 use crate::checks;
 use crate::error::ScenarioError;
-use crate::numbers::{sig, thousands};
+use crate::numbers::{short, sig, thousands};
 use crate::resolve::{dem_error, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION};
 use crate::source_file::SourceFile;
 
@@ -594,15 +595,39 @@ pub(crate) fn time_step(
     f: &SourceFile,
     r: &Resolved,
     built: &BuiltFloes,
+    max_steps: f64,
 ) -> Result<(f64, f64, String), ScenarioError> {
     let (limit, culprit) = stable_time_step(&built.floes, &r.model);
     let culprit_name = built.labels[culprit]
         .clone()
         .unwrap_or_else(|| format!("floe {culprit}"));
     let steps = |dt: f64| ((r.duration_s / dt).round() as u64).max(1);
+    let too_many = |dt: f64| (r.duration_s / dt <= max_steps).not();
+    let above = |dt: f64| {
+        format!(
+            "{} s / dt {} s is {} steps, above the limit of {}",
+            sig(r.duration_s),
+            sig(dt),
+            sig(r.duration_s / dt),
+            sig(max_steps)
+        )
+    };
     match &r.dt {
         DtChoice::Auto => {
             let dt = AUTO_DT_FRACTION * limit;
+            if too_many(dt) {
+                return Err(f.error(
+                    r.duration_span.clone(),
+                    "duration_s",
+                    format!(
+                        "{} (dt is automatic: {AUTO_DT_FRACTION} x the stable limit, set by {culprit_name} \
+                         with E = {} Pa); shorten duration_s, soften contact.youngs_modulus_pa, \
+                         or raise the limit with --step-limit N",
+                        above(dt),
+                        short(r.model.youngs_modulus_pa)
+                    ),
+                ));
+            }
             Ok((
                 dt,
                 limit,
@@ -625,6 +650,18 @@ pub(crate) fn time_step(
                         sig(limit),
                         r.model.youngs_modulus_pa,
                         sig(AUTO_DT_FRACTION * limit)
+                    ),
+                ));
+            }
+            if too_many(*dt) {
+                return Err(f.error(
+                    span.clone(),
+                    "dt_s",
+                    format!(
+                        "{}; lengthen dt_s (the stable limit is {} s), shorten duration_s, \
+                         or raise the limit with --step-limit N",
+                        above(*dt),
+                        sig(limit)
                     ),
                 ));
             }

@@ -15,7 +15,10 @@ pub fn sig(x: f64) -> String {
             s
         }
     } else {
-        format!("{x:.3e}")
+        let s = format!("{x:.3e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        format!("{mantissa}e{exponent}")
     }
 }
 
@@ -30,4 +33,21 @@ pub fn thousands(n: usize) -> String {
         out.push(c);
     }
     out
+}
+
+/// A number from a file as a message quotes it: as written when short,
+/// else in scientific form (`1e300`, not its 301 digits).
+pub fn short(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 16 {
+        plain
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Numbers from a file as a message quotes an array of them: `[1, 2e300]`.
+pub fn short_list(xs: &[f64]) -> String {
+    let items: Vec<String> = xs.iter().map(|&x| short(x)).collect();
+    format!("[{}]", items.join(", "))
 }

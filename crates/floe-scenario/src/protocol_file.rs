@@ -2,9 +2,10 @@
 //! state, output spacing and the load-point segments. Every key is documented
 //! in docs/friction.md ("Protocol files").
 
+use std::ops::Not;
 use std::path::Path;
 
-use floe_friction::experiments::{Preset, PAPER_DT_S};
+use floe_friction::experiments::{Preset, MAX_SLIDER_STEPS, PAPER_DT_S};
 use floe_friction::protocol::{Protocol, Segment};
 use floe_friction::spring_slider::Apparatus;
 use floe_friction::{Form, Law, LawContext, LawRegistry};
@@ -81,11 +82,17 @@ const DEFAULT_MAX_ROWS: f64 = 100_000.0;
 /// Reads and checks a protocol file, with the friction laws of
 /// [`LawRegistry::builtin`].
 pub fn load(path: &Path) -> Result<SliderSetup, ScenarioError> {
-    load_with(path, &LawRegistry::builtin())
+    load_with(path, &LawRegistry::builtin(), MAX_SLIDER_STEPS)
 }
 
-/// [`load`] with the laws of `registry`.
-pub fn load_with(path: &Path, registry: &LawRegistry) -> Result<SliderSetup, ScenarioError> {
+/// [`load`] with the laws of `registry`, refusing a protocol of more than
+/// `max_steps` time steps (located at the longest segment, or at the time
+/// step when that is what makes it long).
+pub fn load_with(
+    path: &Path,
+    registry: &LawRegistry,
+    max_steps: f64,
+) -> Result<SliderSetup, ScenarioError> {
     let source = SourceFile::read(path)?;
     let raw: RawFile = source.parse_toml()?;
     let f = &source;
@@ -166,6 +173,38 @@ pub fn load_with(path: &Path, registry: &LawRegistry) -> Result<SliderSetup, Sce
         });
     }
     let protocol = Protocol::new(segments)?;
+    let steps = protocol.duration_s() / apparatus.dt_s;
+    if (steps <= max_steps).not() {
+        let dt_given = raw.apparatus.as_ref().and_then(|a| a.dt_s.as_ref());
+        let (span, key) = match dt_given {
+            Some(dt) if *dt.get_ref() < PAPER_DT_S => (dt.span(), "apparatus.dt_s".to_string()),
+            _ => {
+                let (i, longest) = raw_segments
+                    .iter()
+                    .enumerate()
+                    .max_by(|a, b| {
+                        a.1.get_ref()
+                            .duration_s
+                            .get_ref()
+                            .total_cmp(b.1.get_ref().duration_s.get_ref())
+                    })
+                    .expect("at least one segment");
+                (
+                    longest.get_ref().duration_s.span(),
+                    format!("segment[{i}].duration_s"),
+                )
+            }
+        };
+        return Err(f.error(
+            span,
+            key,
+            format!(
+                "the protocol takes {steps:.3e} time steps of {:.3e} s, above the limit of \
+                 {max_steps:.0e} (raise it with --step-limit N)",
+                apparatus.dt_s
+            ),
+        ));
+    }
 
     let initial = match raw
         .initial

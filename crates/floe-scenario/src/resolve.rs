@@ -3,11 +3,12 @@
 //! building the world ([`super::build`]) only has to check what depends on
 //! several values together ([`super::checks`]).
 
+use std::ops::Not;
 use std::ops::Range;
 
 use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::{Coriolis, DragParameters, Envelope, Forcing, VelocityField};
-use floe_dem::tessellation::{max_jitter_fraction, ThicknessDistribution};
+use floe_dem::tessellation::{max_jitter_fraction, ThicknessDistribution, MAX_FLOES};
 use floe_dem::{DemError, Vec2};
 use floe_friction::experiments::Preset;
 use floe_friction::{Form, LawContext, LawRegistry};
@@ -16,7 +17,7 @@ use toml::Spanned;
 use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::law_table::{law_from_table, preset_applies, RawLawTable};
-use crate::numbers::sig;
+use crate::numbers::{short, short_list, sig};
 use crate::output_cadence::OutputCadence;
 use crate::source_file::SourceFile;
 use crate::spec::*;
@@ -134,6 +135,8 @@ pub(crate) struct Resolved {
     pub seed: u64,
     pub threads: Option<usize>,
     pub duration_s: f64,
+    /// Location of `duration_s`.
+    pub duration_span: Range<usize>,
     pub dt: DtChoice,
     pub domain: Domain,
     pub floes: FloeSource,
@@ -176,27 +179,128 @@ fn span_of<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
 }
 
 /// A finite `[x, y]`.
-fn pair(f: &SourceFile, v: &Spanned<[f64; 2]>, key: &str) -> Result<Vec2, ScenarioError> {
-    let [x, y] = *v.get_ref();
+fn pair(f: &SourceFile, v: &Spanned<Exact<f64, 2>>, key: &str) -> Result<Vec2, ScenarioError> {
+    let [x, y] = v.get_ref().0;
     if x.is_finite() && y.is_finite() {
         Ok(Vec2::new(x, y))
     } else {
-        Err(f.error(v.span(), key, format!("must be finite, got [{x}, {y}]")))
+        Err(f.error(
+            v.span(),
+            key,
+            format!("must be finite, got {}", short_list(&[x, y])),
+        ))
     }
 }
 
-/// A count >= `min`.
-fn count(f: &SourceFile, v: &Spanned<i64>, key: &str, min: i64) -> Result<usize, ScenarioError> {
+/// A count in `[min, max]`: every count of work is bounded before the
+/// work starts.
+fn count(
+    f: &SourceFile,
+    v: &Spanned<i64>,
+    key: &str,
+    min: i64,
+    max: u64,
+) -> Result<usize, ScenarioError> {
     let n = *v.get_ref();
-    if n >= min {
+    if n >= min && n as u64 <= max {
         Ok(n as usize)
     } else {
         Err(f.error(
             v.span(),
             key,
-            format!("must be an integer >= {min}, got {n}"),
+            format!("must be an integer from {min} to {max}, got {n}"),
         ))
     }
+}
+
+/// Most time steps a run may take unless raised (`floe run --max-steps`):
+/// about a day at 1e4 steps/s, beyond which a step count is a typo.
+pub const MAX_RUN_STEPS: f64 = 1e9;
+
+/// Most worker threads a file may ask for.
+pub const MAX_THREADS: u64 = 1024;
+
+/// Most Lloyd iterations of a Voronoi tessellation (it converges in tens).
+pub const MAX_RELAX_ITERATIONS: u64 = 10_000;
+
+/// Largest length or coordinate a file may give, m: beyond any basin (the
+/// Earth's circumference is 4e7 m), and small enough that areas, masses
+/// and the broad phase's cells stay finite.
+pub const MAX_LENGTH_M: f64 = 1e8;
+
+/// Thickest ice a file may give, m (icebergs reach a few hundred metres).
+pub const MAX_THICKNESS_M: f64 = 1e4;
+
+/// Densest ice, air or water a file may give, kg/m^3.
+pub const MAX_DENSITY_KG_PER_M3: f64 = 1e5;
+
+/// Refuses values whose magnitude is above `max` (`unit` for the message).
+fn at_most(
+    f: &SourceFile,
+    span: Range<usize>,
+    key: &str,
+    values: &[f64],
+    max: f64,
+    unit: &str,
+) -> Result<(), ScenarioError> {
+    match values.iter().find(|x| (x.abs() <= max).not()) {
+        None => Ok(()),
+        Some(&x) => Err(f.error(
+            span,
+            key,
+            format!(
+                "{} {unit} is beyond the largest accepted magnitude, {} {unit}",
+                short(x),
+                sig(max)
+            ),
+        )),
+    }
+}
+
+/// A length > 0 and at most [`MAX_LENGTH_M`].
+fn length(f: &SourceFile, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
+    let x = f.positive(v, key)?;
+    at_most(f, v.span(), key, &[x], MAX_LENGTH_M, "m")?;
+    Ok(x)
+}
+
+/// A length >= 0 and at most [`MAX_LENGTH_M`].
+fn distance(f: &SourceFile, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
+    let x = f.non_negative(v, key)?;
+    at_most(f, v.span(), key, &[x], MAX_LENGTH_M, "m")?;
+    Ok(x)
+}
+
+/// A thickness > 0 (>= 0 when `zero_ok`) and at most [`MAX_THICKNESS_M`].
+fn thickness(
+    f: &SourceFile,
+    v: &Spanned<f64>,
+    key: &str,
+    zero_ok: bool,
+) -> Result<f64, ScenarioError> {
+    let x = if zero_ok {
+        f.non_negative(v, key)?
+    } else {
+        f.positive(v, key)?
+    };
+    at_most(f, v.span(), key, &[x], MAX_THICKNESS_M, "m")?;
+    Ok(x)
+}
+
+/// A density (> 0 unless `zero_ok`) at most [`MAX_DENSITY_KG_PER_M3`].
+fn density(
+    f: &SourceFile,
+    v: &Spanned<f64>,
+    key: &str,
+    zero_ok: bool,
+) -> Result<f64, ScenarioError> {
+    let x = if zero_ok {
+        f.non_negative(v, key)?
+    } else {
+        f.positive(v, key)?
+    };
+    at_most(f, v.span(), key, &[x], MAX_DENSITY_KG_PER_M3, "kg/m^3")?;
+    Ok(x)
 }
 
 /// A number in `[lo, hi]` (or `[lo, hi)` when `open_hi`).
@@ -217,7 +321,12 @@ fn within(
         Err(f.error(
             v.span(),
             key,
-            format!("must lie in [{}, {}{close}, got {x}", sig(lo), sig(hi)),
+            format!(
+                "must lie in [{}, {}{close}, got {}",
+                sig(lo),
+                sig(hi),
+                short(x)
+            ),
         ))
     }
 }
@@ -238,13 +347,13 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
 
     let title = raw.title.as_ref().map(|t| t.get_ref().clone());
     let seed = match &raw.seed {
-        Some(s) => count(f, s, "seed", 0)? as u64,
+        Some(s) => count(f, s, "seed", 0, i64::MAX as u64)? as u64,
         None => 0,
     };
     let threads = raw
         .threads
         .as_ref()
-        .map(|t| count(f, t, "threads", 1))
+        .map(|t| count(f, t, "threads", 1, MAX_THREADS))
         .transpose()?;
     let Some(duration) = &raw.duration_s else {
         return Err(f.error_in_file("missing `duration_s`: how long to simulate, in seconds"));
@@ -272,6 +381,7 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         seed,
         threads,
         duration_s,
+        duration_span: duration.span(),
         dt,
         domain,
         floes,
@@ -298,7 +408,11 @@ fn resolve_domain(
     };
     let d = raw.get_ref();
     let min_m = match &d.min_m {
-        Some(v) => pair(f, v, "domain.min_m")?,
+        Some(v) => {
+            let p = pair(f, v, "domain.min_m")?;
+            at_most(f, v.span(), "domain.min_m", &[p.x, p.y], MAX_LENGTH_M, "m")?;
+            p
+        }
         None => Vec2::ZERO,
     };
     let Some(size) = &d.size_m else {
@@ -314,12 +428,20 @@ fn resolve_domain(
             size.span(),
             "domain.size_m",
             format!(
-                "width and height must be > 0, got [{}, {}]",
-                size_m.x, size_m.y
+                "width and height must be > 0, got {}",
+                short_list(&[size_m.x, size_m.y])
             ),
         ));
     }
-    let periodic = d.periodic.as_ref().map_or([false; 2], |p| *p.get_ref());
+    at_most(
+        f,
+        size.span(),
+        "domain.size_m",
+        &[size_m.x, size_m.y, min_m.x + size_m.x, min_m.y + size_m.y],
+        MAX_LENGTH_M,
+        "m",
+    )?;
+    let periodic = d.periodic.as_ref().map_or([false; 2], |p| p.get_ref().0);
     Ok(Domain {
         min_m,
         size_m,
@@ -367,25 +489,36 @@ fn resolve_ice(
     }
     let thickness = if let Some(h) = &ice.thickness_m {
         ThicknessDistribution::Uniform {
-            thickness_m: f.positive(h, "ice.thickness_m")?,
+            thickness_m: thickness(f, h, "ice.thickness_m", false)?,
         }
     } else if let Some(mean) = &ice.thickness_mean_m {
         ThicknessDistribution::LogNormal {
-            mean_m: f.positive(mean, "ice.thickness_mean_m")?,
+            mean_m: thickness(f, mean, "ice.thickness_mean_m", false)?,
             std_m: match &ice.thickness_std_m {
-                Some(s) => f.non_negative(s, "ice.thickness_std_m")?,
+                Some(s) => thickness(f, s, "ice.thickness_std_m", true)?,
                 None => 0.0,
             },
         }
     } else if let Some(r) = &ice.thickness_range_m {
-        let [lo, hi] = *r.get_ref();
+        let [lo, hi] = r.get_ref().0;
         if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi >= lo) {
             return Err(f.error(
                 r.span(),
                 "ice.thickness_range_m",
-                format!("must be [min, max] with 0 < min <= max, got [{lo}, {hi}]"),
+                format!(
+                    "must be [min, max] with 0 < min <= max, got {}",
+                    short_list(&[lo, hi])
+                ),
             ));
         }
+        at_most(
+            f,
+            r.span(),
+            "ice.thickness_range_m",
+            &[hi],
+            MAX_THICKNESS_M,
+            "m",
+        )?;
         ThicknessDistribution::UniformRange {
             min_m: lo,
             max_m: hi,
@@ -396,7 +529,7 @@ fn resolve_ice(
         }
     };
     let density = match &ice.density_kg_per_m3 {
-        Some(v) => f.positive(v, "ice.density_kg_per_m3")?,
+        Some(v) => density(f, v, "ice.density_kg_per_m3", false)?,
         None => DEFAULT_ICE_DENSITY_KG_PER_M3,
     };
     let velocity = match &ice.initial_velocity_m_per_s {
@@ -443,21 +576,31 @@ fn resolve_explicit_floe(
     let key = |k: &str| format!("floe[{i}].{k}");
     let vertices = match (&fl.vertices_m, &fl.box_m) {
         (Some(v), None) => {
-            let pts: Vec<Vec2> = v.get_ref().iter().map(|&[x, y]| Vec2::new(x, y)).collect();
+            let pts: Vec<Vec2> = v
+                .get_ref()
+                .iter()
+                .map(|&Exact([x, y])| Vec2::new(x, y))
+                .collect();
             if pts.iter().any(|p| !(p.x.is_finite() && p.y.is_finite())) {
                 return Err(f.error(v.span(), key("vertices_m"), "coordinates must be finite"));
             }
+            let coords: Vec<f64> = pts.iter().flat_map(|p| [p.x, p.y]).collect();
+            at_most(f, v.span(), &key("vertices_m"), &coords, MAX_LENGTH_M, "m")?;
             pts
         }
         (None, Some(b)) => {
-            let [x0, y0, x1, y1] = *b.get_ref();
+            let [x0, y0, x1, y1] = b.get_ref().0;
             if !([x0, y0, x1, y1].iter().all(|v| v.is_finite()) && x1 > x0 && y1 > y0) {
                 return Err(f.error(
                     b.span(),
                     key("box_m"),
-                    format!("must be [x_min, y_min, x_max, y_max] with max > min, got [{x0}, {y0}, {x1}, {y1}]"),
+                    format!(
+                        "must be [x_min, y_min, x_max, y_max] with max > min, got {}",
+                        short_list(&[x0, y0, x1, y1])
+                    ),
                 ));
             }
+            at_most(f, b.span(), &key("box_m"), &[x0, y0, x1, y1], MAX_LENGTH_M, "m")?;
             vec![
                 Vec2::new(x0, y0),
                 Vec2::new(x1, y0),
@@ -478,7 +621,7 @@ fn resolve_explicit_floe(
         thickness_m: fl
             .thickness_m
             .as_ref()
-            .map(|h| f.positive(h, &key("thickness_m")))
+            .map(|h| thickness(f, h, &key("thickness_m"), false))
             .transpose()?,
         velocity: fl
             .velocity_m_per_s
@@ -588,7 +731,7 @@ fn resolve_tessellation(
             };
             let (side_m, acute_angle_deg, diagonals_m) = match (&t.side_m, &t.diagonals_m) {
                 (Some(s), None) => {
-                    let side = f.positive(s, "tessellation.side_m")?;
+                    let side = length(f, s, "tessellation.side_m")?;
                     let angle = match &t.acute_angle_deg {
                         Some(a) => {
                             let a_deg = *a.get_ref();
@@ -596,7 +739,10 @@ fn resolve_tessellation(
                                 return Err(f.error(
                                     a.span(),
                                     "tessellation.acute_angle_deg",
-                                    format!("must lie strictly between 0 and 180, got {a_deg}"),
+                                    format!(
+                                        "must lie strictly between 0 and 180, got {}",
+                                        short(a_deg)
+                                    ),
                                 ));
                             }
                             a_deg
@@ -613,14 +759,25 @@ fn resolve_tessellation(
                             "does not apply with `diagonals_m` (the diagonals set the angle)",
                         ));
                     }
-                    let [along, across] = *d.get_ref();
+                    let [along, across] = d.get_ref().0;
                     if !(along.is_finite() && across.is_finite() && along > 0.0 && across > 0.0) {
                         return Err(f.error(
                             d.span(),
                             "tessellation.diagonals_m",
-                            format!("must be [along, across] > 0, got [{along}, {across}]"),
+                            format!(
+                                "must be [along, across] > 0, got {}",
+                                short_list(&[along, across])
+                            ),
                         ));
                     }
+                    at_most(
+                        f,
+                        d.span(),
+                        "tessellation.diagonals_m",
+                        &[along, across],
+                        MAX_LENGTH_M,
+                        "m",
+                    )?;
                     let angle = 2.0 * across.atan2(along).to_degrees();
                     (0.5 * along.hypot(across), angle, Some((along, across)))
                 }
@@ -650,8 +807,11 @@ fn resolve_tessellation(
         }
         "voronoi" => {
             let (count_n, scale) = match (&t.count, &t.floe_scale_m) {
-                (Some(c), None) => (Some(count(f, c, "tessellation.count", 1)?), None),
-                (None, Some(s)) => (None, Some(f.positive(s, "tessellation.floe_scale_m")?)),
+                (Some(c), None) => (
+                    Some(count(f, c, "tessellation.count", 1, MAX_FLOES as u64)?),
+                    None,
+                ),
+                (None, Some(s)) => (None, Some(length(f, s, "tessellation.floe_scale_m")?)),
                 (Some(c), Some(_)) => {
                     return Err(f.error(
                         c.span(),
@@ -665,25 +825,49 @@ fn resolve_tessellation(
                 count: count_n,
                 floe_scale_m: scale,
                 relax_iterations: match &t.relax_iterations {
-                    Some(r) => count(f, r, "tessellation.relax_iterations", 0)?,
+                    Some(r) => count(
+                        f,
+                        r,
+                        "tessellation.relax_iterations",
+                        0,
+                        MAX_RELAX_ITERATIONS,
+                    )?,
                     None => 1,
                 },
             }
         }
-        "grid" => FloeSource::Grid {
-            columns: match &t.columns {
-                Some(c) => count(f, c, "tessellation.columns", 1)?,
-                None => return Err(need("columns")),
-            },
-            rows: match &t.rows {
-                Some(c) => count(f, c, "tessellation.rows", 1)?,
-                None => return Err(need("rows")),
-            },
-            gap_m: match &t.gap_m {
-                Some(g) => f.non_negative(g, "tessellation.gap_m")?,
-                None => 0.0,
-            },
-        },
+        "grid" => {
+            let (Some(c), Some(r)) = (&t.columns, &t.rows) else {
+                return Err(need(if t.columns.is_none() {
+                    "columns"
+                } else {
+                    "rows"
+                }));
+            };
+            let most = MAX_FLOES as u64;
+            let columns = count(f, c, "tessellation.columns", 1, most)?;
+            let rows = count(f, r, "tessellation.rows", 1, most)?;
+            if columns.saturating_mul(rows) > MAX_FLOES {
+                let (v, key) = if columns >= rows {
+                    (c, "tessellation.columns")
+                } else {
+                    (r, "tessellation.rows")
+                };
+                return Err(f.error(
+                    v.span(),
+                    key,
+                    format!("{columns} x {rows} floes is above the cap of {MAX_FLOES}"),
+                ));
+            }
+            FloeSource::Grid {
+                columns,
+                rows,
+                gap_m: match &t.gap_m {
+                    Some(g) => distance(f, g, "tessellation.gap_m")?,
+                    None => 0.0,
+                },
+            }
+        }
         _ => {
             // "double-shear", the only kind left.
             let size = |v: &Pair, key: &str| -> Result<[f64; 2], ScenarioError> {
@@ -695,9 +879,17 @@ fn resolve_tessellation(
                     return Err(f.error(
                         v.span(),
                         format!("tessellation.{key}"),
-                        format!("lengths must be > 0, got [{}, {}]", p.x, p.y),
+                        format!("lengths must be > 0, got {}", short_list(&[p.x, p.y])),
                     ));
                 }
+                at_most(
+                    f,
+                    v.span(),
+                    &format!("tessellation.{key}"),
+                    &[p.x, p.y],
+                    MAX_LENGTH_M,
+                    "m",
+                )?;
                 Ok([p.x, p.y])
             };
             let block_m = size(&t.block_m, "block_m")?;
@@ -871,7 +1063,7 @@ fn resolve_field(
                 values: t
                     .velocities_m_per_s
                     .iter()
-                    .map(|&[x, y]| Vec2::new(x, y))
+                    .map(|&Exact([x, y])| Vec2::new(x, y))
                     .collect(),
             },
             ts.span(),
@@ -879,8 +1071,8 @@ fn resolve_field(
         )?
     } else if let Some(s) = &raw.shear {
         let r = s.get_ref();
-        let [a, b] = r.velocity_at_y_min_m_per_s;
-        let [c, d] = r.velocity_at_y_max_m_per_s;
+        let [a, b] = r.velocity_at_y_min_m_per_s.0;
+        let [c, d] = r.velocity_at_y_max_m_per_s.0;
         check(
             VelocityField::LinearShear {
                 y_min_m: r.y_min_m,
@@ -895,7 +1087,7 @@ fn resolve_field(
         let r = g.get_ref();
         check(
             VelocityField::Gyre {
-                center_m: Vec2::new(r.center_m[0], r.center_m[1]),
+                center_m: Vec2::new(r.center_m.0[0], r.center_m.0[1]),
                 core_radius_m: r.core_radius_m,
                 max_speed_m_per_s: r.max_speed_m_per_s,
             },
@@ -926,7 +1118,7 @@ fn resolve_drag(
     mut drag: DragParameters,
 ) -> Result<DragParameters, ScenarioError> {
     if let Some(v) = &raw.density_kg_per_m3 {
-        drag.density_kg_per_m3 = f.non_negative(v, &format!("{table}.density_kg_per_m3"))?;
+        drag.density_kg_per_m3 = density(f, v, &format!("{table}.density_kg_per_m3"), true)?;
     }
     if let Some(v) = &raw.drag_coefficient {
         drag.drag_coefficient = f.non_negative(v, &format!("{table}.drag_coefficient"))?;
@@ -937,7 +1129,7 @@ fn resolve_drag(
             return Err(f.error(
                 v.span(),
                 format!("{table}.turning_angle_deg"),
-                format!("must lie strictly between -90 and 90, got {a}"),
+                format!("must lie strictly between -90 and 90, got {}", short(a)),
             ));
         }
         drag.turning_angle_deg = a;
@@ -1045,13 +1237,13 @@ fn resolve_walls(f: &SourceFile, raw: &[Spanned<RawWall>]) -> Result<Vec<Wall>, 
             side,
             velocity,
             inset_m: match &r.inset_m {
-                Some(v) => f.non_negative(v, &key("inset_m"))?,
+                Some(v) => distance(f, v, &key("inset_m"))?,
                 None => 0.0,
             },
             thickness_m: r
                 .thickness_m
                 .as_ref()
-                .map(|v| f.positive(v, &key("thickness_m")))
+                .map(|v| length(f, v, &key("thickness_m")))
                 .transpose()?,
             span: side_word.span(),
             velocity_span: r.velocity_m_per_s.as_ref().map_or(w.span(), |v| v.span()),

@@ -17,6 +17,7 @@ pub use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::numbers::thousands;
 pub use crate::output_cadence::OutputCadence;
+use crate::resolve::MAX_RUN_STEPS;
 use crate::resolve::{self, Resolved};
 use crate::source_file::SourceFile;
 
@@ -49,6 +50,7 @@ pub struct EngineParts {
 pub struct Scenario {
     source: SourceFile,
     resolved: Resolved,
+    max_steps: f64,
 }
 
 impl Scenario {
@@ -63,7 +65,11 @@ impl Scenario {
     pub fn load_with(path: &Path, registry: &LawRegistry) -> Result<Scenario, ScenarioError> {
         let source = SourceFile::read(path)?;
         let resolved = resolve::resolve(&source, registry)?;
-        Ok(Scenario { source, resolved })
+        Ok(Scenario {
+            source,
+            resolved,
+            max_steps: MAX_RUN_STEPS,
+        })
     }
 
     /// Parses and checks scenario text; `origin` names it in error messages.
@@ -82,7 +88,18 @@ impl Scenario {
             text: text.to_string(),
         };
         let resolved = resolve::resolve(&source, registry)?;
-        Ok(Scenario { source, resolved })
+        Ok(Scenario {
+            source,
+            resolved,
+            max_steps: MAX_RUN_STEPS,
+        })
+    }
+
+    /// Raises (or lowers) the most time steps [`Scenario::build`] accepts,
+    /// [`MAX_RUN_STEPS`] unless set.
+    pub fn with_max_steps(mut self, max_steps: f64) -> Self {
+        self.max_steps = max_steps;
+        self
     }
 
     /// The file, verbatim.
@@ -126,14 +143,15 @@ impl Scenario {
     }
 
     /// Builds the world: floes, walls, contact model, forcing, time step.
-    /// Refuses (located at the key) a time step above the stable limit,
+    /// Refuses (located at the key) a time step above the stable limit, a
+    /// run of more than [`Scenario::with_max_steps`] steps,
     /// overlapping explicit floes, walls outside the domain or across a
     /// periodic axis, and set-ups that do not fit.
     pub fn build(&self) -> Result<Setup, ScenarioError> {
         let f = &self.source;
         let r = &self.resolved;
         let built = build::build_floes(f, r)?;
-        let (dt_s, stable_limit_s, dt_line) = build::time_step(f, r, &built)?;
+        let (dt_s, stable_limit_s, dt_line) = build::time_step(f, r, &built, self.max_steps)?;
         let mut report = built.report.clone();
         report.push(format!(
             "  {} free floes, {} prescribed (walls, fixed blocks); ice density {} kg/m^3, thickness {}",
@@ -182,6 +200,6 @@ impl Scenario {
         let f = &self.source;
         let r = &self.resolved;
         let built = build::build_floes(f, r)?;
-        Ok(build::time_step(f, r, &built)?.0)
+        Ok(build::time_step(f, r, &built, f64::INFINITY)?.0)
     }
 }

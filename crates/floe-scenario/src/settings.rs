@@ -69,6 +69,32 @@ pub fn parse_setting(spec: &str) -> Result<Setting, ScenarioError> {
     Ok(Setting { key, values: out })
 }
 
+/// Refuses a key set twice, or set both as a whole table and inside it
+/// (`wind=...` with `wind.velocity_m_per_s=...`): one would silently win.
+pub fn check_distinct(settings: &[Setting]) -> Result<(), ScenarioError> {
+    for (i, a) in settings.iter().enumerate() {
+        for b in &settings[..i] {
+            let n = a.key.len().min(b.key.len());
+            if a.key[..n] == b.key[..n] {
+                let why = if a.key == b.key {
+                    format!(
+                        "set twice (`{}` and `{}`); give the values in one --set {}={},{}",
+                        b.values.join(","),
+                        a.values.join(","),
+                        a.dotted(),
+                        b.values.join(","),
+                        a.values.join(",")
+                    )
+                } else {
+                    format!("overlaps --set {}: set one or the other", b.dotted())
+                };
+                return Err(ScenarioError::Usage(format!("--set {}: {why}", a.dotted())));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Every combination of the settings' values, first setting slowest.
 pub fn cartesian(settings: &[Setting]) -> Vec<Vec<usize>> {
     let mut combos = vec![Vec::new()];

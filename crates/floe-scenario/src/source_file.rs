@@ -7,6 +7,7 @@ use serde::de::DeserializeOwned;
 use toml::Spanned;
 
 use crate::error::ScenarioError;
+use crate::numbers::short;
 
 /// A text file the user wrote, kept to locate errors in it.
 #[derive(Debug, Clone)]
@@ -18,19 +19,47 @@ pub struct SourceFile {
 }
 
 impl SourceFile {
-    /// Reads `path` as UTF-8.
+    /// Reads `path` as UTF-8 text. Bytes that are not UTF-8 are an input
+    /// error at the first of them, saying what the file looks like (an
+    /// HDF5 run file, gzip, UTF-16, Latin-1 text).
     pub fn read(path: &Path) -> Result<Self, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|e| ScenarioError::io(path, e))?;
-        Ok(Self {
-            path: path.to_path_buf(),
-            text,
-        })
+        let bytes = std::fs::read(path).map_err(|e| ScenarioError::io(path, e))?;
+        match String::from_utf8(bytes) {
+            Ok(text) => Ok(Self {
+                path: path.to_path_buf(),
+                text,
+            }),
+            Err(e) => {
+                let bytes = e.as_bytes();
+                let at = e.utf8_error().valid_up_to();
+                let prefix = Self {
+                    path: path.to_path_buf(),
+                    text: String::from_utf8_lossy(&bytes[..at]).into_owned(),
+                };
+                let (message, whole_file) = not_text(bytes, at);
+                let (line, column) = if whole_file {
+                    (1, 1)
+                } else {
+                    prefix.line_column(at)
+                };
+                Err(ScenarioError::Input {
+                    file: path.to_path_buf(),
+                    line,
+                    column,
+                    key: None,
+                    message,
+                })
+            }
+        }
     }
 
     /// The file as an editable TOML document (comments and layout kept),
     /// for tools that rewrite scenarios; a syntax error is located.
     pub fn parse_document(&self) -> Result<toml_edit::DocumentMut, ScenarioError> {
         self.text.parse::<toml_edit::DocumentMut>().map_err(|e| {
+            if e.span().is_none() && e.message().contains("recursion limit") {
+                return self.too_deep();
+            }
             let (line, column) = e.span().map_or((1, 1), |s| self.line_column(s.start));
             ScenarioError::Input {
                 file: self.path.clone(),
@@ -95,7 +124,7 @@ impl SourceFile {
             file: self.path.clone(),
             line,
             column,
-            key: Some(key.into()),
+            key: Some(clipped(key.into())),
             message: message.into(),
         }
     }
@@ -115,14 +144,17 @@ impl SourceFile {
     /// (unknown keys, wrong types, missing keys) into located messages.
     pub fn parse_toml<T: DeserializeOwned>(&self) -> Result<T, ScenarioError> {
         toml::from_str(&self.text).map_err(|e| {
+            if e.span().is_none() && e.message().contains("recursion limit") {
+                return self.too_deep();
+            }
             let span = e.span().unwrap_or(0..0);
             let (line, column) = self.line_column(span.start);
-            let message = e.message().trim().to_string();
+            let message = clipped(e.message().trim().to_string());
             // serde names the key in "unknown field" messages already.
             let key = if message.starts_with("unknown field") {
                 None
             } else {
-                self.key_at(&span)
+                self.key_at(&span).map(clipped)
             };
             ScenarioError::Input {
                 file: self.path.clone(),
@@ -132,6 +164,30 @@ impl SourceFile {
                 message,
             }
         })
+    }
+
+    /// The parser's nesting limit was hit (it gives no location): the
+    /// error is put at the line with the most dots and brackets.
+    fn too_deep(&self) -> ScenarioError {
+        let depth = |l: &str| l.chars().filter(|c| ".[{".contains(*c)).count();
+        let (index, line) = self
+            .text
+            .lines()
+            .enumerate()
+            .max_by_key(|(i, l)| (depth(l), std::cmp::Reverse(*i)))
+            .unwrap_or((0, ""));
+        let key = line.split('=').next().unwrap_or("").trim();
+        ScenarioError::Input {
+            file: self.path.clone(),
+            line: index + 1,
+            column: 1,
+            key: (!key.is_empty()).then(|| clipped(key.to_string())),
+            message: format!(
+                "nested too deep for the parser ({} dots and brackets on this line); \
+                 scenario keys nest at most 3 levels, e.g. [tessellation.grid]",
+                depth(line)
+            ),
+        }
     }
 
     /// The value named by a keyword, or `default` if the key is absent.
@@ -175,7 +231,7 @@ impl SourceFile {
             Err(self.error(
                 v.span(),
                 key,
-                format!("must be a finite number > 0, got {x}"),
+                format!("must be a finite number > 0, got {}", short(x)),
             ))
         }
     }
@@ -189,7 +245,7 @@ impl SourceFile {
             Err(self.error(
                 v.span(),
                 key,
-                format!("must be a finite number >= 0, got {x}"),
+                format!("must be a finite number >= 0, got {}", short(x)),
             ))
         }
     }
@@ -200,8 +256,45 @@ impl SourceFile {
         if x.is_finite() {
             Ok(x)
         } else {
-            Err(self.error(v.span(), key, format!("must be a finite number, got {x}")))
+            Err(self.error(
+                v.span(),
+                key,
+                format!("must be a finite number, got {}", short(x)),
+            ))
         }
+    }
+}
+
+/// A key (or message) as shown: one of thousands of parts is cut.
+fn clipped(key: String) -> String {
+    const MOST: usize = 200;
+    if key.chars().count() <= MOST {
+        return key;
+    }
+    let head: String = key.chars().take(MOST).collect();
+    format!("{head}... ({} characters)", key.chars().count())
+}
+
+/// What a file that is not UTF-8 looks like, what to do, and whether that
+/// is about the whole file (recognised by its first bytes) rather than
+/// the first bad byte.
+fn not_text(bytes: &[u8], at: usize) -> (String, bool) {
+    if bytes.starts_with(b"\x89HDF\r\n\x1a\n") {
+        let m = "this is an HDF5 file (a run file?), not a TOML text file; `floe info` describes run files";
+        (m.into(), true)
+    } else if bytes.starts_with(&[0x1f, 0x8b]) {
+        (
+            "this is a gzip-compressed file; decompress it first".into(),
+            true,
+        )
+    } else if bytes.starts_with(&[0xff, 0xfe]) || bytes.starts_with(&[0xfe, 0xff]) {
+        ("this is UTF-16 text; save the file as UTF-8".into(), true)
+    } else {
+        let m = format!(
+            "byte 0x{:02x} is not UTF-8 (a Latin-1 or Windows-1252 file?); save the file as UTF-8",
+            bytes[at]
+        );
+        (m, false)
     }
 }
 

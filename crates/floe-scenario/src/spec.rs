@@ -9,12 +9,28 @@ use toml::Spanned;
 
 use crate::law_table::RawLawTable;
 
+/// A TOML array of exactly `N` elements. (serde's own arrays take the
+/// first `N` and drop the rest without a word.)
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Exact<T, const N: usize>(pub [T; N]);
+
+impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exact<T, N> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let v = Vec::<T>::deserialize(d)?;
+        let n = v.len();
+        let expected = format!("an array of {N} elements");
+        v.try_into()
+            .map(Exact)
+            .map_err(|_| serde::de::Error::invalid_length(n, &expected.as_str()))
+    }
+}
+
 /// A number with its location.
 pub(crate) type Num = Option<Spanned<f64>>;
 /// A word with its location.
 pub(crate) type Word = Option<Spanned<String>>;
 /// An `[x, y]` pair with its location.
-pub(crate) type Pair = Option<Spanned<[f64; 2]>>;
+pub(crate) type Pair = Option<Spanned<Exact<f64, 2>>>;
 /// A flag with its location.
 pub(crate) type Flag = Option<Spanned<bool>>;
 /// A count with its location.
@@ -50,7 +66,7 @@ pub(crate) struct RawScenario {
 pub(crate) struct RawDomain {
     pub min_m: Pair,
     pub size_m: Pair,
-    pub periodic: Option<Spanned<[bool; 2]>>,
+    pub periodic: Option<Spanned<Exact<bool, 2>>>,
 }
 
 /// `[tessellation]`: which keys apply depends on `kind`.
@@ -85,8 +101,8 @@ pub(crate) struct RawTessellation {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawFloe {
-    pub vertices_m: Option<Spanned<Vec<[f64; 2]>>>,
-    pub box_m: Option<Spanned<[f64; 4]>>,
+    pub vertices_m: Option<Spanned<Vec<Exact<f64, 2>>>>,
+    pub box_m: Option<Spanned<Exact<f64, 4>>>,
     pub thickness_m: Num,
     pub velocity_m_per_s: Pair,
     pub angular_velocity_rad_per_s: Num,
@@ -140,7 +156,7 @@ pub(crate) struct RawFluid {
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawTimeSeries {
     pub times_s: Vec<f64>,
-    pub velocities_m_per_s: Vec<[f64; 2]>,
+    pub velocities_m_per_s: Vec<Exact<f64, 2>>,
 }
 
 /// `shear = { y_min_m, y_max_m, velocity_at_y_min_m_per_s, velocity_at_y_max_m_per_s }`
@@ -149,15 +165,15 @@ pub(crate) struct RawTimeSeries {
 pub(crate) struct RawShear {
     pub y_min_m: f64,
     pub y_max_m: f64,
-    pub velocity_at_y_min_m_per_s: [f64; 2],
-    pub velocity_at_y_max_m_per_s: [f64; 2],
+    pub velocity_at_y_min_m_per_s: Exact<f64, 2>,
+    pub velocity_at_y_max_m_per_s: Exact<f64, 2>,
 }
 
 /// `gyre = { center_m, core_radius_m, max_speed_m_per_s }`
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawGyre {
-    pub center_m: [f64; 2],
+    pub center_m: Exact<f64, 2>,
     pub core_radius_m: f64,
     pub max_speed_m_per_s: f64,
 }

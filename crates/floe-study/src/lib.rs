@@ -14,6 +14,7 @@ pub mod error;
 pub mod plot;
 pub mod render;
 pub mod run_file;
+pub mod same_file;
 pub mod sweep;
 
 pub use error::Error;

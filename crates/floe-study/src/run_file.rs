@@ -17,6 +17,7 @@ use floe_io::{DomainBox, OutputOptions, RunFile, RunMetadata, RunWriter};
 use floe_scenario::Scenario;
 
 use crate::error::Error;
+use crate::same_file::refuse_overwriting_input;
 
 /// What a run tells its caller as it goes, and how the caller stops it.
 pub trait RunHooks: Sync {
@@ -89,6 +90,10 @@ pub struct RunArgs {
     /// checkpoint and stop (continue with `resume`): for batch jobs with a
     /// wall-clock limit, and for tests of resuming.
     pub max_steps: Option<u64>,
+    /// Most time steps the whole scenario may take: a longer one is
+    /// refused before it starts ([`floe_scenario::MAX_RUN_STEPS`] by
+    /// default).
+    pub step_limit: f64,
     /// Who is running it.
     pub provenance: Provenance,
     /// The friction laws the scenario may name ([`LawRegistry::builtin`]
@@ -152,7 +157,8 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
     let path = args.scenario.as_ref().ok_or_else(|| {
         Error::Usage("give a scenario file, or --resume to continue a run".into())
     })?;
-    let scenario = Scenario::load_with(path, &args.laws)?;
+    refuse_overwriting_input(path, "scenario file", [args.output.as_path()])?;
+    let scenario = Scenario::load_with(path, &args.laws)?.with_max_steps(args.step_limit);
     if args.output.exists() && !args.force {
         return Err(Error::WouldOverwrite(args.output.clone()));
     }
@@ -192,7 +198,7 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
             setup.world.floes(),
             &OutputOptions::default(),
         )?;
-        writer.set_status("running")?;
+        writer.set_status(&floe_io::run_status::running())?;
         let mut world = setup.world;
         run::start(&world, &mut writer, domain.area_m2())?;
         advance(&scenario, &mut world, &mut writer, args, threads, hooks)
@@ -207,6 +213,19 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         args.output.display()
     ));
     let scenario = Scenario::from_text_with(&metadata.scenario_toml, &origin, &args.laws)?;
+    let d = scenario.domain();
+    let recorded = metadata.domain;
+    if [d.min_m.x, d.min_m.y] != recorded.min_m
+        || [d.size_m.x, d.size_m.y] != recorded.size_m
+        || d.periodic != recorded.periodic
+    {
+        return Err(Error::Usage(format!(
+            "{}: the stored scenario's domain is not the one the run began in \
+             (/parameters/domain); the scenario was changed after the run began, \
+             and a run resumes only with the scenario it started with",
+            args.output.display()
+        )));
+    }
     let threads = thread_count(args.threads.or(scenario.threads()))?;
     let pool = pool(threads)?;
     pool.install(|| {
@@ -225,7 +244,7 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
             format_sim_time(info.time_s)
         ));
         let mut world = World::resume(state, parts.model, parts.forcing, parts.periodicity)?;
-        writer.set_status("running")?;
+        writer.set_status(&floe_io::run_status::running())?;
         advance(&scenario, &mut world, &mut writer, args, threads, hooks)
     })
 }
@@ -300,9 +319,13 @@ fn advance(
     }
 }
 
-fn thread_count(requested: Option<usize>) -> Result<usize, Error> {
+pub(crate) fn thread_count(requested: Option<usize>) -> Result<usize, Error> {
+    let most = floe_scenario::resolve::MAX_THREADS as usize;
     match requested {
         Some(0) => Err(Error::Usage("--threads must be at least 1".into())),
+        Some(n) if n > most => Err(Error::Usage(format!(
+            "--threads {n}: at most {most} threads"
+        ))),
         Some(n) => Ok(n),
         None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
     }

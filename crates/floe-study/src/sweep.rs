@@ -16,12 +16,13 @@ use floe_io::RunFile;
 
 use crate::compare::metrics::{measure, MetricOptions, RunMetrics};
 use crate::error::Error;
+use crate::same_file::refuse_overwriting_input;
 use floe_dem::run::{Progress, Silent};
 use floe_friction::LawRegistry;
 use floe_scenario::settings::{apply, cartesian, label, Setting};
 use floe_scenario::Scenario;
 
-use crate::run_file::{run, Provenance, RunArgs, RunHooks};
+use crate::run_file::{run, thread_count, Provenance, RunArgs, RunHooks};
 
 /// What `floe sweep` was asked to do.
 #[derive(Debug, Clone)]
@@ -72,10 +73,13 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
             "give at least one --set KEY=VALUE[,VALUE...]".into(),
         ));
     }
-    let text = std::fs::read_to_string(&args.scenario).map_err(|e| Error::io(&args.scenario, e))?;
+    floe_scenario::settings::check_distinct(&args.settings)?;
+    let budget = thread_count(args.threads)?;
+    let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
     Scenario::from_text_with(&text, &args.scenario, &args.laws)?;
     let combos = cartesian(&args.settings);
     let manifest = args.out_dir.join(MANIFEST);
+    refuse_overwriting_input(&args.scenario, "scenario file", [manifest.as_path()])?;
     if manifest.exists() && !args.force {
         return Err(Error::WouldOverwrite(manifest));
     }
@@ -92,6 +96,7 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
         // Each variant must be a valid scenario before anything runs.
         Scenario::from_text_with(&variant_text, &origin, &args.laws)?;
         let file = args.out_dir.join(format!("{name}.toml"));
+        refuse_overwriting_input(&args.scenario, "scenario file", [file.as_path()])?;
         if file.exists() && !args.force {
             return Err(Error::WouldOverwrite(file));
         }
@@ -112,11 +117,6 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
         std::fs::write(&script, slurm_array(rows.len())).map_err(|e| Error::io(&script, e))?;
         return Ok(manifest);
     }
-    let budget = match args.threads {
-        Some(0) => return Err(Error::Usage("--threads must be at least 1".into())),
-        Some(n) => n,
-        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
-    };
     let jobs = budget.min(rows.len()).max(1);
     let per_job = (budget / jobs).max(1);
     let next = AtomicUsize::new(0);
@@ -135,6 +135,7 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
                         force: args.force,
                         resume: false,
                         max_steps: None,
+                        step_limit: floe_scenario::MAX_RUN_STEPS,
                         provenance: args.provenance.clone(),
                         laws: args.laws.clone(),
                     },

@@ -13,6 +13,7 @@ use floe_scenario::law_variants::{reference_law, variant, LawChoice, Matching};
 use crate::error::Error;
 use crate::render::{render, ColourBy, Snapshots};
 use crate::run_file::{run, Provenance, RunArgs, RunHooks};
+use crate::same_file::refuse_overwriting_input;
 use floe_scenario::Scenario;
 use metrics::{measure, MetricOptions};
 use report::{figures, markdown, Variant};
@@ -43,7 +44,7 @@ pub struct CompareArgs {
 /// Runs the variants and writes the report; returns the report's path.
 /// `hooks` hear what each run says and may interrupt it.
 pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
-    let text = std::fs::read_to_string(&args.scenario).map_err(|e| Error::io(&args.scenario, e))?;
+    let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
     let origin = args.scenario.as_path();
     // Checks the user's file as written first, so its errors point into it.
     Scenario::from_text_with(&text, origin, &args.registry)?;
@@ -59,6 +60,11 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
         targets.push(args.out_dir.join(format!("{}.h5", law.name())));
         targets.push(args.out_dir.join(format!("{}.toml", law.name())));
     }
+    refuse_overwriting_input(
+        &args.scenario,
+        "scenario file",
+        targets.iter().map(PathBuf::as_path),
+    )?;
     if !args.force {
         if let Some(existing) = targets.iter().find(|p| p.exists()) {
             return Err(Error::WouldOverwrite(existing.clone()));
@@ -116,6 +122,7 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
                 force: args.force,
                 resume: false,
                 max_steps: None,
+                step_limit: floe_scenario::MAX_RUN_STEPS,
                 provenance: args.provenance.clone(),
                 laws: args.registry.clone(),
             },

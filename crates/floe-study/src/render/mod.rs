@@ -7,7 +7,7 @@ pub mod per_floe;
 
 use std::path::{Path, PathBuf};
 
-use floe_io::RunFile;
+use floe_io::{IoError, RunFile, RunMetadata, Series, Snapshot, StaticFloes};
 
 use crate::error::Error;
 use crate::plot::{grid, Axes, Line};
@@ -81,46 +81,12 @@ pub fn render(
     out_dir: &Path,
     force: bool,
 ) -> Result<Vec<PathBuf>, Error> {
-    let run = RunFile::open(file)?;
-    let meta = run.metadata()?;
-    let floes = run.static_floes()?;
-    let frames = select(which, run.snapshot_count()?)?;
+    // Read with retries: the file may be one a run is writing.
+    let count = RunFile::read_retrying(file, RunFile::snapshot_count)?;
+    let frames = select(which, count)?;
+    let (meta, floes, snapshots, values) =
+        RunFile::read_retrying(file, |run| read_frames(run, &frames, colour))?;
     let domain = meta.domain;
-    let period = [0, 1].map(|d| domain.periodic[d].then_some(domain.size_m[d]));
-    // Every value first, so that all frames share one colour scale.
-    let mut snapshots = Vec::with_capacity(frames.len());
-    let mut values = Vec::with_capacity(frames.len());
-    for &k in &frames {
-        let snap = run.snapshot(k)?;
-        let v: Vec<Option<f64>> = match colour {
-            ColourBy::Speed => snap
-                .velocity
-                .iter()
-                .map(|v| Some(v[0].hypot(v[1])))
-                .collect(),
-            ColourBy::Theta | ColourBy::Stress => {
-                let c = run.contacts(k)?;
-                let view = ContactView {
-                    pair: &c.pair,
-                    normal: &c.normal,
-                    normal_force_n: &c.normal_force_n,
-                    tangential_force_n: &c.tangential_force_n,
-                    point: &c.point,
-                    theta: &c.theta,
-                };
-                if colour == ColourBy::Theta {
-                    per_floe::mean_theta(floes.len(), &view)
-                } else {
-                    per_floe::pressure(&snap.position, &floes.area_m2, &view, period)
-                        .into_iter()
-                        .map(|p| p.map(|p| p * 1e-3))
-                        .collect()
-                }
-            }
-        };
-        values.push(v);
-        snapshots.push(snap);
-    }
     let prescribed: Vec<bool> = floes.prescribed.clone();
     let free_values = values
         .iter()
@@ -183,16 +149,34 @@ pub fn render(
             },
         )?;
     }
-    observables_figure(&run, targets.last().expect("observables target"))?;
+    observables_figure(file, targets.last().expect("observables target"))?;
     Ok(targets)
 }
 
 /// Time series of the observables: energies, work and dissipation, mean
 /// stress, contacts, friction.
-fn observables_figure(run: &RunFile, path: &Path) -> Result<(), Error> {
+fn observables_figure(file: &Path, path: &Path) -> Result<(), Error> {
+    const SERIES: [&str; 10] = [
+        "kinetic_translational",
+        "kinetic_rotational",
+        "forcing_work",
+        "boundary_work",
+        "friction_dissipation",
+        "damping_dissipation",
+        "contacts",
+        "sliding_fraction",
+        "mean_mu",
+        "mean_stress",
+    ];
+    let series: std::collections::HashMap<&str, Series> = RunFile::read_retrying(file, |run| {
+        SERIES
+            .iter()
+            .map(|&name| Ok((name, run.observable(name)?)))
+            .collect()
+    })?;
     let hours = |t: &[f64]| t.iter().map(|t| t / 3600.0).collect::<Vec<_>>();
     let line = |name: &str, label: &str, scale: f64| -> Result<Line, Error> {
-        let s = run.observable(name)?;
+        let s = &series[name];
         let t = hours(&s.time_s);
         let width = s.value.len() / s.time_s.len().max(1);
         Ok(Line::new(
@@ -203,7 +187,7 @@ fn observables_figure(run: &RunFile, path: &Path) -> Result<(), Error> {
                 .collect(),
         ))
     };
-    let stress = run.observable("mean_stress")?;
+    let stress = &series["mean_stress"];
     let t = hours(&stress.time_s);
     let component = |c: usize, label: &str| {
         Line::new(
@@ -273,4 +257,61 @@ fn observables_figure(run: &RunFile, path: &Path) -> Result<(), Error> {
         ),
     ];
     grid(path, 2, &panels)
+}
+
+/// The run's metadata, floes, and the selected snapshots with the value
+/// each floe is coloured by.
+#[allow(clippy::type_complexity)]
+fn read_frames(
+    run: &RunFile,
+    frames: &[usize],
+    colour: ColourBy,
+) -> Result<
+    (
+        RunMetadata,
+        StaticFloes,
+        Vec<Snapshot>,
+        Vec<Vec<Option<f64>>>,
+    ),
+    IoError,
+> {
+    let meta = run.metadata()?;
+    let floes = run.static_floes()?;
+    let domain = meta.domain;
+    let period = [0, 1].map(|d| domain.periodic[d].then_some(domain.size_m[d]));
+    // Every value first, so that all frames share one colour scale.
+    let mut snapshots = Vec::with_capacity(frames.len());
+    let mut values = Vec::with_capacity(frames.len());
+    for &k in frames {
+        let snap = run.snapshot(k)?;
+        let v: Vec<Option<f64>> = match colour {
+            ColourBy::Speed => snap
+                .velocity
+                .iter()
+                .map(|v| Some(v[0].hypot(v[1])))
+                .collect(),
+            ColourBy::Theta | ColourBy::Stress => {
+                let c = run.contacts(k)?;
+                let view = ContactView {
+                    pair: &c.pair,
+                    normal: &c.normal,
+                    normal_force_n: &c.normal_force_n,
+                    tangential_force_n: &c.tangential_force_n,
+                    point: &c.point,
+                    theta: &c.theta,
+                };
+                if colour == ColourBy::Theta {
+                    per_floe::mean_theta(floes.len(), &view)
+                } else {
+                    per_floe::pressure(&snap.position, &floes.area_m2, &view, period)
+                        .into_iter()
+                        .map(|p| p.map(|p| p * 1e-3))
+                        .collect()
+                }
+            }
+        };
+        values.push(v);
+        snapshots.push(snap);
+    }
+    Ok((meta, floes, snapshots, values))
 }
