@@ -233,7 +233,7 @@ fn bad_flags_and_missing_files_get_one_message() {
         "0",
     ]);
     assert_one_clear_error(code, &err, 2);
-    assert!(err.contains("normal_load"), "{err}");
+    assert!(err.contains("--normal-load"), "{err}");
     let (code, err) = floe(&["slider", "run", "/nonexistent/p.toml", "--out", "/tmp/x"]);
     assert_one_clear_error(code, &err, 1);
     assert!(err.contains("/nonexistent/p.toml"), "{err}");

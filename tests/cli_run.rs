@@ -425,3 +425,41 @@ fn a_run_paused_in_the_previous_checkpoint_format_resumes_bitwise() {
     case.run_ok("fresh.h5", &[]);
     assert_same_run(Path::new(&old), Path::new(&case.path("fresh.h5")));
 }
+
+/// The snapshot count `floe info` reports.
+fn info_snapshots(stdout: &str) -> usize {
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("snapshots"))
+        .unwrap_or_else(|| panic!("no snapshot line: {stdout}"));
+    line.split_whitespace()
+        .nth(1)
+        .unwrap()
+        .trim_end_matches(',')
+        .parse()
+        .unwrap()
+}
+
+#[test]
+fn floe_info_reads_a_file_while_a_run_writes_it() {
+    // A snapshot about every 15 steps and a checkpoint every 40: the file
+    // is flushed every few milliseconds while `floe info` reads it.
+    let busy = LONG
+        .replace("snapshot_every_s = 300.0", "snapshot_every_s = 10.0")
+        .replace("checkpoint_every_s = 60.0", "checkpoint_every_s = 30.0");
+    let case = Case::new(&busy);
+    let target = case.path("busy.h5");
+    let mut child = case.spawn("busy.h5", &["--threads", "1"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    let (mut calls, mut last) = (0, 0);
+    while child.try_wait().unwrap().is_none() {
+        let out = run(&["info", &target]);
+        let err = text(&out.stderr);
+        assert_eq!(code(&out), 0, "call {calls}: {err}");
+        let n = info_snapshots(&text(&out.stdout));
+        assert!(n >= last, "snapshots went from {last} to {n}");
+        (calls, last) = (calls + 1, n);
+    }
+    assert!(child.wait().unwrap().success());
+    assert!(calls >= 30, "only {calls} reads while the run wrote");
+}

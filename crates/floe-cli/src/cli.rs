@@ -35,6 +35,7 @@ pub enum Command {
     Slider(SliderCommand),
     /// Run a DEM scenario (TOML, see docs/scenarios.md) into an HDF5 file
     /// (H5MD layout, see docs/output.md).
+    #[command(allow_negative_numbers = true)]
     Run {
         /// Scenario file (omit with --resume).
         #[arg(required_unless_present = "resume")]
@@ -66,11 +67,13 @@ pub enum Command {
         quiet: bool,
     },
     /// Describe a run's output file: scenario, snapshots, floes, contacts, observables.
+    #[command(allow_negative_numbers = true)]
     Info {
         /// The run's HDF5 file.
         file: PathBuf,
     },
     /// Run one scenario under several friction laws and report the differences.
+    #[command(allow_negative_numbers = true)]
     Compare {
         /// Scenario file.
         scenario: PathBuf,
@@ -84,7 +87,7 @@ pub enum Command {
         #[arg(long, default_value_t = 1e-2, value_name = "M_PER_S", value_parser = positive)]
         reference_slip_speed: f64,
         /// Give Amontons' mu explicitly instead.
-        #[arg(long, value_name = "MU", value_parser = non_negative)]
+        #[arg(long, value_name = "MU", value_parser = friction_coefficient)]
         amontons_mu: Option<f64>,
         /// Worker threads per run.
         #[arg(long)]
@@ -100,6 +103,7 @@ pub enum Command {
         metrics: MetricArgs,
     },
     /// Run a scenario over the cartesian product of --set values and tabulate metrics.
+    #[command(allow_negative_numbers = true)]
     Sweep {
         /// Scenario file (omit with --gather).
         #[arg(required_unless_present = "gather")]
@@ -127,6 +131,7 @@ pub enum Command {
         metrics: MetricArgs,
     },
     /// Draw PNG maps of the floes and plots of the observables.
+    #[command(allow_negative_numbers = true)]
     Render {
         /// The run's HDF5 file.
         file: PathBuf,
@@ -206,7 +211,7 @@ pub enum SliderCommand {
         #[command(flatten)]
         options: ExperimentArgs,
         /// Hold times in seconds, comma separated.
-        #[arg(long, value_delimiter = ',', default_value = "1,10,100,1000")]
+        #[arg(long, value_delimiter = ',', default_value = "1,10,100,1000", value_parser = positive)]
         hold: Vec<f64>,
         /// Print JSON instead of a table.
         #[arg(long)]
@@ -219,16 +224,17 @@ pub enum SliderCommand {
         #[command(flatten)]
         options: ExperimentArgs,
         /// Load-point speed before the step, m/s.
-        #[arg(long)]
+        #[arg(long, value_parser = positive)]
         from: f64,
         /// Load-point speed after the step, m/s.
-        #[arg(long)]
+        #[arg(long, value_parser = positive)]
         to: f64,
         /// Print JSON instead of a table.
         #[arg(long)]
         json: bool,
     },
     /// Run a load-point protocol file; write series.csv, summary.json, friction.png.
+    #[command(allow_negative_numbers = true)]
     Run {
         /// Protocol file (TOML; see docs/friction.md).
         protocol: PathBuf,
@@ -243,6 +249,7 @@ pub enum SliderCommand {
         step_limit: f64,
     },
     /// Fit constant, rate-dependent and rate-and-state models to a measured series.
+    #[command(allow_negative_numbers = true)]
     Fit {
         /// CSV with columns t_s (s from the protocol start) and mu.
         data: PathBuf,
@@ -269,10 +276,10 @@ pub struct ExperimentArgs {
     #[arg(long, value_enum, default_value_t = StateLawArg::Slip)]
     pub state_law: StateLawArg,
     /// Effective normal load in newtons (both faces; default: the preset's).
-    #[arg(long, value_name = "NEWTONS")]
+    #[arg(long, value_name = "NEWTONS", value_parser = positive)]
     pub normal_load: Option<f64>,
     /// Time step in seconds (default 0.001, as in the paper).
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long, value_name = "SECONDS", value_parser = positive)]
     pub dt: Option<f64>,
     /// Most time steps a run may take (default 1e9, about 40 s).
     #[arg(long, value_name = "N", default_value_t = floe_friction::experiments::MAX_SLIDER_STEPS, value_parser = step_count)]
@@ -336,11 +343,13 @@ fn positive(text: &str) -> Result<f64, String> {
     }
 }
 
-/// A finite number >= 0.
-fn non_negative(text: &str) -> Result<f64, String> {
+/// A friction coefficient: 0 to 10 (sea ice's are below 1).
+fn friction_coefficient(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
-        Ok(x) if x >= 0.0 && x.is_finite() => Ok(x),
-        _ => Err(format!("expected a finite number >= 0, got `{text}`")),
+        Ok(x) if (0.0..=10.0).contains(&x) => Ok(x),
+        _ => Err(format!(
+            "expected a friction coefficient from 0 to 10, got `{text}`"
+        )),
     }
 }
 

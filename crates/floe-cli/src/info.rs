@@ -105,7 +105,12 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
     for name in &names {
         let s = run.observable(name)?;
         samples = s.time_s.len();
-        if let Some(last) = s.value.chunks(s.value.len() / samples.max(1)).last() {
+        // A series being written may have fewer values than times.
+        let width = s.value.len() / samples.max(1);
+        let last = (width > 0 && samples > 0)
+            .then(|| s.value.chunks_exact(width).nth(samples - 1))
+            .flatten();
+        if let Some(last) = last {
             let shown: Vec<String> = last.iter().map(|v| format!("{v:.4e}")).collect();
             values.push(format!("  {name:<24} {}", shown.join(" ")));
         }

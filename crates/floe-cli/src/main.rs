@@ -47,6 +47,15 @@ fn usage_error(e: clap::Error) -> ExitCode {
         let _ = e.print();
         return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
     }
+    if e.kind() == ErrorKind::UnknownArgument {
+        if let Some(message) = negative_value_hint() {
+            let _ = writeln!(
+                std::io::stderr().lock(),
+                "error: {message} (see floe --help)"
+            );
+            return ExitCode::from(2);
+        }
+    }
     let text = e.render().to_string();
     let message = text
         .split("\n\n")
@@ -58,4 +67,19 @@ fn usage_error(e: clap::Error) -> ExitCode {
         .join(" ");
     let _ = writeln!(std::io::stderr().lock(), "{message} (see floe --help)");
     ExitCode::from(2)
+}
+
+/// A value such as `-inf` or `-1e-3` after a flag reads as a flag of its
+/// own; name the flag it was meant for.
+fn negative_value_hint() -> Option<String> {
+    let args: Vec<String> = std::env::args().collect();
+    args.windows(2).find_map(|pair| {
+        let (flag, value) = (&pair[0], &pair[1]);
+        let number = value.strip_prefix('-')?.parse::<f64>().is_ok();
+        (flag.starts_with("--") && !flag.contains('=') && number).then(|| {
+            format!(
+                "{flag} {value}: a value starting with `-` reads as a flag; write {flag}={value}"
+            )
+        })
+    })
 }

@@ -9,7 +9,13 @@ use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
 pub const PARAMS: &[ParamSpec] = &[ParamSpec {
     key: "mu",
     unit: "",
-    kind: ParamKind::NON_NEGATIVE,
+    // Sea ice's are below 1; above 10 is a typo, not friction.
+    kind: ParamKind::Number {
+        min: 0.0,
+        min_open: false,
+        max: 10.0,
+        max_open: false,
+    },
     default: ParamDefault::Required,
     meaning: "constant friction coefficient",
 }];

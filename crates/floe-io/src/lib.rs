@@ -16,6 +16,7 @@ mod appendable;
 pub mod checkpoint_blob;
 pub mod error;
 mod h5;
+mod headroom;
 pub mod layout;
 pub mod metadata;
 pub mod observer;

@@ -16,6 +16,7 @@ use crate::appendable::{Appendable, Storage};
 use crate::checkpoint_blob::{self, fnv1a64, OutputCounts};
 use crate::error::{invalid, Context, IoError};
 use crate::h5;
+use crate::headroom::Headroom;
 use crate::layout;
 use crate::metadata::{CheckpointInfo, OutputOptions, RunMetadata};
 use crate::reader;
@@ -120,13 +121,17 @@ pub struct RunWriter {
     next_slot: usize,
     /// Observable samples not yet written.
     pending: Vec<(u64, Observables)>,
+    /// Room claimed past the end of the file before each batch of writes.
+    headroom: Headroom,
 }
 
 impl Drop for RunWriter {
     fn drop(&mut self) {
         // Best effort: errors here have no one to go to; a caller that
         // cares calls flush() first.
-        let _ = self.flush();
+        if self.flush().is_ok() {
+            self.headroom.give_back(self.file.size());
+        }
     }
 }
 
@@ -201,6 +206,8 @@ impl RunWriter {
         opts: &OutputOptions,
     ) -> Result<Self, IoError> {
         let n = floes.len();
+        let mut headroom = Headroom::open(path, file.size())?;
+        headroom.claim(path, file.size(), n as u64 * 512)?;
         let at = |what: &str| {
             let what = what.to_string();
             move || format!("writing {what}")
@@ -399,6 +406,7 @@ impl RunWriter {
             observables,
             next_slot: 0,
             pending: Vec::new(),
+            headroom,
         })
     }
 
@@ -424,6 +432,9 @@ impl RunWriter {
             ));
         }
         let (step, time) = (world.steps(), world.time_s());
+        // Floe arrays, contact rows (88 B, padded to a chunk) and indices.
+        let rows = (world.contacts().len() + self.contacts.chunk_rows) as u64;
+        self.claim(n as u64 * 64 + rows * 96 + (256 << 10))?;
         let xy = |v: &[floe_dem::Vec2]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y]).collect() };
         let values = [
             xy(&f.position[..n]),
@@ -497,6 +508,7 @@ impl RunWriter {
         if self.pending.is_empty() {
             return Ok(());
         }
+        self.claim(self.pending.len() as u64 * 256 + (64 << 10))?;
         let steps: Vec<i64> = self.pending.iter().map(|(s, _)| *s as i64).collect();
         let times: Vec<f64> = self.pending.iter().map(|(_, o)| o.time_s).collect();
         let samples: Vec<_> = self
@@ -540,6 +552,8 @@ impl RunWriter {
                 .collect(),
         };
         let blob = checkpoint_blob::encode(state, &counts, law_state_slots);
+        // A slot that grows is written anew, a quarter larger.
+        self.claim(2 * blob.len() as u64 + (256 << 10))?;
         let slot = self.next_slot;
         let name = layout::SLOTS[slot];
         let path = self.path.clone();
@@ -574,11 +588,18 @@ impl RunWriter {
     /// Sets the run's status (`/parameters` attribute `status`), e.g.
     /// `running`, `completed`, `interrupted at step 12`.
     pub fn set_status(&mut self, status: &str) -> Result<(), IoError> {
+        self.claim(64 << 10)?;
         (|| -> hdf5::Result<()> {
             let g = self.file.group(layout::PARAMETERS)?;
             g.attr("status")?.write_scalar(&h5::vlen(status)?)
         })()
         .at(&self.path, || format!("setting the status to {status:?}"))
+    }
+
+    /// Claims room for a batch of writes of about `bytes`
+    /// ([`crate::headroom`]).
+    fn claim(&mut self, bytes: u64) -> Result<(), IoError> {
+        self.headroom.claim(&self.path, self.file.size(), bytes)
     }
 
     /// Writes everything buffered to the file.
@@ -693,6 +714,8 @@ impl RunWriter {
             }
             observable_rows.push(want as usize);
         }
+        let mut headroom = Headroom::open(path, file.size())?;
+        headroom.claim(path, file.size(), 0)?;
         let what = || "truncating the output to the checkpoint".to_string();
         for el in &mut elements {
             el.truncate(snapshots).at(path, what)?;
@@ -721,6 +744,7 @@ impl RunWriter {
                 observables,
                 next_slot: 1 - slot,
                 pending: Vec::new(),
+                headroom,
             },
             state,
             info,
