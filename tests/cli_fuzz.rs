@@ -1708,14 +1708,14 @@ fn failure(case: &Case, out: &Outcome, found: &[String]) -> Failure {
         let (name, bytes) = &case.files[k];
         let _ = writeln!(report, "input {name}:\n{}", show(bytes));
     }
-    let first = out.stderr.lines().last().unwrap_or("");
+    let last = out.stderr.lines().last().unwrap_or("");
     let summary = format!(
         "case {} ({:?}) {}: {} | stderr: {}",
         case.index,
         case.family,
         case.what,
         found.join("; "),
-        short(first, 200)
+        short(last, 200)
     );
     Failure {
         index: case.index,

@@ -783,3 +783,121 @@ fn a_file_size_limit_mid_run_is_one_line_and_the_run_resumes_bitwise() {
         "the resumed run's output differs from an uninterrupted one"
     );
 }
+
+// Found by tests/cli_fuzz.rs.
+
+#[test]
+fn a_wall_faster_than_any_basin_is_refused_at_its_velocity() {
+    for v in ["1e12", "1e300"] {
+        let text = edit(
+            SMALL,
+            "side = \"top\"",
+            &format!("side = \"top\"\nvelocity_m_per_s = [{v}, 0.1]"),
+        );
+        let needle = format!("[{v}, 0.1]");
+        assert_scenario_refused(&text, &needle, "wall[1].velocity_m_per_s", &["1e8 m"]);
+    }
+}
+
+#[test]
+fn slider_loads_speeds_and_steps_beyond_meaning_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&[&str], &str); 4] = [
+        (
+            &[
+                "slider",
+                "hold",
+                "--preset",
+                "lab",
+                "--hold",
+                "1",
+                "--normal-load",
+                "1e-300",
+            ],
+            "--normal-load",
+        ),
+        (
+            &[
+                "slider", "step", "--preset", "lab", "--from", "1e-4", "--to", "1e300",
+            ],
+            "--to",
+        ),
+        (
+            &["slider", "hold", "--preset", "lab", "--dt", "1e300"],
+            "--dt",
+        ),
+        (&["slider", "hold", "--preset", "lab", "--dt", "-1"], "--dt"),
+    ];
+    for (args, flag) in cases {
+        let r = floe_in(dir.path(), args);
+        assert_refused(&r, "invalid value", &[flag]);
+    }
+    let fast = "[apparatus]\npreset = \"lab\"\n\n[law]\nkind = \"rate-state\"\n\n[[segment]]\nvelocity_m_per_s = 1e300\nduration_s = 2\n";
+    write(dir.path(), "p.toml", fast);
+    let r = floe_in(dir.path(), &["slider", "run", "p.toml", "--out", "o"]);
+    assert_refused(
+        &r,
+        "p.toml:8:20: `segment[0].velocity_m_per_s`",
+        &["in [-100, 100] m/s"],
+    );
+}
+
+#[test]
+fn compare_checks_threads_and_the_matched_mu_before_writing_anything() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "s.toml", SMALL);
+    let r = floe_in(
+        dir.path(),
+        &["compare", "s.toml", "-o", "c", "--threads", "0", "-q"],
+    );
+    assert_refused(&r, "--threads must be at least 1", &[]);
+    let r = floe_in(
+        dir.path(),
+        &[
+            "compare",
+            "s.toml",
+            "-o",
+            "c",
+            "--reference-slip-speed",
+            "1e-300",
+            "-q",
+        ],
+    );
+    assert_refused(
+        &r,
+        "--reference-slip-speed 1e-300",
+        &["mu = 49.78", "--amontons-mu"],
+    );
+    let r = floe_in(
+        dir.path(),
+        &[
+            "compare",
+            "s.toml",
+            "-o",
+            "c",
+            "--amontons-mu",
+            "0.5",
+            "--reference-slip-speed",
+            "0.05",
+        ],
+    );
+    assert_refused(
+        &r,
+        "the argument '--amontons-mu <MU>' cannot be used with",
+        &[],
+    );
+    assert!(!dir.path().join("c").exists(), "nothing written");
+}
+
+#[test]
+fn info_on_a_directory_or_a_missing_file_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = floe_in(dir.path(), &["info", "."]);
+    assert_eq!(r.code, Some(1), "{}", r.stderr);
+    assert_eq!(
+        r.stderr.trim_end(),
+        "error: .: is a directory, not a run file"
+    );
+    let r = floe_in(dir.path(), &["info", "missing.h5"]);
+    assert_eq!(r.stderr.trim_end(), "error: missing.h5: no such file");
+}

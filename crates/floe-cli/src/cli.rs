@@ -84,10 +84,10 @@ pub enum Command {
         #[arg(long, short)]
         output: PathBuf,
         /// Slip speed at which Amontons' mu equals the rate-and-state steady state, m/s.
-        #[arg(long, default_value_t = 1e-2, value_name = "M_PER_S", value_parser = positive)]
+        #[arg(long, default_value_t = 1e-2, value_name = "M_PER_S", value_parser = load_point_speed)]
         reference_slip_speed: f64,
         /// Give Amontons' mu explicitly instead.
-        #[arg(long, value_name = "MU", value_parser = friction_coefficient)]
+        #[arg(long, value_name = "MU", value_parser = friction_coefficient, conflicts_with = "reference_slip_speed")]
         amontons_mu: Option<f64>,
         /// Worker threads per run.
         #[arg(long)]
@@ -224,10 +224,10 @@ pub enum SliderCommand {
         #[command(flatten)]
         options: ExperimentArgs,
         /// Load-point speed before the step, m/s.
-        #[arg(long, value_parser = positive)]
+        #[arg(long, value_parser = load_point_speed)]
         from: f64,
         /// Load-point speed after the step, m/s.
-        #[arg(long, value_parser = positive)]
+        #[arg(long, value_parser = load_point_speed)]
         to: f64,
         /// Print JSON instead of a table.
         #[arg(long)]
@@ -276,10 +276,10 @@ pub struct ExperimentArgs {
     #[arg(long, value_enum, default_value_t = StateLawArg::Slip)]
     pub state_law: StateLawArg,
     /// Effective normal load in newtons (both faces; default: the preset's).
-    #[arg(long, value_name = "NEWTONS", value_parser = positive)]
+    #[arg(long, value_name = "NEWTONS", value_parser = normal_load)]
     pub normal_load: Option<f64>,
     /// Time step in seconds (default 0.001, as in the paper).
-    #[arg(long, value_name = "SECONDS", value_parser = positive)]
+    #[arg(long, value_name = "SECONDS", value_parser = slider_dt)]
     pub dt: Option<f64>,
     /// Most time steps a run may take (default 1e9, about 40 s).
     #[arg(long, value_name = "N", default_value_t = floe_friction::experiments::MAX_SLIDER_STEPS, value_parser = step_count)]
@@ -341,6 +341,38 @@ fn positive(text: &str) -> Result<f64, String> {
         Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
         _ => Err(format!("expected a finite number > 0, got `{text}`")),
     }
+}
+
+/// A number in `(min, max]` (`[min, max]` when `closed`), for a flag
+/// whose accepted range the message states.
+fn bounded(text: &str, min: f64, closed: bool, max: f64, what: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if (x > min || (closed && x == min)) && x <= max => Ok(x),
+        _ => Err(format!(
+            "expected {what} {} {} and <= {}, got `{text}`",
+            if closed { ">=" } else { ">" },
+            floe_scenario::numbers::short(min),
+            floe_scenario::numbers::short(max)
+        )),
+    }
+}
+
+/// A spring-slider time step, s.
+fn slider_dt(text: &str) -> Result<f64, String> {
+    let max = floe_friction::experiments::MAX_SLIDER_DT_S;
+    bounded(text, 0.0, false, max, "a time step in s")
+}
+
+/// A spring-slider normal load, N.
+fn normal_load(text: &str) -> Result<f64, String> {
+    let (min, max) = floe_friction::experiments::SLIDER_NORMAL_LOAD_RANGE_N;
+    bounded(text, min, true, max, "a load in N")
+}
+
+/// A load-point speed, m/s.
+fn load_point_speed(text: &str) -> Result<f64, String> {
+    let max = floe_friction::experiments::MAX_LOAD_POINT_SPEED_M_PER_S;
+    bounded(text, 0.0, false, max, "a speed in m/s")
 }
 
 /// A friction coefficient: 0 to 10 (sea ice's are below 1).

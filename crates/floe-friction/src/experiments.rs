@@ -89,6 +89,17 @@ fn transient_slip_m(law: &Law) -> f64 {
 /// days.
 pub const MAX_SLIDER_STEPS: f64 = 1e9;
 
+/// Fastest load point a spring-slider command accepts, m/s: the paper's
+/// speeds are 1e-6 to 1e-2 m/s; beyond this the numbers mean nothing.
+pub const MAX_LOAD_POINT_SPEED_M_PER_S: f64 = 100.0;
+
+/// Longest spring-slider time step accepted, s (the paper's is 1e-3 s).
+pub const MAX_SLIDER_DT_S: f64 = 1.0;
+
+/// Range of spring-slider normal loads accepted, N (the paper's are 2 kN
+/// and 10 kN); below it friction forces underflow against the spring's.
+pub const SLIDER_NORMAL_LOAD_RANGE_N: (f64, f64) = (1e-3, 1e12);
+
 /// Simulated time of [`hold_test`], s: the slide to steady state, the hold
 /// and the reslide (the part of it that reloads the spring taken at its
 /// largest, `mu_ss N / k`).

@@ -162,7 +162,10 @@ impl RunFile {
     ) -> Result<T, IoError> {
         const TRIES: u32 = 8;
         let mut wait = std::time::Duration::from_millis(20);
-        for _ in 1..TRIES {
+        // Only a file can be half-written; a directory or a missing path
+        // fails at once.
+        let tries = if path.is_file() { TRIES } else { 1 };
+        for _ in 1..tries {
             match RunFile::open(path).and_then(|run| read(&run)) {
                 Err(IoError::Hdf5 { .. } | IoError::Invalid { .. }) => {
                     std::thread::sleep(wait);

@@ -5,7 +5,10 @@
 use std::ops::Not;
 use std::path::Path;
 
-use floe_friction::experiments::{Preset, MAX_SLIDER_STEPS, PAPER_DT_S};
+use floe_friction::experiments::{
+    Preset, MAX_LOAD_POINT_SPEED_M_PER_S, MAX_SLIDER_DT_S, MAX_SLIDER_STEPS, PAPER_DT_S,
+    SLIDER_NORMAL_LOAD_RANGE_N,
+};
 use floe_friction::protocol::{Protocol, Segment};
 use floe_friction::spring_slider::Apparatus;
 use floe_friction::{Form, Law, LawContext, LawRegistry};
@@ -14,6 +17,7 @@ use toml::Spanned;
 
 use crate::error::ScenarioError;
 use crate::law_table::{law_from_table, RawLawTable};
+use crate::numbers::{short, short_list};
 use crate::source_file::SourceFile;
 
 type Num = Option<Spanned<f64>>;
@@ -115,12 +119,32 @@ pub fn load_with(
                 "apparatus.stiffness_n_per_m",
                 preset.stiffness_n_per_m(),
             )?,
-            normal_load_n: get(
-                &a.normal_load_n,
-                "apparatus.normal_load_n",
-                preset.normal_load_n(),
-            )?,
-            dt_s: get(&a.dt_s, "apparatus.dt_s", PAPER_DT_S)?,
+            normal_load_n: match &a.normal_load_n {
+                Some(v) => f.in_range(
+                    v,
+                    "apparatus.normal_load_n",
+                    SLIDER_NORMAL_LOAD_RANGE_N,
+                    "N",
+                )?,
+                None => preset.normal_load_n(),
+            },
+            dt_s: match &a.dt_s {
+                Some(v) => match f.positive(v, "apparatus.dt_s")? {
+                    dt if dt <= MAX_SLIDER_DT_S => dt,
+                    dt => {
+                        return Err(f.error(
+                            v.span(),
+                            "apparatus.dt_s",
+                            format!(
+                                "{} s is above the longest accepted step, {MAX_SLIDER_DT_S} s \
+                                 (the paper's is {PAPER_DT_S} s)",
+                                short(dt)
+                            ),
+                        ))
+                    }
+                },
+                None => PAPER_DT_S,
+            },
         },
     };
     let law = law_from_table(
@@ -141,13 +165,17 @@ pub fn load_with(
             f.error_in_file("no load-point history: add at least one [[segment]] with duration_s")
         );
     };
+    const SPEEDS: (f64, f64) = (-MAX_LOAD_POINT_SPEED_M_PER_S, MAX_LOAD_POINT_SPEED_M_PER_S);
     let mut segments = Vec::with_capacity(raw_segments.len());
     for (i, s) in raw_segments.iter().enumerate() {
         let key = |k: &str| format!("segment[{i}].{k}");
         let seg = s.get_ref();
         let duration = f.positive(&seg.duration_s, &key("duration_s"))?;
         segments.push(match (&seg.velocity_m_per_s, &seg.ramp_m_per_s) {
-            (Some(v), None) => Segment::constant(f.finite(v, &key("velocity_m_per_s"))?, duration),
+            (Some(v), None) => Segment::constant(
+                f.in_range(v, &key("velocity_m_per_s"), SPEEDS, "m/s")?,
+                duration,
+            ),
             (None, Some(r)) => {
                 let [from, to] = r.get_ref()[..] else {
                     return Err(f.error(
@@ -156,11 +184,18 @@ pub fn load_with(
                         "must be [from, to] in m/s",
                     ));
                 };
-                if !(from.is_finite() && to.is_finite()) {
+                let (lo, hi) = SPEEDS;
+                if !(from.is_finite() && to.is_finite() && lo <= from.min(to) && from.max(to) <= hi)
+                {
                     return Err(f.error(
                         r.span(),
                         key("ramp_m_per_s"),
-                        "velocities must be finite",
+                        format!(
+                            "velocities must lie in [{}, {}] m/s, got {}",
+                            short(lo),
+                            short(hi),
+                            short_list(&[from, to])
+                        ),
                     ));
                 }
                 Segment::ramp(from, to, duration)

@@ -374,7 +374,7 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         raw.ocean.as_ref(),
         raw.coriolis.as_ref(),
     )?;
-    let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]))?;
+    let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]), duration_s)?;
     let output = resolve_output(f, raw.output.as_ref(), duration_s)?;
     Ok(Resolved {
         title,
@@ -1194,7 +1194,11 @@ fn resolve_forcing(
     Ok(forcing)
 }
 
-fn resolve_walls(f: &SourceFile, raw: &[Spanned<RawWall>]) -> Result<Vec<Wall>, ScenarioError> {
+fn resolve_walls(
+    f: &SourceFile,
+    raw: &[Spanned<RawWall>],
+    duration_s: f64,
+) -> Result<Vec<Wall>, ScenarioError> {
     let mut walls: Vec<Wall> = Vec::with_capacity(raw.len());
     for (i, w) in raw.iter().enumerate() {
         let r = w.get_ref();
@@ -1229,7 +1233,25 @@ fn resolve_walls(f: &SourceFile, raw: &[Spanned<RawWall>]) -> Result<Vec<Wall>, 
             ));
         }
         let velocity = match &r.velocity_m_per_s {
-            Some(v) => pair(f, v, &key("velocity_m_per_s"))?,
+            Some(v) => {
+                let velocity = pair(f, v, &key("velocity_m_per_s"))?;
+                // The wall is built as long as its travel: bound that.
+                let travel = velocity.length() * duration_s;
+                if (travel <= MAX_LENGTH_M).not() {
+                    return Err(f.error(
+                        v.span(),
+                        key("velocity_m_per_s"),
+                        format!(
+                            "moves the wall {} m in duration_s = {} s, beyond the largest \
+                             accepted length, {} m",
+                            sig(travel),
+                            sig(duration_s),
+                            sig(MAX_LENGTH_M)
+                        ),
+                    ));
+                }
+                velocity
+            }
             None => Vec2::ZERO,
         };
         walls.push(Wall {

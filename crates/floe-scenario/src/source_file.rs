@@ -250,6 +250,31 @@ impl SourceFile {
         }
     }
 
+    /// A finite number in `[min, max]`, `unit` naming what it is in.
+    pub fn in_range(
+        &self,
+        v: &Spanned<f64>,
+        key: &str,
+        (min, max): (f64, f64),
+        unit: &str,
+    ) -> Result<f64, ScenarioError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x >= min && x <= max {
+            Ok(x)
+        } else {
+            Err(self.error(
+                v.span(),
+                key,
+                format!(
+                    "must be a finite number in [{}, {}] {unit}, got {}",
+                    short(min),
+                    short(max),
+                    short(x)
+                ),
+            ))
+        }
+    }
+
     /// A finite number.
     pub fn finite(&self, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
         let x = *v.get_ref();

@@ -12,8 +12,9 @@ use floe_scenario::law_variants::{reference_law, variant, LawChoice, Matching};
 
 use crate::error::Error;
 use crate::render::{render, ColourBy, Snapshots};
-use crate::run_file::{run, Provenance, RunArgs, RunHooks};
+use crate::run_file::{run, thread_count, Provenance, RunArgs, RunHooks};
 use crate::same_file::refuse_overwriting_input;
+use floe_scenario::numbers::{short, sig};
 use floe_scenario::Scenario;
 use metrics::{measure, MetricOptions};
 use report::{figures, markdown, Variant};
@@ -44,6 +45,7 @@ pub struct CompareArgs {
 /// Runs the variants and writes the report; returns the report's path.
 /// `hooks` hear what each run says and may interrupt it.
 pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
+    thread_count(args.threads)?;
     let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
     let origin = args.scenario.as_path();
     // Checks the user's file as written first, so its errors point into it.
@@ -69,6 +71,37 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
         if let Some(existing) = targets.iter().find(|p| p.exists()) {
             return Err(Error::WouldOverwrite(existing.clone()));
         }
+    }
+    // Every variant is made and checked before anything is written.
+    let mut variants = Vec::with_capacity(args.laws.len());
+    for &law in &args.laws {
+        let (variant_text, friction) = variant(
+            &text,
+            origin,
+            law,
+            &reference,
+            &reference_text,
+            args.matching,
+        )?;
+        let scenario_file = args.out_dir.join(format!("{}.toml", law.name()));
+        if let Err(e) = Scenario::from_text_with(&variant_text, &scenario_file, &args.registry) {
+            return Err(match (law, args.matching.amontons_mu) {
+                // The only value compare puts in a variant that the user
+                // did not write: Amontons' mu from the reference speed.
+                (LawChoice::Amontons, None) => {
+                    let v = args.matching.reference_slip_m_per_s;
+                    Error::Usage(format!(
+                        "--reference-slip-speed {}: the rate-and-state steady state there, \
+                         mu = {}, is not an Amontons friction coefficient (0 to 10); choose \
+                         another speed or give --amontons-mu",
+                        short(v),
+                        sig(reference.mu_steady(v))
+                    ))
+                }
+                _ => e.into(),
+            });
+        }
+        variants.push((law, variant_text, friction, scenario_file));
     }
     std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
 
@@ -101,16 +134,7 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
     }
 
     let mut out = Vec::new();
-    for &law in &args.laws {
-        let (variant_text, friction) = variant(
-            &text,
-            origin,
-            law,
-            &reference,
-            &reference_text,
-            args.matching,
-        )?;
-        let scenario_file = args.out_dir.join(format!("{}.toml", law.name()));
+    for (law, variant_text, friction, scenario_file) in variants {
         std::fs::write(&scenario_file, &variant_text).map_err(|e| Error::io(&scenario_file, e))?;
         let output = args.out_dir.join(format!("{}.h5", law.name()));
         hooks.say(&format!("compare: {} -> {}", law.name(), output.display()));
