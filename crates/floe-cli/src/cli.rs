@@ -377,12 +377,7 @@ fn load_point_speed(text: &str) -> Result<f64, String> {
 
 /// A friction coefficient: 0 to 10 (sea ice's are below 1).
 fn friction_coefficient(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(x) if (0.0..=10.0).contains(&x) => Ok(x),
-        _ => Err(format!(
-            "expected a friction coefficient from 0 to 10, got `{text}`"
-        )),
-    }
+    bounded(text, 0.0, true, 10.0, "a friction coefficient")
 }
 
 /// A finite factor > 1.

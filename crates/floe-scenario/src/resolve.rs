@@ -257,18 +257,31 @@ fn at_most(
     }
 }
 
+/// A number > 0 (>= 0 when `zero_ok`) and at most `max` (in `unit`).
+fn sized(
+    f: &SourceFile,
+    v: &Spanned<f64>,
+    key: &str,
+    zero_ok: bool,
+    (max, unit): (f64, &str),
+) -> Result<f64, ScenarioError> {
+    let x = if zero_ok {
+        f.non_negative(v, key)?
+    } else {
+        f.positive(v, key)?
+    };
+    at_most(f, v.span(), key, &[x], max, unit)?;
+    Ok(x)
+}
+
 /// A length > 0 and at most [`MAX_LENGTH_M`].
 fn length(f: &SourceFile, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
-    let x = f.positive(v, key)?;
-    at_most(f, v.span(), key, &[x], MAX_LENGTH_M, "m")?;
-    Ok(x)
+    sized(f, v, key, false, (MAX_LENGTH_M, "m"))
 }
 
 /// A length >= 0 and at most [`MAX_LENGTH_M`].
 fn distance(f: &SourceFile, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
-    let x = f.non_negative(v, key)?;
-    at_most(f, v.span(), key, &[x], MAX_LENGTH_M, "m")?;
-    Ok(x)
+    sized(f, v, key, true, (MAX_LENGTH_M, "m"))
 }
 
 /// A thickness > 0 (>= 0 when `zero_ok`) and at most [`MAX_THICKNESS_M`].
@@ -278,13 +291,7 @@ fn thickness(
     key: &str,
     zero_ok: bool,
 ) -> Result<f64, ScenarioError> {
-    let x = if zero_ok {
-        f.non_negative(v, key)?
-    } else {
-        f.positive(v, key)?
-    };
-    at_most(f, v.span(), key, &[x], MAX_THICKNESS_M, "m")?;
-    Ok(x)
+    sized(f, v, key, zero_ok, (MAX_THICKNESS_M, "m"))
 }
 
 /// A density (> 0 unless `zero_ok`) at most [`MAX_DENSITY_KG_PER_M3`].
@@ -294,13 +301,7 @@ fn density(
     key: &str,
     zero_ok: bool,
 ) -> Result<f64, ScenarioError> {
-    let x = if zero_ok {
-        f.non_negative(v, key)?
-    } else {
-        f.positive(v, key)?
-    };
-    at_most(f, v.span(), key, &[x], MAX_DENSITY_KG_PER_M3, "kg/m^3")?;
-    Ok(x)
+    sized(f, v, key, zero_ok, (MAX_DENSITY_KG_PER_M3, "kg/m^3"))
 }
 
 /// A number in `[lo, hi]` (or `[lo, hi)` when `open_hi`).
