@@ -901,3 +901,18 @@ fn info_on_a_directory_or_a_missing_file_says_so() {
     let r = floe_in(dir.path(), &["info", "missing.h5"]);
     assert_eq!(r.stderr.trim_end(), "error: missing.h5: no such file");
 }
+
+#[test]
+fn friction_coefficients_and_prescribed_speeds_beyond_meaning_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let rate = "[apparatus]\npreset = \"lab\"\n\n[law]\nkind = \"rate-state\"\nmu0 = -1e300\n\n[[segment]]\nvelocity_m_per_s = 1e-4\nduration_s = 2\n";
+    write(dir.path(), "p.toml", rate);
+    let r = floe_in(dir.path(), &["slider", "run", "p.toml", "--out", "o"]);
+    assert_refused(&r, "p.toml:6:7: `law.mu0`", &[">= 0 and <= 10"]);
+    let pushed = edit(
+        TWO_BOXES,
+        "box_m = [1000.0, 1000.0, 1200.0, 1200.0]",
+        "box_m = [1000.0, 1000.0, 1200.0, 1200.0]\nprescribed = true\nvelocity_m_per_s = [-1e300, 0.0]",
+    );
+    assert_scenario_refused(&pushed, "[-1e300", "floe[1].velocity_m_per_s", &["1e8 m"]);
+}

@@ -9,13 +9,7 @@ use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
 pub const PARAMS: &[ParamSpec] = &[ParamSpec {
     key: "mu",
     unit: "",
-    // Sea ice's are below 1; above 10 is a typo, not friction.
-    kind: ParamKind::Number {
-        min: 0.0,
-        min_open: false,
-        max: 10.0,
-        max_open: false,
-    },
+    kind: ParamKind::FRICTION_COEFFICIENT,
     default: ParamDefault::Required,
     meaning: "constant friction coefficient",
 }];

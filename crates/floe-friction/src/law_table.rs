@@ -51,6 +51,37 @@ impl ParamKind {
         max_open: true,
     };
 
+    /// A friction coefficient, 0 to 10: sea ice's are below 1, and a
+    /// value above 10 is a typo, not friction.
+    pub const FRICTION_COEFFICIENT: ParamKind = ParamKind::Number {
+        min: 0.0,
+        min_open: false,
+        max: 10.0,
+        max_open: false,
+    };
+    /// A rate or state coefficient of friction (A, B, C1): at most 10 in
+    /// magnitude (the paper's are about 0.3).
+    pub const FRICTION_RATE: ParamKind = ParamKind::Number {
+        min: -10.0,
+        min_open: false,
+        max: 10.0,
+        max_open: false,
+    };
+    /// A positive rate coefficient, at most 10.
+    pub const POSITIVE_FRICTION_RATE: ParamKind = ParamKind::Number {
+        min: 0.0,
+        min_open: true,
+        max: 10.0,
+        max_open: false,
+    };
+    /// A non-negative rate coefficient, at most 10.
+    pub const NON_NEGATIVE_FRICTION_RATE: ParamKind = ParamKind::Number {
+        min: 0.0,
+        min_open: false,
+        max: 10.0,
+        max_open: false,
+    };
+
     /// Whether `x` is in range.
     pub fn accepts(&self, x: f64) -> bool {
         match *self {

@@ -15,14 +15,14 @@ pub const PARAMS: &[ParamSpec] = &[
     ParamSpec {
         key: "mu0",
         unit: "",
-        kind: ParamKind::FINITE,
+        kind: ParamKind::FRICTION_COEFFICIENT,
         default: ParamDefault::Number(LISHMAN_MU0),
         meaning: "friction coefficient at V = V*",
     },
     ParamSpec {
         key: "c1",
         unit: "",
-        kind: ParamKind::FINITE,
+        kind: ParamKind::FRICTION_RATE,
         default: ParamDefault::Number(LISHMAN_A - LISHMAN_B),
         meaning: "slope of mu in ln V (A - B of the rate-and-state law)",
     },

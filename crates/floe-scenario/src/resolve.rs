@@ -257,6 +257,33 @@ fn at_most(
     }
 }
 
+/// Refuses a constant `velocity` (at `v`) that would carry a prescribed
+/// `what` further than [`MAX_LENGTH_M`] in `duration_s`.
+fn travel_within(
+    f: &SourceFile,
+    v: &Spanned<Exact<f64, 2>>,
+    key: &str,
+    velocity: Vec2,
+    duration_s: f64,
+    what: &str,
+) -> Result<(), ScenarioError> {
+    let travel = velocity.length() * duration_s;
+    if travel <= MAX_LENGTH_M {
+        return Ok(());
+    }
+    Err(f.error(
+        v.span(),
+        key,
+        format!(
+            "moves the {what} {} m in duration_s = {} s, beyond the largest accepted \
+             length, {} m",
+            sig(travel),
+            sig(duration_s),
+            sig(MAX_LENGTH_M)
+        ),
+    ))
+}
+
 /// A number > 0 (>= 0 when `zero_ok`) and at most `max` (in `unit`).
 fn sized(
     f: &SourceFile,
@@ -367,7 +394,7 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
 
     let domain = resolve_domain(f, raw.domain.as_ref())?;
     let (thickness, density_kg_per_m3, initial_velocity) = resolve_ice(f, raw.ice.as_ref())?;
-    let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw)?;
+    let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw, duration_s)?;
     let model = resolve_contact(f, raw.contact.as_ref(), raw.friction.as_ref(), registry)?;
     let forcing = resolve_forcing(
         f,
@@ -543,6 +570,7 @@ fn resolve_ice(
 fn resolve_floes(
     f: &SourceFile,
     raw: &RawScenario,
+    duration_s: f64,
 ) -> Result<(FloeSource, Range<usize>, f64), ScenarioError> {
     match (&raw.tessellation, &raw.floe) {
         (Some(t), Some(floes)) => {
@@ -559,7 +587,7 @@ fn resolve_floes(
         (None, Some(floes)) => {
             let mut out = Vec::with_capacity(floes.len());
             for (i, fl) in floes.iter().enumerate() {
-                out.push(resolve_explicit_floe(f, fl, i)?);
+                out.push(resolve_explicit_floe(f, fl, i, duration_s)?);
             }
             let span = floes.first().map_or(0..0, |fl| fl.span());
             Ok((FloeSource::Explicit(out), span, 0.0))
@@ -572,6 +600,7 @@ fn resolve_explicit_floe(
     f: &SourceFile,
     raw: &Spanned<RawFloe>,
     i: usize,
+    duration_s: f64,
 ) -> Result<ExplicitFloe, ScenarioError> {
     let fl = raw.get_ref();
     let key = |k: &str| format!("floe[{i}].{k}");
@@ -627,7 +656,14 @@ fn resolve_explicit_floe(
         velocity: fl
             .velocity_m_per_s
             .as_ref()
-            .map(|v| pair(f, v, &key("velocity_m_per_s")))
+            .map(|v| {
+                let velocity = pair(f, v, &key("velocity_m_per_s"))?;
+                // A prescribed floe keeps its velocity: bound its travel.
+                if fl.prescribed.as_ref().is_some_and(|p| *p.get_ref()) {
+                    travel_within(f, v, &key("velocity_m_per_s"), velocity, duration_s, "floe")?;
+                }
+                Ok::<_, ScenarioError>(velocity)
+            })
             .transpose()?,
         angular_velocity_rad_per_s: fl
             .angular_velocity_rad_per_s
@@ -1237,20 +1273,7 @@ fn resolve_walls(
             Some(v) => {
                 let velocity = pair(f, v, &key("velocity_m_per_s"))?;
                 // The wall is built as long as its travel: bound that.
-                let travel = velocity.length() * duration_s;
-                if (travel <= MAX_LENGTH_M).not() {
-                    return Err(f.error(
-                        v.span(),
-                        key("velocity_m_per_s"),
-                        format!(
-                            "moves the wall {} m in duration_s = {} s, beyond the largest \
-                             accepted length, {} m",
-                            sig(travel),
-                            sig(duration_s),
-                            sig(MAX_LENGTH_M)
-                        ),
-                    ));
-                }
+                travel_within(f, v, &key("velocity_m_per_s"), velocity, duration_s, "wall")?;
                 velocity
             }
             None => Vec2::ZERO,

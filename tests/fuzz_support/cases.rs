@@ -1,0 +1,200 @@
+//! The cases of a seed: every base input unmutated, then mutated scenarios,
+//! protocols and command lines. Each case depends only on the seed and its
+//! index.
+
+use std::sync::OnceLock;
+
+use rand::seq::SliceRandom;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use super::base_inputs::{AMONTONS_PROTOCOL, PROTOCOLS, SCENARIOS, SMALL_SCENARIO};
+use super::command_lines::{bad_value_of, mutate_command, valued_flags};
+use super::file_mutations::mutate_file;
+use super::templates::{Line, Template, TEMPLATES};
+use super::text::strings;
+use super::Expect;
+
+/// The seed of every case (`FLOE_FUZZ_SEED=N` explores other cases).
+const SEED: u64 = 0xF10E_2026;
+
+/// Mutated cases of each family, after the base inputs.
+const SCENARIO_CASES: usize = 300;
+const PROTOCOL_CASES: usize = 100;
+const COMMAND_CASES: usize = 100;
+
+/// What a case mutates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Family {
+    Base,
+    Scenario,
+    Protocol,
+    CommandLine,
+}
+
+/// One run of floe: its input files, its command line, what it must do.
+pub struct Case {
+    pub index: usize,
+    pub family: Family,
+    /// The mutation, for the failure message.
+    pub what: String,
+    /// Files written into the working directory; none may change.
+    pub files: Vec<(String, Vec<u8>)>,
+    /// The file the mutation changed, printed on failure.
+    pub mutated: Option<usize>,
+    pub args: Vec<String>,
+    pub expect: Expect,
+}
+
+/// The fixtures every command-line case gets: a scenario, a finished run of
+/// it, a protocol.
+pub struct Fixtures {
+    pub run_h5: Vec<u8>,
+}
+
+impl Fixtures {
+    pub fn files(&self) -> Vec<(String, Vec<u8>)> {
+        vec![
+            ("s.toml".into(), SMALL_SCENARIO.into()),
+            ("run.h5".into(), self.run_h5.clone()),
+            ("p.toml".into(), AMONTONS_PROTOCOL.into()),
+        ]
+    }
+}
+
+/// `SEED`, or `FLOE_FUZZ_SEED` when set (decimal or 0x-hex).
+pub fn seed() -> u64 {
+    static CELL: OnceLock<u64> = OnceLock::new();
+    *CELL.get_or_init(|| match std::env::var("FLOE_FUZZ_SEED") {
+        Ok(v) => match v.strip_prefix("0x") {
+            Some(hex) => u64::from_str_radix(hex, 16),
+            None => v.parse(),
+        }
+        .expect("FLOE_FUZZ_SEED is a number"),
+        Err(_) => SEED,
+    })
+}
+
+/// Each case draws from its own stream of the seed, so that it depends only
+/// on the seed and its index.
+pub fn case_rng(index: usize) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed());
+    rng.set_stream(index as u64);
+    rng
+}
+
+fn run_args() -> Vec<String> {
+    strings(&[
+        "run",
+        "case.toml",
+        "-o",
+        "out.h5",
+        "--max-steps",
+        "200",
+        "-q",
+        "--threads",
+        "1",
+    ])
+}
+
+fn slider_args() -> Vec<String> {
+    strings(&["slider", "run", "proto.toml", "--out", "out"])
+}
+
+pub fn all_cases(fixtures: &Fixtures) -> Vec<Case> {
+    let mut cases = base_cases(fixtures);
+    for _ in 0..SCENARIO_CASES {
+        let index = cases.len();
+        let (name, text) = SCENARIOS[index % SCENARIOS.len()];
+        cases.push(file_case(index, Family::Scenario, name, text, "case.toml"));
+    }
+    for _ in 0..PROTOCOL_CASES {
+        let index = cases.len();
+        let (name, text) = PROTOCOLS[index % PROTOCOLS.len()];
+        cases.push(file_case(index, Family::Protocol, name, text, "proto.toml"));
+    }
+    for k in 0..COMMAND_CASES {
+        let index = cases.len();
+        cases.push(command_case(index, k, fixtures));
+    }
+    cases
+}
+
+/// Every base input and command line unmutated: they must run, or the
+/// mutants would test nothing.
+fn base_cases(fixtures: &Fixtures) -> Vec<Case> {
+    let mut cases = Vec::new();
+    let mut push = |what: String, files, args| {
+        let index = cases.len();
+        cases.push(Case {
+            index,
+            family: Family::Base,
+            what,
+            files,
+            mutated: None,
+            args,
+            expect: Expect::Success,
+        });
+    };
+    for (name, text) in SCENARIOS {
+        let files = vec![("case.toml".into(), text.as_bytes().to_vec())];
+        push(format!("scenario `{name}` unmutated"), files, run_args());
+    }
+    for (name, text) in PROTOCOLS {
+        let files = vec![("proto.toml".into(), text.as_bytes().to_vec())];
+        push(format!("protocol `{name}` unmutated"), files, slider_args());
+    }
+    for template in TEMPLATES {
+        let line = Line::of(template);
+        push(
+            format!("`{}` unmutated", template.words.join(" ")),
+            fixtures.files(),
+            line.args(template),
+        );
+    }
+    cases
+}
+
+fn file_case(index: usize, family: Family, base: &str, text: &str, file: &str) -> Case {
+    let mut rng = case_rng(index);
+    let mutant = mutate_file(text, &mut rng);
+    let (noun, args) = match family {
+        Family::Scenario => ("scenario", run_args()),
+        _ => ("protocol", slider_args()),
+    };
+    Case {
+        index,
+        family,
+        what: format!("{noun} `{base}`: {}", mutant.what),
+        files: vec![(file.into(), mutant.bytes)],
+        mutated: Some(0),
+        args,
+        expect: mutant.expect,
+    }
+}
+
+/// The first command-line cases give each flag of each command a bad value
+/// in turn, so that every flag is tried; the others are drawn at random.
+fn command_case(index: usize, k: usize, fixtures: &Fixtures) -> Case {
+    let mut rng = case_rng(index);
+    let every_flag: Vec<(&Template, &str)> = TEMPLATES
+        .iter()
+        .flat_map(|t| valued_flags(t).into_iter().map(move |f| (t, f)))
+        .collect();
+    let (template, (line, what, expect)) = match every_flag.get(k) {
+        Some(&(template, flag)) => (template, bad_value_of(template, flag, &mut rng)),
+        None => {
+            let template = TEMPLATES.choose(&mut rng).expect("templates");
+            (template, mutate_command(template, &mut rng))
+        }
+    };
+    Case {
+        index,
+        family: Family::CommandLine,
+        what: format!("`{}`: {what}", template.words.join(" ")),
+        files: fixtures.files(),
+        mutated: None,
+        args: line.args(template),
+        expect,
+    }
+}
