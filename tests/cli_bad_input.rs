@@ -234,8 +234,9 @@ fn bad_flags_and_missing_files_get_one_message() {
     ]);
     assert_one_clear_error(code, &err, 2);
     assert!(err.contains("--normal-load"), "{err}");
+    // A file that is not there is bad input: exit 2, the path named.
     let (code, err) = floe(&["slider", "run", "/nonexistent/p.toml", "--out", "/tmp/x"]);
-    assert_one_clear_error(code, &err, 1);
+    assert_one_clear_error(code, &err, 2);
     assert!(err.contains("/nonexistent/p.toml"), "{err}");
     assert!(Path::new("/tmp").exists());
 }

@@ -417,6 +417,7 @@ push_velocity_m_per_s = 0.008
 #[test]
 fn load_reports_unreadable_files() {
     let e = Scenario::load(Path::new("/nonexistent/scenario.toml")).unwrap_err();
-    assert!(!e.is_input() && matches!(e, ScenarioError::Io { .. }));
+    // A path that is not there is the user's input to fix (exit 2).
+    assert!(e.is_input() && matches!(e, ScenarioError::Io { .. }));
     assert!(e.to_string().contains("/nonexistent/scenario.toml"));
 }

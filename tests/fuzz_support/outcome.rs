@@ -76,7 +76,17 @@ fn check_stderr(case: &Case, out: &Outcome, found: &mut Vec<String>) {
 }
 
 fn locates(case: &Case, message: &str) -> bool {
-    names_file_position(message) || (case.family == Family::CommandLine && names_argument(message))
+    names_file_position(message)
+        || (case.family == Family::CommandLine
+            && (names_argument(message) || names_path_given(case, message)))
+}
+
+/// `error: PATH: ...` for a PATH on the command line (a missing file).
+fn names_path_given(case: &Case, message: &str) -> bool {
+    let rest = message.strip_prefix("error: ").unwrap_or(message);
+    case.args
+        .iter()
+        .any(|a| !a.starts_with('-') && rest.starts_with(&format!("{a}: ")))
 }
 
 /// `NAME.toml:LINE:COL` (or `.h5`), or sweep's `NAME.toml with KEY=V:LINE:COL`.

@@ -55,7 +55,7 @@ pub enum Command {
         resume: bool,
         /// Take at most this many steps, then write a checkpoint and stop
         /// (continue with --resume; for batch jobs with a time limit).
-        #[arg(long, value_name = "STEPS")]
+        #[arg(long, value_name = "STEPS", value_parser = whole_steps)]
         max_steps: Option<u64>,
         /// Most time steps the scenario may take (default 1e9): a run
         /// longer than this is refused before it starts, naming dt_s or
@@ -101,6 +101,10 @@ pub enum Command {
         /// Metric options.
         #[command(flatten)]
         metrics: MetricArgs,
+        /// Most time steps each run may take (default 1e9); a longer one is
+        /// refused before anything runs.
+        #[arg(long, value_name = "N", default_value_t = floe_scenario::MAX_RUN_STEPS, value_parser = step_count)]
+        step_limit: f64,
     },
     /// Run a scenario over the cartesian product of --set values and tabulate metrics.
     #[command(allow_negative_numbers = true)]
@@ -129,6 +133,10 @@ pub enum Command {
         /// Metric options.
         #[command(flatten)]
         metrics: MetricArgs,
+        /// Most time steps each run may take (default 1e9); a longer one is
+        /// refused before anything runs.
+        #[arg(long, value_name = "N", default_value_t = floe_scenario::MAX_RUN_STEPS, value_parser = step_count)]
+        step_limit: f64,
     },
     /// Draw PNG maps of the floes and plots of the observables.
     #[command(allow_negative_numbers = true)]
@@ -244,7 +252,7 @@ pub enum SliderCommand {
         /// Overwrite existing output files.
         #[arg(long)]
         force: bool,
-        /// Most time steps the protocol may take (default 1e9, about 40 s).
+        /// Most time steps the protocol may take (default 1e9: about 2 minutes at 110 ns a step).
         #[arg(long, value_name = "N", default_value_t = floe_friction::experiments::MAX_SLIDER_STEPS, value_parser = step_count)]
         step_limit: f64,
     },
@@ -281,7 +289,7 @@ pub struct ExperimentArgs {
     /// Time step in seconds (default 0.001, as in the paper).
     #[arg(long, value_name = "SECONDS", value_parser = slider_dt)]
     pub dt: Option<f64>,
-    /// Most time steps a run may take (default 1e9, about 40 s).
+    /// Most time steps a run may take (default 1e9: about 2 minutes at 110 ns a step).
     #[arg(long, value_name = "N", default_value_t = floe_friction::experiments::MAX_SLIDER_STEPS, value_parser = step_count)]
     pub step_limit: f64,
 }
@@ -398,6 +406,16 @@ fn profile_bins(text: &str) -> Result<usize, String> {
     }
 }
 
+/// A whole number of steps >= 1.
+fn whole_steps(text: &str) -> Result<u64, String> {
+    match text.parse::<u64>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!(
+            "expected a whole number of steps >= 1, got `{text}`"
+        )),
+    }
+}
+
 /// A step limit: a number >= 1 (1e9 and 1000000000 alike).
 fn step_count(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
@@ -450,6 +468,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             force,
             quiet,
             metrics,
+            step_limit,
         } => {
             let args = CompareArgs {
                 scenario,
@@ -464,6 +483,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 metrics: metrics.options(),
                 provenance: provenance(),
                 registry: LawRegistry::builtin(),
+                step_limit,
             };
             let report = compare::compare(&args, &TerminalHooks { progress: !quiet })?;
             Ok(format!("report: {}", report.display()))
@@ -477,6 +497,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             threads,
             force,
             metrics,
+            step_limit,
         } => {
             if gather {
                 let table = sweep::gather(&output, &metrics.options())?;
@@ -496,6 +517,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 metrics: metrics.options(),
                 provenance: provenance(),
                 laws: LawRegistry::builtin(),
+                step_limit,
             };
             let path = sweep::sweep(&args, &TerminalHooks { progress: false })?;
             Ok(if emit {

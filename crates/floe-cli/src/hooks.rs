@@ -18,7 +18,7 @@ pub struct TerminalHooks {
 
 impl RunHooks for TerminalHooks {
     fn say(&self, line: &str) {
-        eprintln!("{line}");
+        crate::stderr::line(line);
     }
 
     fn progress(&self, first_step: u64, total_steps: u64, end_time_s: f64) -> Box<dyn Progress> {

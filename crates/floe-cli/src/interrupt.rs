@@ -15,21 +15,21 @@ pub fn flag() -> &'static AtomicBool {
     INSTALL.call_once(|| {
         let installed = ctrlc::set_handler(|| {
             if INTERRUPTED.swap(true, Ordering::SeqCst) {
-                eprintln!(
+                crate::stderr::line(
                     "\nsecond interrupt: stopping now; the last checkpoint stays valid \
-                     (resume with `floe run --resume`)"
+                     (resume with `floe run --resume`)",
                 );
                 stop_now();
             }
-            eprintln!(
+            crate::stderr::line(
                 "\ninterrupt: finishing this step and writing a final snapshot and checkpoint \
-                 (interrupt again to stop at once)"
+                 (interrupt again to stop at once)",
             );
         });
         if let Err(e) = installed {
-            eprintln!(
+            crate::stderr::line(&format!(
                 "warning: no interrupt handler ({e}); Ctrl-C will stop without a final snapshot"
-            );
+            ));
         }
     });
     &INTERRUPTED
@@ -44,4 +44,15 @@ fn stop_now() -> ! {
     // SAFETY: _exit takes no pointers, touches no Rust state and is
     // async-signal-safe.
     unsafe { libc::_exit(130) }
+}
+
+/// A file-size limit (`ulimit -f`) raises SIGXFSZ, whose default ends the
+/// process without a word; ignored, the write fails with EFBIG instead and
+/// the run stops with its one-line message, the file intact.
+#[allow(unsafe_code)]
+pub fn ignore_file_size_signal() {
+    // SAFETY: installs the predefined SIG_IGN disposition; no handler code.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
 }

@@ -12,6 +12,7 @@ pub mod interrupt;
 pub mod progress_bar;
 pub mod series_csv;
 pub mod slider;
+pub mod stderr;
 
 /// Every failure of the command line: the libraries' errors, one message
 /// and an exit code each.

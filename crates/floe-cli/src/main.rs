@@ -7,6 +7,7 @@ use clap::Parser;
 use floe_cli::cli::{execute, Cli};
 
 fn main() -> ExitCode {
+    floe_cli::interrupt::ignore_file_size_signal();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
@@ -22,13 +23,13 @@ fn main() -> ExitCode {
                 // what it wanted; stop quietly.
                 Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
                 Err(e) => {
-                    eprintln!("error: cannot write to standard output: {e}");
+                    floe_cli::stderr::line(&format!("error: cannot write to standard output: {e}"));
                     ExitCode::FAILURE
                 }
             }
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            floe_cli::stderr::line(&format!("error: {e}"));
             ExitCode::from(e.exit_code())
         }
     }
@@ -47,8 +48,9 @@ fn usage_error(e: clap::Error) -> ExitCode {
         let _ = e.print();
         return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
     }
+    let text = e.render().to_string();
     if e.kind() == ErrorKind::UnknownArgument {
-        if let Some(message) = negative_value_hint() {
+        if let Some(message) = negative_value_hint(&text) {
             let _ = writeln!(
                 std::io::stderr().lock(),
                 "error: {message} (see floe --help)"
@@ -56,27 +58,30 @@ fn usage_error(e: clap::Error) -> ExitCode {
             return ExitCode::from(2);
         }
     }
-    let text = e.render().to_string();
+    // The error and clap's tips (`a similar argument exists: '--force'`),
+    // without the usage and help paragraphs.
     let message = text
         .split("\n\n")
-        .next()
-        .unwrap_or(&text)
-        .lines()
-        .map(str::trim)
+        .map(|p| p.lines().map(str::trim).collect::<Vec<_>>().join(" "))
+        .filter(|p| p.starts_with("error:") || p.starts_with("tip:"))
         .collect::<Vec<_>>()
-        .join(" ");
+        .join("; ");
     let _ = writeln!(std::io::stderr().lock(), "{message} (see floe --help)");
     ExitCode::from(2)
 }
 
 /// A value such as `-inf` or `-1e-3` after a flag reads as a flag of its
 /// own; name the flag it was meant for.
-fn negative_value_hint() -> Option<String> {
-    let args: Vec<String> = std::env::args().collect();
+fn negative_value_hint(clap_message: &str) -> Option<String> {
+    let args: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
     args.windows(2).find_map(|pair| {
         let (flag, value) = (&pair[0], &pair[1]);
         let number = value.strip_prefix('-')?.parse::<f64>().is_ok();
-        (flag.starts_with("--") && !flag.contains('=') && number).then(|| {
+        // The value clap took for a flag (it names `-1`, or `-i` of `-inf`).
+        let named = clap_message.contains(&format!("'{}", &value[..2]));
+        (flag.starts_with("--") && !flag.contains('=') && number && named).then(|| {
             format!(
                 "{flag} {value}: a value starting with `-` reads as a flag; write {flag}={value}"
             )

@@ -69,11 +69,11 @@ impl Progress for RunProgress {
         let fraction = step as f64 / total_steps.max(1) as f64;
         if fraction >= self.next_log_fraction {
             let rate = (step - self.first_step) as f64 / self.started.elapsed().as_secs_f64();
-            eprintln!(
+            crate::stderr::line(&format!(
                 "step {step}/{total_steps} ({:.0} %), t = {}, {rate:.1} steps/s",
                 100.0 * fraction,
                 format_sim_time(time_s)
-            );
+            ));
             while self.next_log_fraction <= fraction {
                 self.next_log_fraction += 0.1;
             }

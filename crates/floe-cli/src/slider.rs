@@ -51,6 +51,11 @@ fn check_steps(
         Some(_) => format!("--dt {}", sig(dt_s)),
         None => format!("the default dt {} s", sig(dt_s)),
     };
+    // A large load lengthens the reslide (mu N / k of spring to reload).
+    let dt = match options.normal_load_n {
+        Some(n) => format!("{dt} and --normal-load {}", sig(n)),
+        None => dt,
+    };
     Err(CliError::Usage(format!(
         "{what} at {dt}: a {} s test is {} time steps, above the limit of {}; \
          a longer --dt, a shorter test, or --step-limit N",
@@ -101,15 +106,14 @@ pub fn hold(options: &ExperimentOptions, holds_s: &[f64]) -> Result<Vec<HoldLine
     }
     let (law, apparatus) = options.law_and_apparatus()?;
     let speed = options.preset.speed_m_per_s();
-    for &h in holds_s {
-        let duration = hold_test_duration_s(&law, apparatus, speed, h);
-        check_steps(
-            duration,
-            options,
-            apparatus.dt_s,
-            &format!("--hold {}", sig(h)),
-        )?;
-    }
+    // The holds run one after another: their total is what is bounded.
+    let total: f64 = holds_s
+        .iter()
+        .map(|&h| hold_test_duration_s(&law, apparatus, speed, h))
+        .sum();
+    let holds: Vec<String> = holds_s.iter().map(|&h| sig(h)).collect();
+    let what = format!("--hold {}", holds.join(","));
+    check_steps(total, options, apparatus.dt_s, &what)?;
     Ok(holds_s
         .iter()
         .map(|&h| {

@@ -84,7 +84,7 @@ fn transient_slip_m(law: &Law) -> f64 {
 }
 
 /// Most time steps a spring-slider command takes unless told otherwise
-/// (about 40 s at 40 ns a step): far more than any of the paper's
+/// (about 2 minutes at 110 ns a step): far more than any of the paper's
 /// experiments, and a guard against a hold or a speed that would run for
 /// days.
 pub const MAX_SLIDER_STEPS: f64 = 1e9;
@@ -95,6 +95,10 @@ pub const MAX_LOAD_POINT_SPEED_M_PER_S: f64 = 100.0;
 
 /// Longest spring-slider time step accepted, s (the paper's is 1e-3 s).
 pub const MAX_SLIDER_DT_S: f64 = 1.0;
+
+/// Range of spring-slider stiffnesses accepted, N/m (the paper's are
+/// 2 and 20 MN/m).
+pub const SLIDER_STIFFNESS_RANGE_N_PER_M: (f64, f64) = (1e-3, 1e12);
 
 /// Range of spring-slider normal loads accepted, N (the paper's are 2 kN
 /// and 10 kN); below it friction forces underflow against the spring's.

@@ -79,7 +79,7 @@ pub enum IoError {
     },
     /// The file cannot grow: the device is full, a quota is reached, or the
     /// file-size limit (`ulimit -f`).
-    #[error("{}: {reason} ({what}); what was flushed before stays readable, and the run resumes from its last checkpoint: make room, then `floe run --resume -o {}`", path.display(), path.display())]
+    #[error("{}: {reason} ({what}); what was flushed before stays readable, and if the file holds a checkpoint the run resumes from it once there is room: `floe run --resume -o {}`", path.display(), path.display())]
     NoSpace {
         /// The file.
         path: PathBuf,

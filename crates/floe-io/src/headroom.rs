@@ -1,8 +1,7 @@
 //! Room claimed ahead of the writer. HDF5 1.10 does not survive a write
 //! that fails inside a flush: it has already written a superblock whose
 //! end-of-file covers data that never arrived, and no reader opens the
-//! file again ("truncated file"; with `ulimit -f` at five moments of a run,
-//! five of five files were lost). So before each batch of writes the bytes
+//! file again ("truncated file"). So before each batch of writes the bytes
 //! it may take are allocated past the end of the file (`fallocate`, or
 //! zeros written where the filesystem has no `fallocate`): a full disk, a
 //! quota or a file-size limit then fails here, before HDF5 has written
@@ -20,7 +19,7 @@ use std::path::Path;
 use crate::error::IoError;
 
 /// The least room claimed before a batch, bytes.
-const LEAST: u64 = 1 << 20;
+const MIN_CLAIM_BYTES: u64 = 1 << 20;
 
 /// Keeps room past the end of a run file.
 #[derive(Debug)]
@@ -60,7 +59,7 @@ impl Headroom {
             .largest_growth
             .max(hdf5_end.saturating_sub(self.last_end));
         self.last_end = hdf5_end;
-        let want = hdf5_end + estimate.max(2 * self.largest_growth).max(LEAST);
+        let want = hdf5_end + estimate.max(2 * self.largest_growth).max(MIN_CLAIM_BYTES);
         if on_disk >= want {
             return Ok(());
         }
@@ -84,7 +83,8 @@ impl Headroom {
     }
 
     /// Allocates `[from, to)`, past the last byte HDF5 wrote: with
-    /// `fallocate` (no data written), else by writing zeros.
+    /// `fallocate` (no data written), else by writing zeros and syncing
+    /// them (NFS reports a full disk only when written data reaches it).
     fn fill(&mut self, from: u64, to: u64) -> std::io::Result<()> {
         use rustix::fs::{fallocate, FallocateFlags};
         match fallocate(&self.file, FallocateFlags::empty(), from, to - from) {
@@ -101,7 +101,7 @@ impl Headroom {
             self.file.write_all(&zeros[..n])?;
             left -= n as u64;
         }
-        Ok(())
+        self.file.sync_data()
     }
 }
 

@@ -153,9 +153,9 @@ impl RunFile {
     /// that fails with an HDF5 error or inconsistent content: a run being
     /// written flushes its metadata while a reader opens and reads, and a
     /// reader can catch an index that points past the end it saw at open
-    /// ("addr overflow", about 2 % of `floe info` calls on a file written
+    /// ("addr overflow", about 1.7 % of `floe info` calls on a file written
     /// every 20 ms). The next try sees a consistent file; only a damaged
-    /// one fails every try (about 3 s in all).
+    /// one fails every try (2.5 s in all).
     pub fn read_retrying<T>(
         path: &Path,
         read: impl Fn(&RunFile) -> Result<T, IoError>,

@@ -193,7 +193,10 @@ impl RunWriter {
             Err(e) => {
                 // The file is ours and half-made: do not leave it behind.
                 let _ = std::fs::remove_file(path);
-                Err(e)
+                Err(match e {
+                    IoError::NoSpace { reason, .. } => cannot(reason),
+                    e => e,
+                })
             }
         }
     }

@@ -19,7 +19,9 @@ use crate::built_floes::BuiltFloes;
 use crate::checks;
 use crate::error::ScenarioError;
 use crate::numbers::{short, sig, thousands};
-use crate::resolve::{dem_error, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION};
+use crate::resolve::{
+    dem_error, voronoi_work, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION,
+};
 use crate::source_file::SourceFile;
 
 /// Most segments one wall is made of (a wall much longer than the floes are
@@ -170,7 +172,10 @@ fn generate(
                             format!("would make about {n:.3e} floes, above the cap of {MAX_FLOES}"),
                         ));
                     }
-                    n as usize
+                    let n = n as usize;
+                    let key = "tessellation.floe_scale_m";
+                    voronoi_work(f, span.clone(), key, n, *relax_iterations)?;
+                    n
                 }
                 (None, None) => unreachable!("resolve requires count or floe_scale_m"),
             };
@@ -601,14 +606,33 @@ pub(crate) fn time_step(
     let culprit_name = built.labels[culprit]
         .clone()
         .unwrap_or_else(|| format!("floe {culprit}"));
+    if !(limit.is_finite() && limit > 0.0) {
+        let span = built.pieces_span[culprit]
+            .clone()
+            .unwrap_or_else(|| r.floes_span.clone());
+        return Err(f.error(
+            span,
+            built.labels[culprit]
+                .clone()
+                .unwrap_or_else(|| "tessellation".into()),
+            format!(
+                "the stable time step of {culprit_name} is {limit} s: its mass or the contact \
+                 stiffness (E = {} Pa) is out of range; check the thickness, density and \
+                 contact.youngs_modulus_pa",
+                short(r.model.youngs_modulus_pa)
+            ),
+        ));
+    }
+    // A step longer than the run would be the whole run.
+    let limit = limit.min(r.duration_s / AUTO_DT_FRACTION);
     let steps = |dt: f64| ((r.duration_s / dt).round() as u64).max(1);
-    let too_many = |dt: f64| (r.duration_s / dt <= max_steps).not();
+    let too_many = |dt: f64| ((r.duration_s / dt).round() <= max_steps).not();
     let above = |dt: f64| {
         format!(
             "{} s / dt {} s is {} steps, above the limit of {}",
             sig(r.duration_s),
             sig(dt),
-            sig(r.duration_s / dt),
+            sig((r.duration_s / dt).round()),
             sig(max_steps)
         )
     };

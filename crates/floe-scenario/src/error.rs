@@ -55,6 +55,15 @@ impl ScenarioError {
     /// Whether the file is at fault (a located input error), as opposed to
     /// the system or the engine.
     pub fn is_input(&self) -> bool {
-        matches!(self, ScenarioError::Input { .. } | ScenarioError::Usage(_))
+        match self {
+            ScenarioError::Input { .. } | ScenarioError::Usage(_) => true,
+            // A file named that is not there, or is a directory, is a bad
+            // argument; other read errors (permissions, I/O) are not.
+            ScenarioError::Io { source, .. } => matches!(
+                source.kind(),
+                std::io::ErrorKind::NotFound | std::io::ErrorKind::IsADirectory
+            ),
+            _ => false,
+        }
     }
 }

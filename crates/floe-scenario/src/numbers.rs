@@ -36,13 +36,14 @@ pub fn thousands(n: usize) -> String {
 }
 
 /// A number from a file as a message quotes it: as written when short,
-/// else in scientific form (`1e300`, not its 301 digits).
+/// else in scientific form when that is shorter (`1e13`, not its 14 digits).
 pub fn short(x: f64) -> String {
     let plain = format!("{x}");
-    if plain.len() <= 16 {
+    let scientific = format!("{x:e}");
+    if plain.len() <= 8 || plain.len() <= scientific.len() {
         plain
     } else {
-        format!("{x:e}")
+        scientific
     }
 }
 

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use floe_friction::experiments::{
     Preset, MAX_LOAD_POINT_SPEED_M_PER_S, MAX_SLIDER_DT_S, MAX_SLIDER_STEPS, PAPER_DT_S,
-    SLIDER_NORMAL_LOAD_RANGE_N,
+    SLIDER_NORMAL_LOAD_RANGE_N, SLIDER_STIFFNESS_RANGE_N_PER_M,
 };
 use floe_friction::protocol::{Protocol, Segment};
 use floe_friction::spring_slider::Apparatus;
@@ -109,16 +109,18 @@ pub fn load_with(
         &[("lab", Preset::Lab), ("tank", Preset::Tank)],
         Preset::Lab,
     )?;
-    let get =
-        |v: &Num, key: &str, default: f64| v.as_ref().map_or(Ok(default), |v| f.positive(v, key));
     let apparatus = match &raw.apparatus {
         None => preset.apparatus(PAPER_DT_S),
         Some(a) => Apparatus {
-            stiffness_n_per_m: get(
-                &a.stiffness_n_per_m,
-                "apparatus.stiffness_n_per_m",
-                preset.stiffness_n_per_m(),
-            )?,
+            stiffness_n_per_m: match &a.stiffness_n_per_m {
+                Some(v) => f.in_range(
+                    v,
+                    "apparatus.stiffness_n_per_m",
+                    SLIDER_STIFFNESS_RANGE_N_PER_M,
+                    "N/m",
+                )?,
+                None => preset.stiffness_n_per_m(),
+            },
             normal_load_n: match &a.normal_load_n {
                 Some(v) => f.in_range(
                     v,

@@ -17,7 +17,7 @@ use toml::Spanned;
 use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::law_table::{law_from_table, preset_applies, RawLawTable};
-use crate::numbers::{short, short_list, sig};
+use crate::numbers::{short, short_list, sig, thousands};
 use crate::output_cadence::OutputCadence;
 use crate::source_file::SourceFile;
 use crate::spec::*;
@@ -213,7 +213,7 @@ fn count(
     }
 }
 
-/// Most time steps a run may take unless raised (`floe run --max-steps`):
+/// Most time steps a run may take unless raised (`floe run --step-limit`):
 /// about a day at 1e4 steps/s, beyond which a step count is a typo.
 pub const MAX_RUN_STEPS: f64 = 1e9;
 
@@ -227,6 +227,10 @@ pub const MAX_RELAX_ITERATIONS: u64 = 10_000;
 /// Earth's circumference is 4e7 m), and small enough that areas, masses
 /// and the broad phase's cells stay finite.
 pub const MAX_LENGTH_M: f64 = 1e8;
+
+/// Thinnest ice a file may give, m: new ice (nilas) is centimetres thick;
+/// far thinner floes have a time-step limit that underflows.
+pub const MIN_THICKNESS_M: f64 = 1e-3;
 
 /// Thickest ice a file may give, m (icebergs reach a few hundred metres).
 pub const MAX_THICKNESS_M: f64 = 1e4;
@@ -257,29 +261,45 @@ fn at_most(
     }
 }
 
+/// What bounds a prescribed motion: the run's duration and its domain.
+#[derive(Debug, Clone, Copy)]
+struct Extent {
+    duration_s: f64,
+    domain: Domain,
+}
+
+/// How far, in domain sizes, a prescribed floe or wall may travel across a
+/// non-periodic axis: walls are built as long as their travel, so this
+/// bounds their segments (along a periodic axis they wrap and nothing grows).
+const MAX_TRAVEL_DOMAINS: f64 = 100.0;
+
 /// Refuses a constant `velocity` (at `v`) that would carry a prescribed
-/// `what` further than [`MAX_LENGTH_M`] in `duration_s`.
+/// `what` more than [`MAX_TRAVEL_DOMAINS`] domain sizes across the
+/// domain's non-periodic axes within the run.
 fn travel_within(
     f: &SourceFile,
     v: &Spanned<Exact<f64, 2>>,
     key: &str,
     velocity: Vec2,
-    duration_s: f64,
+    extent: Extent,
     what: &str,
 ) -> Result<(), ScenarioError> {
-    let travel = velocity.length() * duration_s;
-    if travel <= MAX_LENGTH_M {
+    let d = extent.domain;
+    let across = |axis: usize, speed: f64| if d.periodic[axis] { 0.0 } else { speed.abs() };
+    let travel = across(0, velocity.x).hypot(across(1, velocity.y)) * extent.duration_s;
+    let most = MAX_TRAVEL_DOMAINS * d.size_m.x.max(d.size_m.y);
+    if travel <= most {
         return Ok(());
     }
     Err(f.error(
         v.span(),
         key,
         format!(
-            "moves the {what} {} m in duration_s = {} s, beyond the largest accepted \
-             length, {} m",
+            "moves the {what} {} m across the domain's non-periodic axes in duration_s = {} s, \
+             more than {MAX_TRAVEL_DOMAINS} domain sizes ({} m)",
             sig(travel),
-            sig(duration_s),
-            sig(MAX_LENGTH_M)
+            sig(extent.duration_s),
+            sig(most)
         ),
     ))
 }
@@ -311,14 +331,26 @@ fn distance(f: &SourceFile, v: &Spanned<f64>, key: &str) -> Result<f64, Scenario
     sized(f, v, key, true, (MAX_LENGTH_M, "m"))
 }
 
-/// A thickness > 0 (>= 0 when `zero_ok`) and at most [`MAX_THICKNESS_M`].
+/// A thickness from [`MIN_THICKNESS_M`] (or 0 when `zero_ok`, for a
+/// spread) to [`MAX_THICKNESS_M`].
 fn thickness(
     f: &SourceFile,
     v: &Spanned<f64>,
     key: &str,
     zero_ok: bool,
 ) -> Result<f64, ScenarioError> {
-    sized(f, v, key, zero_ok, (MAX_THICKNESS_M, "m"))
+    let h = sized(f, v, key, zero_ok, (MAX_THICKNESS_M, "m"))?;
+    if zero_ok || h >= MIN_THICKNESS_M {
+        return Ok(h);
+    }
+    Err(f.error(
+        v.span(),
+        key,
+        format!(
+            "{} m is thinner than the thinnest accepted ice, {MIN_THICKNESS_M} m",
+            short(h)
+        ),
+    ))
 }
 
 /// A density (> 0 unless `zero_ok`) at most [`MAX_DENSITY_KG_PER_M3`].
@@ -329,6 +361,40 @@ fn density(
     zero_ok: bool,
 ) -> Result<f64, ScenarioError> {
     sized(f, v, key, zero_ok, (MAX_DENSITY_KG_PER_M3, "kg/m^3"))
+}
+
+/// Accepted contact Young's moduli, Pa: sea ice is about 1e9; below 1e3 Pa
+/// floes pass through each other, above 1e13 the stable step vanishes.
+pub const YOUNGS_MODULUS_RANGE_PA: (f64, f64) = (1e3, 1e13);
+
+/// Most Voronoi work, sites x (Lloyd iterations + 1): one pass over 1e6
+/// sites takes about 5 s, so the limit is about 8 minutes.
+pub const MAX_VORONOI_WORK: f64 = 1e8;
+
+/// Refuses a tessellation of `sites` Voronoi sites relaxed `iterations`
+/// times whose work is above [`MAX_VORONOI_WORK`], blaming `key` at `span`.
+pub(crate) fn voronoi_work(
+    f: &SourceFile,
+    span: Range<usize>,
+    key: &str,
+    sites: usize,
+    iterations: usize,
+) -> Result<(), ScenarioError> {
+    let work = sites as f64 * (iterations as f64 + 1.0);
+    if work <= MAX_VORONOI_WORK {
+        return Ok(());
+    }
+    Err(f.error(
+        span,
+        key,
+        format!(
+            "{} sites x ({iterations} + 1) Lloyd passes is {} site-passes, above the limit of \
+             {} (about 8 minutes); use fewer iterations (Lloyd converges in tens) or fewer floes",
+            thousands(sites),
+            sig(work),
+            sig(MAX_VORONOI_WORK)
+        ),
+    ))
 }
 
 /// A number in `[lo, hi]` (or `[lo, hi)` when `open_hi`).
@@ -394,7 +460,8 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
 
     let domain = resolve_domain(f, raw.domain.as_ref())?;
     let (thickness, density_kg_per_m3, initial_velocity) = resolve_ice(f, raw.ice.as_ref())?;
-    let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw, duration_s)?;
+    let extent = Extent { duration_s, domain };
+    let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw, extent)?;
     let model = resolve_contact(f, raw.contact.as_ref(), raw.friction.as_ref(), registry)?;
     let forcing = resolve_forcing(
         f,
@@ -402,7 +469,7 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         raw.ocean.as_ref(),
         raw.coriolis.as_ref(),
     )?;
-    let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]), duration_s)?;
+    let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]), extent)?;
     let output = resolve_output(f, raw.output.as_ref(), duration_s)?;
     Ok(Resolved {
         title,
@@ -529,12 +596,12 @@ fn resolve_ice(
         }
     } else if let Some(r) = &ice.thickness_range_m {
         let [lo, hi] = r.get_ref().0;
-        if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi >= lo) {
+        if !(lo.is_finite() && hi.is_finite() && lo >= MIN_THICKNESS_M && hi >= lo) {
             return Err(f.error(
                 r.span(),
                 "ice.thickness_range_m",
                 format!(
-                    "must be [min, max] with 0 < min <= max, got {}",
+                    "must be [min, max] with {MIN_THICKNESS_M} m <= min <= max, got {}",
                     short_list(&[lo, hi])
                 ),
             ));
@@ -557,7 +624,20 @@ fn resolve_ice(
         }
     };
     let density = match &ice.density_kg_per_m3 {
-        Some(v) => density(f, v, "ice.density_kg_per_m3", false)?,
+        Some(v) => match density(f, v, "ice.density_kg_per_m3", false)? {
+            // Far lighter than any ice, and the masses underflow.
+            rho if rho >= 100.0 => rho,
+            rho => {
+                return Err(f.error(
+                    v.span(),
+                    "ice.density_kg_per_m3",
+                    format!(
+                        "{} kg/m^3 is lighter than any ice (at least 100)",
+                        short(rho)
+                    ),
+                ))
+            }
+        },
         None => DEFAULT_ICE_DENSITY_KG_PER_M3,
     };
     let velocity = match &ice.initial_velocity_m_per_s {
@@ -570,7 +650,7 @@ fn resolve_ice(
 fn resolve_floes(
     f: &SourceFile,
     raw: &RawScenario,
-    duration_s: f64,
+    extent: Extent,
 ) -> Result<(FloeSource, Range<usize>, f64), ScenarioError> {
     match (&raw.tessellation, &raw.floe) {
         (Some(t), Some(floes)) => {
@@ -587,7 +667,7 @@ fn resolve_floes(
         (None, Some(floes)) => {
             let mut out = Vec::with_capacity(floes.len());
             for (i, fl) in floes.iter().enumerate() {
-                out.push(resolve_explicit_floe(f, fl, i, duration_s)?);
+                out.push(resolve_explicit_floe(f, fl, i, extent)?);
             }
             let span = floes.first().map_or(0..0, |fl| fl.span());
             Ok((FloeSource::Explicit(out), span, 0.0))
@@ -600,7 +680,7 @@ fn resolve_explicit_floe(
     f: &SourceFile,
     raw: &Spanned<RawFloe>,
     i: usize,
-    duration_s: f64,
+    extent: Extent,
 ) -> Result<ExplicitFloe, ScenarioError> {
     let fl = raw.get_ref();
     let key = |k: &str| format!("floe[{i}].{k}");
@@ -660,7 +740,7 @@ fn resolve_explicit_floe(
                 let velocity = pair(f, v, &key("velocity_m_per_s"))?;
                 // A prescribed floe keeps its velocity: bound its travel.
                 if fl.prescribed.as_ref().is_some_and(|p| *p.get_ref()) {
-                    travel_within(f, v, &key("velocity_m_per_s"), velocity, duration_s, "floe")?;
+                    travel_within(f, v, &key("velocity_m_per_s"), velocity, extent, "floe")?;
                 }
                 Ok::<_, ScenarioError>(velocity)
             })
@@ -858,19 +938,21 @@ fn resolve_tessellation(
                 }
                 (None, None) => return Err(need("count` or `floe_scale_m")),
             };
+            let relax_iterations = match &t.relax_iterations {
+                Some(r) => {
+                    let key = "tessellation.relax_iterations";
+                    let n = count(f, r, key, 0, MAX_RELAX_ITERATIONS)?;
+                    if let Some(sites) = count_n {
+                        voronoi_work(f, r.span(), key, sites, n)?;
+                    }
+                    n
+                }
+                None => 1,
+            };
             FloeSource::Voronoi {
                 count: count_n,
                 floe_scale_m: scale,
-                relax_iterations: match &t.relax_iterations {
-                    Some(r) => count(
-                        f,
-                        r,
-                        "tessellation.relax_iterations",
-                        0,
-                        MAX_RELAX_ITERATIONS,
-                    )?,
-                    None => 1,
-                },
+                relax_iterations,
             }
         }
         "grid" => {
@@ -963,7 +1045,12 @@ fn resolve_contact(
     let mut m = ContactModel::default();
     if let Some(c) = raw {
         if let Some(v) = &c.youngs_modulus_pa {
-            m.youngs_modulus_pa = f.positive(v, "contact.youngs_modulus_pa")?;
+            m.youngs_modulus_pa = f.in_range(
+                v,
+                "contact.youngs_modulus_pa",
+                YOUNGS_MODULUS_RANGE_PA,
+                "Pa",
+            )?;
         }
         if let Some(v) = &c.poisson_ratio {
             m.poisson_ratio = within(f, v, "contact.poisson_ratio", 0.0, 0.5, true)?;
@@ -1234,7 +1321,7 @@ fn resolve_forcing(
 fn resolve_walls(
     f: &SourceFile,
     raw: &[Spanned<RawWall>],
-    duration_s: f64,
+    extent: Extent,
 ) -> Result<Vec<Wall>, ScenarioError> {
     let mut walls: Vec<Wall> = Vec::with_capacity(raw.len());
     for (i, w) in raw.iter().enumerate() {
@@ -1273,7 +1360,7 @@ fn resolve_walls(
             Some(v) => {
                 let velocity = pair(f, v, &key("velocity_m_per_s"))?;
                 // The wall is built as long as its travel: bound that.
-                travel_within(f, v, &key("velocity_m_per_s"), velocity, duration_s, "wall")?;
+                travel_within(f, v, &key("velocity_m_per_s"), velocity, extent, "wall")?;
                 velocity
             }
             None => Vec2::ZERO,
@@ -1289,7 +1376,23 @@ fn resolve_walls(
             thickness_m: r
                 .thickness_m
                 .as_ref()
-                .map(|v| length(f, v, &key("thickness_m")))
+                .map(|v| {
+                    // Thicker than the domain adds nothing but segments.
+                    let t = f.positive(v, &key("thickness_m"))?;
+                    let most = extent.domain.size_m.x.max(extent.domain.size_m.y);
+                    if t <= most {
+                        return Ok(t);
+                    }
+                    Err(f.error(
+                        v.span(),
+                        key("thickness_m"),
+                        format!(
+                            "{} m is thicker than the domain's larger side, {} m",
+                            short(t),
+                            sig(most)
+                        ),
+                    ))
+                })
                 .transpose()?,
             span: side_word.span(),
             velocity_span: r.velocity_m_per_s.as_ref().map_or(w.span(), |v| v.span()),

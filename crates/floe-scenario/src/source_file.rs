@@ -23,7 +23,25 @@ impl SourceFile {
     /// error at the first of them, saying what the file looks like (an
     /// HDF5 run file, gzip, UTF-16, Latin-1 text).
     pub fn read(path: &Path) -> Result<Self, ScenarioError> {
-        let bytes = std::fs::read(path).map_err(|e| ScenarioError::io(path, e))?;
+        use std::io::Read;
+        // Scenario and protocol files are kilobytes; `/dev/zero` never ends.
+        const MOST_BYTES: u64 = 64 << 20;
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .and_then(|f| f.take(MOST_BYTES + 1).read_to_end(&mut bytes))
+            .map_err(|e| ScenarioError::io(path, e))?;
+        if bytes.len() as u64 > MOST_BYTES {
+            return Err(ScenarioError::Input {
+                file: path.to_path_buf(),
+                line: 1,
+                column: 1,
+                key: None,
+                message: format!(
+                    "more than {} MiB: not a scenario or protocol file",
+                    MOST_BYTES >> 20
+                ),
+            });
+        }
         match String::from_utf8(bytes) {
             Ok(text) => Ok(Self {
                 path: path.to_path_buf(),
@@ -149,7 +167,7 @@ impl SourceFile {
             }
             let span = e.span().unwrap_or(0..0);
             let (line, column) = self.line_column(span.start);
-            let message = clipped(e.message().trim().to_string());
+            let message = clipped(plain_serde(e.message().trim()));
             // serde names the key in "unknown field" messages already.
             let key = if message.starts_with("unknown field") {
                 None
@@ -288,6 +306,24 @@ impl SourceFile {
             ))
         }
     }
+}
+
+/// serde's wording made plain: the number it quotes in short form
+/// (`floating point `1e300``, not 301 digits) and `expected i64` as
+/// `expected an integer`.
+fn plain_serde(message: &str) -> String {
+    let mut out = message
+        .replace("expected i64", "expected an integer")
+        .replace("expected u64", "expected an integer >= 0");
+    let marker = "floating point `";
+    if let Some(start) = out.find(marker).map(|i| i + marker.len()) {
+        if let Some(len) = out[start..].find('`') {
+            if let Ok(x) = out[start..start + len].parse::<f64>() {
+                out.replace_range(start..start + len, &short(x));
+            }
+        }
+    }
+    out
 }
 
 /// A key (or message) as shown: one of thousands of parts is cut.

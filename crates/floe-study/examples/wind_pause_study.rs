@@ -91,6 +91,7 @@ fn study() -> Result<(), CliError> {
                     metrics: MetricOptions::default(),
                     provenance: Provenance::of_this_process("unknown"),
                     registry: floe_friction::LawRegistry::builtin(),
+                    step_limit: floe_scenario::MAX_RUN_STEPS,
                 },
                 &Printed,
             )?;

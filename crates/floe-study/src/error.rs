@@ -63,6 +63,18 @@ pub enum Error {
         /// What happened, where, and the suggested time step.
         message: String,
     },
+    /// Some variants of a sweep did not complete (each row says why).
+    #[error("{failed} of {total} variants did not complete ({names}); their rows in {} say why", table.display())]
+    VariantsFailed {
+        /// How many failed.
+        failed: usize,
+        /// How many there were.
+        total: usize,
+        /// Their names.
+        names: String,
+        /// The results table.
+        table: PathBuf,
+    },
 }
 
 impl Error {

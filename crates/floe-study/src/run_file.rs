@@ -162,6 +162,14 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
     if args.output.exists() && !args.force {
         return Err(Error::WouldOverwrite(args.output.clone()));
     }
+    // --force replaces a run file, never a device, a directory or a pipe.
+    if args.output.exists() && !args.output.is_file() {
+        return Err(Error::Usage(format!(
+            "-o {}: exists and is not a regular file; a run is written to a new file \
+             or replaces a regular one",
+            args.output.display()
+        )));
+    }
     let threads = thread_count(args.threads.or(scenario.threads()))?;
     let pool = pool(threads)?;
     pool.install(|| {
@@ -219,12 +227,13 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         || [d.size_m.x, d.size_m.y] != recorded.size_m
         || d.periodic != recorded.periodic
     {
-        return Err(Error::Usage(format!(
-            "{}: the stored scenario's domain is not the one the run began in \
-             (/parameters/domain); the scenario was changed after the run began, \
-             and a run resumes only with the scenario it started with",
-            args.output.display()
-        )));
+        return Err(Error::Output(floe_io::IoError::Invalid {
+            path: args.output.clone(),
+            reason: "the stored scenario's domain is not the one the run began in \
+                     (/parameters/domain): the scenario was changed after the run began, \
+                     and a run resumes only with the scenario it started with"
+                .into(),
+        }));
     }
     let threads = thread_count(args.threads.or(scenario.threads()))?;
     let pool = pool(threads)?;

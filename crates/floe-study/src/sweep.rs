@@ -45,6 +45,9 @@ pub struct SweepArgs {
     pub provenance: Provenance,
     /// The friction laws the scenario may name.
     pub laws: LawRegistry,
+    /// Most time steps a variant may take ([`floe_scenario::MAX_RUN_STEPS`]
+    /// by default): a longer one is refused before anything runs.
+    pub step_limit: f64,
 }
 
 /// The caller's hooks without progress reports: variants run side by side.
@@ -78,6 +81,21 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
     Scenario::from_text_with(&text, &args.scenario, &args.laws)?;
     let combos = cartesian(&args.settings);
+    // Every variant is made and built (floes, time step, step limit)
+    // before anything is written, so a bad one is found at once.
+    let mut variants = Vec::with_capacity(combos.len());
+    for choice in &combos {
+        let variant_text = apply(&text, &args.scenario, &args.settings, choice)?;
+        let origin = PathBuf::from(format!(
+            "{} with {}",
+            args.scenario.display(),
+            label(&args.settings, choice)
+        ));
+        Scenario::from_text_with(&variant_text, &origin, &args.laws)?
+            .with_max_steps(args.step_limit)
+            .build()?;
+        variants.push(variant_text);
+    }
     let manifest = args.out_dir.join(MANIFEST);
     refuse_overwriting_input(&args.scenario, "scenario file", [manifest.as_path()])?;
     if manifest.exists() && !args.force {
@@ -85,16 +103,8 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     }
     std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
     let mut rows = Vec::with_capacity(combos.len());
-    for (id, choice) in combos.iter().enumerate() {
-        let variant_text = apply(&text, &args.scenario, &args.settings, choice)?;
+    for (id, (choice, variant_text)) in combos.iter().zip(variants).enumerate() {
         let name = format!("variant_{:03}", id + 1);
-        let origin = PathBuf::from(format!(
-            "{} with {}",
-            args.scenario.display(),
-            label(&args.settings, choice)
-        ));
-        // Each variant must be a valid scenario before anything runs.
-        Scenario::from_text_with(&variant_text, &origin, &args.laws)?;
         let file = args.out_dir.join(format!("{name}.toml"));
         refuse_overwriting_input(&args.scenario, "scenario file", [file.as_path()])?;
         if file.exists() && !args.force {
@@ -135,7 +145,7 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
                         force: args.force,
                         resume: false,
                         max_steps: None,
-                        step_limit: floe_scenario::MAX_RUN_STEPS,
+                        step_limit: args.step_limit,
                         provenance: args.provenance.clone(),
                         laws: args.laws.clone(),
                     },
@@ -158,12 +168,12 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     let table = gather(&args.out_dir, &args.metrics)?;
     let failed = failures.into_inner().expect("no panics");
     if !failed.is_empty() {
-        hooks.say(&format!(
-            "sweep: {} of {} variants did not complete ({}); their rows say why",
-            failed.len(),
-            rows.len(),
-            failed.join(", ")
-        ));
+        return Err(Error::VariantsFailed {
+            failed: failed.len(),
+            total: rows.len(),
+            names: failed.join(", "),
+            table,
+        });
     }
     Ok(table)
 }

@@ -40,16 +40,28 @@ pub struct CompareArgs {
     pub provenance: Provenance,
     /// The friction laws the scenario may name.
     pub registry: LawRegistry,
+    /// Most time steps a run may take ([`floe_scenario::MAX_RUN_STEPS`] by
+    /// default): a longer scenario is refused before anything runs.
+    pub step_limit: f64,
 }
 
 /// Runs the variants and writes the report; returns the report's path.
 /// `hooks` hear what each run says and may interrupt it.
 pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     thread_count(args.threads)?;
+    if args.matching.amontons_mu.is_some() && !args.laws.contains(&LawChoice::Amontons) {
+        return Err(Error::Usage(
+            "--amontons-mu applies to the amontons law, which --laws does not include".into(),
+        ));
+    }
     let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
     let origin = args.scenario.as_path();
-    // Checks the user's file as written first, so its errors point into it.
-    Scenario::from_text_with(&text, origin, &args.registry)?;
+    // Checks and builds the user's file as written first, so its errors
+    // (time step, step limit, floes) point into it; only friction differs
+    // between the variants.
+    Scenario::from_text_with(&text, origin, &args.registry)?
+        .with_max_steps(args.step_limit)
+        .build()?;
     let (reference, reference_text) = reference_law(&text, origin, |t| {
         Ok(Scenario::from_text_with(t, origin, &args.registry)?
             .contact_model()
@@ -146,7 +158,7 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
                 force: args.force,
                 resume: false,
                 max_steps: None,
-                step_limit: floe_scenario::MAX_RUN_STEPS,
+                step_limit: args.step_limit,
                 provenance: args.provenance.clone(),
                 laws: args.registry.clone(),
             },

@@ -171,33 +171,38 @@ fn observables_figure(file: &Path, path: &Path) -> Result<(), Error> {
     let series: std::collections::HashMap<&str, Series> = RunFile::read_retrying(file, |run| {
         SERIES
             .iter()
-            .map(|&name| Ok((name, run.observable(name)?)))
+            .map(|&name| {
+                let s = run.observable(name)?;
+                let width = if name == "mean_stress" { 4 } else { 1 };
+                if s.sample_shape.iter().product::<usize>() != width {
+                    return Err(IoError::Invalid {
+                        path: file.to_path_buf(),
+                        reason: format!(
+                            "observable {name} has samples of shape {:?}, expected {width} values",
+                            s.sample_shape
+                        ),
+                    });
+                }
+                Ok((name, s))
+            })
             .collect()
     })?;
-    let hours = |t: &[f64]| t.iter().map(|t| t / 3600.0).collect::<Vec<_>>();
+    let hours = |t: f64| t / 3600.0;
+    // Component `c` of each sample of `name` (shapes checked above).
+    let samples = |name: &str, c: usize, scale: f64| -> Vec<(f64, f64)> {
+        series.get(name).map_or_else(Vec::new, |s| {
+            let width = s.value.len() / s.time_s.len().max(1);
+            s.time_s
+                .iter()
+                .zip(s.value.chunks_exact(width.max(1)))
+                .map(|(&t, v)| (hours(t), v[c] * scale))
+                .collect()
+        })
+    };
     let line = |name: &str, label: &str, scale: f64| -> Result<Line, Error> {
-        let s = &series[name];
-        let t = hours(&s.time_s);
-        let width = s.value.len() / s.time_s.len().max(1);
-        Ok(Line::new(
-            label,
-            t.iter()
-                .enumerate()
-                .map(|(k, &t)| (t, s.value[k * width] * scale))
-                .collect(),
-        ))
+        Ok(Line::new(label, samples(name, 0, scale)))
     };
-    let stress = &series["mean_stress"];
-    let t = hours(&stress.time_s);
-    let component = |c: usize, label: &str| {
-        Line::new(
-            label,
-            t.iter()
-                .enumerate()
-                .map(|(k, &t)| (t, stress.value[4 * k + c] * 1e-3))
-                .collect(),
-        )
-    };
+    let component = |c: usize, label: &str| Line::new(label, samples("mean_stress", c, 1e-3));
     let panels = vec![
         (
             Axes {
