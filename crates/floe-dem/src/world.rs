@@ -56,11 +56,11 @@ use crate::contacts::{BrokenContact, ContactRecord};
 use crate::energy_ledger::EnergyLedger;
 use crate::error::DemError;
 use crate::floes::{Floe, Floes, Motion};
-use crate::forcing::ExternalForces;
+use crate::forcing::{ExternalForces, ForceRates};
 use crate::periodicity::Periodicity;
 use crate::pipeline::broad_phase::BroadPhase;
 use crate::pipeline::force_gathering::ForceBuffers;
-use crate::pipeline::integrator::{self, floe_stable_step};
+use crate::pipeline::integrator::{self, floe_stable_step, KickForces};
 use crate::pipeline::narrow_phase::{ContactSet, DetectionInput};
 use crate::pipeline::{Pipeline, Stage};
 use crate::state::WorldState;
@@ -409,11 +409,13 @@ impl<F: ExternalForces> World<F> {
         let p = &mut self.pipeline;
         let (floes, contacts) = (&s.floes, &s.contacts);
         let accounting = &mut p.accounting;
+        p.rates.resize(floes.len(), ForceRates::ZERO);
         let out = ForceBuffers {
             force: &mut s.force,
             torque: &mut s.torque,
             external_force: &mut s.external_force,
             external_torque: &mut s.external_torque,
+            rates: &mut p.rates,
         };
         p.gathering
             .gather(floes, contacts, &self.forcing, s.time_s, out, || {
@@ -426,11 +428,17 @@ impl<F: ExternalForces> World<F> {
     pub fn kick(&mut self) {
         self.pipeline.enter(Stage::Kick);
         let s = &mut self.state;
-        let a = &mut self.pipeline.accounting;
+        let p = &mut self.pipeline;
+        let a = &mut p.accounting;
         integrator::kick(
             s.floes.columns_mut(),
-            (&s.force, &s.torque),
-            (&s.external_force, &s.external_torque),
+            KickForces {
+                force: &mut s.force,
+                torque: &mut s.torque,
+                external_force: &mut s.external_force,
+                external_torque: &mut s.external_torque,
+                rates: &p.rates,
+            },
             (&a.previous_external_force, &a.previous_external_torque),
             &mut a.forcing_partials,
             s.dt_s,

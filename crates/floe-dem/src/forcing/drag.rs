@@ -132,6 +132,53 @@ impl DragParameters {
         }
     }
 
+    /// `∂τ/∂u_ice`, Pa s/m, row by row: `−ρ C_d R(φ) (|U_rel| I + U_rel
+    /// U_rel^T / |U_rel|)`; zero when the drag ignores the ice's motion (or
+    /// at `U_rel = 0`, where `|U_rel| U_rel` has a zero derivative).
+    #[inline]
+    pub fn stress_rate(&self, fluid_m_per_s: Vec2, ice_m_per_s: Vec2) -> [[f64; 2]; 2] {
+        let u = self.relative_velocity(fluid_m_per_s, ice_m_per_s);
+        let speed = u.length();
+        if !self.relative_to_ice || speed == 0.0 {
+            return [[0.0; 2]; 2];
+        }
+        let k = self.rho_cd();
+        // d(|u| u)/du, and du/du_ice = -I.
+        let s = [
+            [speed + u.x * u.x / speed, u.x * u.y / speed],
+            [u.y * u.x / speed, speed + u.y * u.y / speed],
+        ];
+        let (sin, cos) = if self.turning_angle_deg == 0.0 {
+            (0.0, 1.0)
+        } else {
+            self.turning_angle_deg.to_radians().sin_cos()
+        };
+        let r = [[cos, -sin], [sin, cos]];
+        let mut out = [[0.0; 2]; 2];
+        for (i, row) in out.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x = -k * (r[i][0] * s[0][j] + r[i][1] * s[1][j]);
+            }
+        }
+        out
+    }
+
+    /// `∂T/∂ω` of [`DragParameters::rotational_torque`], N m s:
+    /// `−2 ρ C_d cos φ |ω| ∫ r³ dA`.
+    #[inline]
+    pub fn rotational_torque_rate(
+        &self,
+        relative_angular_velocity_rad_per_s: f64,
+        r3_moment_m5: f64,
+    ) -> f64 {
+        let cos_phi = if self.turning_angle_deg == 0.0 {
+            1.0
+        } else {
+            self.turning_angle_deg.to_radians().cos()
+        };
+        -2.0 * self.rho_cd() * cos_phi * relative_angular_velocity_rad_per_s.abs() * r3_moment_m5
+    }
+
     /// Rotational drag torque, N m, on a floe spinning at
     /// `relative_angular_velocity_rad_per_s` (`ω − ζ/2`, counterclockwise
     /// positive) with `∫ r³ dA = r3_moment_m5` (m⁵):

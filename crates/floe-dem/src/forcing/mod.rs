@@ -60,7 +60,7 @@ pub use drag::{
     polygon_r3_moment, rotate, DragParameters, AIR_DENSITY_KG_PER_M3, AIR_DRAG_COEFFICIENT,
     OCEAN_DRAG_COEFFICIENT, SEAWATER_DENSITY_KG_PER_M3,
 };
-pub use external::{ExternalForces, NoForcing};
+pub use external::{ExternalForces, ForceRates, NoForcing};
 pub use fields::{Envelope, VelocityField};
 pub use free_drift::free_drift_velocity;
 
@@ -129,14 +129,36 @@ impl Forcing {
     /// in the module docs. Does not allocate.
     #[inline]
     pub fn force_and_torque(&self, t_s: f64, floe: &FloeDynamics) -> (Vec2, f64) {
+        let (force, torque, _) = self.force_torque_and_rates(t_s, floe);
+        (force, torque)
+    }
+
+    /// [`Forcing::force_and_torque`] and its derivatives with the floe's
+    /// velocity and angular velocity (drag and Coriolis depend on them).
+    #[inline]
+    pub fn force_torque_and_rates(&self, t_s: f64, floe: &FloeDynamics) -> (Vec2, f64, ForceRates) {
         let wind = self.wind.velocity(floe.position, t_s);
         let current = self.current.velocity(floe.position, t_s);
         let stress =
             self.air.stress(wind, floe.velocity) + self.ocean.stress(current, floe.velocity);
         let mut force = floe.area_m2 * stress;
+        let mut rates = ForceRates::ZERO;
+        let (air, ocean) = (
+            self.air.stress_rate(wind, floe.velocity),
+            self.ocean.stress_rate(current, floe.velocity),
+        );
+        for (i, row) in rates.force_per_velocity.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x = floe.area_m2 * (air[i][j] + ocean[i][j]);
+            }
+        }
         let f = self.coriolis.parameter_per_s();
         if f != 0.0 {
             force += coriolis_force(floe.mass_kg, f, floe.velocity);
+            // -m f k x u = m f (u_y, -u_x).
+            let mf = floe.mass_kg * f;
+            rates.force_per_velocity[0][1] += mf;
+            rates.force_per_velocity[1][0] -= mf;
             if self.sea_surface_tilt {
                 force += sea_surface_tilt_force(floe.mass_kg, f, current);
             }
@@ -147,10 +169,12 @@ impl Forcing {
                 if drag.relative_to_ice {
                     let w_rel = floe.angular_velocity - 0.5 * field.vorticity(floe.position, t_s);
                     torque += drag.rotational_torque(w_rel, floe.r3_moment_m5);
+                    rates.torque_per_angular_velocity +=
+                        drag.rotational_torque_rate(w_rel, floe.r3_moment_m5);
                 }
             }
         }
-        (force, torque)
+        (force, torque, rates)
     }
 
     /// The steady free-drift velocity (m/s) of ice of mass per area

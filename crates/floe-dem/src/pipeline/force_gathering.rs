@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use crate::contact_kernel::contact_force_on_b;
 use crate::contacts::ContactRecord;
 use crate::floes::FloeColumns;
-use crate::forcing::ExternalForces;
+use crate::forcing::{ExternalForces, ForceRates};
 use crate::geometry::cross;
 use crate::Vec2;
 
@@ -32,12 +32,14 @@ pub(crate) struct ForceGathering {
 }
 
 /// Where the gathered forces go: per floe, the total force (N) and torque
-/// (N m), and their external parts.
+/// (N m), their external parts, and the external parts' rates with the
+/// floe's velocity.
 pub(crate) struct ForceBuffers<'a> {
     pub(crate) force: &'a mut [Vec2],
     pub(crate) torque: &'a mut [f64],
     pub(crate) external_force: &'a mut [Vec2],
     pub(crate) external_torque: &'a mut [f64],
+    pub(crate) rates: &'a mut [ForceRates],
 }
 
 impl ForceGathering {
@@ -123,18 +125,20 @@ fn gather_per_floe<F: ExternalForces>(
         torque,
         external_force,
         external_torque,
+        rates,
     } = out;
-    (force, torque, (external_force, external_torque))
+    (force, torque, (external_force, external_torque, rates))
         .into_par_iter()
         .enumerate()
-        .for_each(|(i, (force, torque, (ext_f, ext_t)))| {
-            let (ef, et) = if f.is_free(i) {
-                forcing.force_and_torque(t, f, i)
+        .for_each(|(i, (force, torque, (ext_f, ext_t, rate)))| {
+            let (ef, et, r) = if f.is_free(i) {
+                forcing.force_torque_and_rates(t, f, i)
             } else {
-                (Vec2::ZERO, 0.0)
+                (Vec2::ZERO, 0.0, ForceRates::ZERO)
             };
             *ext_f = ef;
             *ext_t = et;
+            *rate = r;
             let (mut fsum, mut tsum) = (ef, et);
             let as_b = adjacency[start[i] as usize..start[i + 1] as usize]
                 .iter()

@@ -7,7 +7,7 @@
 //! | narrow phase | [`narrow_phase`] | candidate pairs, floes | contact list: overlaps, normal forces; contacts formed, continued, ended; contact memory |
 //! | friction | [`friction`] | each contact's load | its tangential spring and friction state (the one call of the law) |
 //! | force gathering | [`force_gathering`] | contacts, forcing | per-floe force and torque |
-//! | kick | [`integrator`] | forces | velocities |
+//! | kick | [`integrator`] | forces and their rates with velocity | velocities; external forces at the new velocities |
 //! | energy accounting | [`energy_accounting`] | contacts, forces, velocities | the energy ledger |
 //!
 //! [`World::step`](crate::world::World::step) runs them in that order;
@@ -64,6 +64,9 @@ pub struct Pipeline {
     pub(crate) accounting: EnergyAccounting,
     /// Each floe's `(sin, cos)` of its angle, from the drift.
     pub(crate) trig: Vec<(f64, f64)>,
+    /// Each floe's external force rates, from the force gathering for the
+    /// kick.
+    pub(crate) rates: Vec<crate::forcing::ForceRates>,
     /// A floe moved beyond the broad phase's allowance in the drift.
     pub(crate) moved_far: bool,
     pub(crate) next: Stage,
@@ -78,6 +81,7 @@ impl Pipeline {
             gathering: ForceGathering::default(),
             accounting: EnergyAccounting::default(),
             trig: Vec::new(),
+            rates: Vec::new(),
             moved_far: true,
             next: Stage::Drift,
         }

@@ -34,6 +34,16 @@ pub enum Fault {
         /// Global id of the floe.
         floe_id: u64,
     },
+    /// A free floe travels farther in one step than its bounding radius
+    /// (or turns by more than a radian): contacts would be stepped over.
+    TooFast {
+        /// Global id of the floe.
+        floe_id: u64,
+        /// How far its rim moves in one step, m.
+        step_travel_m: f64,
+        /// Its bounding radius, m.
+        radius_m: f64,
+    },
     /// Two floes overlap beyond [`MAX_OVERLAP_FRACTION`].
     Overlap {
         /// Global ids of the two floes.
@@ -62,6 +72,15 @@ impl fmt::Display for BlowUp {
             Fault::NonFinite { floe_id } => {
                 write!(f, "floe {floe_id} has a non-finite position or velocity")?
             }
+            Fault::TooFast {
+                floe_id,
+                step_travel_m,
+                radius_m,
+            } => write!(
+                f,
+                "floe {floe_id} moves {step_travel_m:.3e} m in one step, more than its radius \
+                 {radius_m:.3e} m"
+            )?,
             Fault::Overlap { floe_ids, fraction } => write!(
                 f,
                 "floes {} and {} overlap by {:.0} % of the smaller one (limit {:.0} %)",
@@ -84,6 +103,7 @@ impl fmt::Display for BlowUp {
 /// in pair order (so the report is the same for any thread count).
 pub fn check_health<F: ExternalForces>(world: &World<F>) -> Option<BlowUp> {
     let f = &world.floes();
+    let dt = world.dt_s();
     let fault = (0..f.len())
         .find(|&i| {
             !(f.position[i].is_finite()
@@ -92,6 +112,17 @@ pub fn check_health<F: ExternalForces>(world: &World<F>) -> Option<BlowUp> {
                 && f.angular_velocity[i].is_finite())
         })
         .map(|i| Fault::NonFinite { floe_id: f.id[i] })
+        .or_else(|| {
+            (0..f.len()).find_map(|i| {
+                let r = f.radius_m[i];
+                let travel = (f.velocity[i].length() + f.angular_velocity[i].abs() * r) * dt;
+                (f.is_free(i) && travel > r).then_some(Fault::TooFast {
+                    floe_id: f.id[i],
+                    step_travel_m: travel,
+                    radius_m: r,
+                })
+            })
+        })
         .or_else(|| {
             world.contacts().iter().find_map(|c| {
                 let (a, b) = (c.a as usize, c.b as usize);
