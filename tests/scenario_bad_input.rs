@@ -421,3 +421,27 @@ fn load_reports_unreadable_files() {
     assert!(e.is_input() && matches!(e, ScenarioError::Io { .. }));
     assert!(e.to_string().contains("/nonexistent/scenario.toml"));
 }
+
+#[test]
+fn the_published_form_is_refused_for_dem_contacts_with_the_reason() {
+    // Eq. 4b slips only along perp(normal), so mirror-image
+    // contacts (the double shear's two faces) get different friction.
+    let t = format!("{BASE}\n[friction]\nlaw = \"rate-state\"\nform = \"published\"\n");
+    check(
+        &t,
+        "\"published\"",
+        0,
+        "friction.form",
+        &[
+            "spring-slider",
+            "counter-clockwise",
+            "mirror-image",
+            "`regularized`",
+        ],
+    );
+    let t = format!("{BASE}\n[friction]\nlaw = \"rate-state\"\nform = \"regularized\"\n");
+    Scenario::from_text(&t, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+}

@@ -77,7 +77,7 @@ pub const PARAMS: &[ParamSpec] = &[
         unit: "",
         kind: ParamKind::Word(&["regularized", "published", "regularised"]),
         default: ParamDefault::Form,
-        meaning: "`regularized`: sign-consistent, for DEM contacts; `published`: eq. 4b, creeps at zero or reversed force",
+        meaning: "`regularized`: sign-consistent, for DEM contacts; `published`: eq. 4b, creeps at zero or reversed force (slider protocols only; refused in scenarios)",
     },
     ParamSpec {
         key: "state_law",

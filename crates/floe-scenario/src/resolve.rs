@@ -1141,6 +1141,29 @@ fn resolve_contact(
             default_form: Form::Regularized,
         },
     )?;
+    // The published form (eq. 4b) slips only forward, `V > 0`: in the DEM,
+    // "forward" is the contact's tangent `perp(normal)`, a counter-clockwise
+    // turn from the pair's normal, so the law favours one sense of relative
+    // rotation and mirror-image contacts get different friction (the
+    // double shear's two faces: 0.737 against 3.50). Refused here, not
+    // in `floe_dem`: the spring-slider protocols use it as the paper does.
+    if let floe_friction::Law::RateState(rs) = &m.law {
+        if rs.form == Form::Published {
+            let span = fr
+                .get("form")
+                .or_else(|| fr.get("law"))
+                .map_or(0..0, |v| v.span());
+            return Err(f.error(
+                span,
+                "friction.form",
+                "`published` (eq. 4b) is for the spring-slider (`floe slider`), not DEM \
+                 contacts: its slip rate is positive whatever the force, so a contact slips \
+                 only counter-clockwise (along perp(normal)), creeps against a reversed force, \
+                 and mirror-image contacts get different friction; use `regularized` \
+                 (sign-consistent: V = 2 V* exp(-(mu0 + theta)/A) sinh(mu/A), docs/friction.md)",
+            ));
+        }
+    }
     Ok(m)
 }
 

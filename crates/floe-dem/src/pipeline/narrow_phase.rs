@@ -54,6 +54,9 @@ pub(crate) struct DetectionInput<'a> {
     pub(crate) model: &'a ContactModel,
     /// The domain's periodic axes.
     pub(crate) periodicity: Periodicity,
+    /// The normal dashpot's damping ratio (`ContactModel::damping_ratio`,
+    /// computed once per world).
+    pub(crate) damping_ratio: f64,
     /// The step (0: detection without a friction step, at the start).
     pub(crate) dt: f64,
     /// Simulated time at the end of the step, s.
@@ -139,7 +142,7 @@ impl NarrowPhase {
         self.find_runs(pairs, chunk, n_chunks, set.contacts);
         let model = input.model;
         let dt = input.dt;
-        let damping_ratio = model.damping_ratio();
+        let damping_ratio = input.damping_ratio;
         let periodicity = input.periodicity;
         let trig = input.trig;
         let broken = &*set.broken;
