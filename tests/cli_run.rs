@@ -223,6 +223,47 @@ fn pausing_and_resuming_on_another_thread_count_is_bitwise_the_uninterrupted_run
     );
 }
 
+#[test]
+fn a_run_paused_in_the_middle_of_a_wall_schedule_resumes_bitwise() {
+    // The top wall slides, slows over a ramp, holds and reverses; the pauses
+    // at steps 137 (t = 68.5 s, in the ramp) and 238 (119 s, in the hold)
+    // fall inside segments and between them.
+    let scheduled = SMALL.replace(
+        "side = \"top\"\nvelocity_m_per_s = [0.5, 0.0]\n",
+        "side = \"top\"\n\n[[wall.segment]]\nduration_s = 50.0\nvelocity_m_per_s = [0.5, 0.0]\n\n\
+         [[wall.segment]]\nduration_s = 20.0\nvelocity_m_per_s = [0.5, 0.0]\n\
+         end_velocity_m_per_s = [0.0, 0.0]\n\n[[wall.segment]]\nduration_s = 60.0\n\n\
+         [[wall.segment]]\nduration_s = 70.0\nvelocity_m_per_s = [-0.5, -0.002]\n",
+    );
+    assert_ne!(scheduled, SMALL, "the scenario has a top wall to schedule");
+    let case = Case::new(&scheduled);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+    // The wall went where its schedule says: 25 + 5 + 0 - 35 m along x,
+    // -0.14 m across, at t = 200 s.
+    let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
+    let (first, last) = (
+        f.snapshot(0).unwrap(),
+        f.snapshot(f.snapshot_count().unwrap() - 1).unwrap(),
+    );
+    assert_eq!(last.time_s, 200.0);
+    let n = first.position.len();
+    let dx = last.position[n - 1][0] - first.position[n - 1][0];
+    let dy = last.position[n - 1][1] - first.position[n - 1][1];
+    assert!(
+        (dx + 5.0).abs() < 1e-9 && (dy + 0.14).abs() < 1e-9,
+        "{dx}, {dy}"
+    );
+}
+
 /// Waits until the run has written a checkpoint past step 0, so that a
 /// signal lands in the middle of stepping rather than in start-up.
 fn wait_for_progress(child: &mut Child, file: &Path) {

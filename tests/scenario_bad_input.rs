@@ -445,3 +445,134 @@ fn the_published_form_is_refused_for_dem_contacts_with_the_reason() {
         .build()
         .unwrap();
 }
+
+/// `BASE` between walls, the top one on `segments` (TOML text).
+fn with_top_schedule(segments: &str) -> String {
+    format!("{BASE}\n[[wall]]\nside = \"bottom\"\n\n[[wall]]\nside = \"top\"\n{segments}")
+}
+
+#[test]
+fn a_motion_schedule_is_checked_where_it_is_written() {
+    let ok = with_top_schedule(
+        "\n[[wall.segment]]\nduration_s = 10.0\nvelocity_m_per_s = [0.1, 0.0]\n\n\
+         [[wall.segment]]\nduration_s = 20.0\nend_velocity_m_per_s = [-0.1, 0.0]\n",
+    );
+    let s = Scenario::from_text(&ok, Path::new("ok.toml")).unwrap();
+    let world = s.build().unwrap().world;
+    let f = world.floes();
+    let walls = (0..f.len()).filter(|&i| !f.is_free(i)).count();
+    assert_eq!(
+        world.schedules().len(),
+        walls / 2,
+        "one per piece of the top wall"
+    );
+    // Both a velocity and segments.
+    let both =
+        with_top_schedule("velocity_m_per_s = [0.1, 0.0]\n\n[[wall.segment]]\nduration_s = 10.0\n");
+    check(
+        &both,
+        "[0.1, 0.0]\n\n[[wall",
+        0,
+        "wall[1].velocity_m_per_s",
+        &["not both"],
+    );
+    // A segment without a duration, or a zero one.
+    let missing = with_top_schedule("\n[[wall.segment]]\nvelocity_m_per_s = [0.1, 0.0]\n");
+    check(
+        &missing,
+        "[[wall.segment]]",
+        0,
+        "wall[1].segment[0].duration_s",
+        &["missing"],
+    );
+    let zero = with_top_schedule("\n[[wall.segment]]\nduration_s = 0.0\n");
+    check(
+        &zero,
+        "duration_s = 0.0",
+        13,
+        "wall[1].segment[0].duration_s",
+        &["> 0"],
+    );
+    // A turning wall.
+    let turning = with_top_schedule(
+        "\n[[wall.segment]]\nduration_s = 10.0\nangular_velocity_rad_per_s = 0.01\n",
+    );
+    check(
+        &turning,
+        "0.01",
+        0,
+        "wall[1].segment[0].angular_velocity_rad_per_s",
+        &["prescribed [[floe]]"],
+    );
+    // A key the segment does not have.
+    let typo = with_top_schedule("\n[[wall.segment]]\nduration_s = 10.0\nspeed = 1.0\n");
+    check(&typo, "speed", 0, "speed", &["unknown field"]);
+    // Travel beyond 100 domain sizes (4000 m domain, 100 s run) in the
+    // second segment.
+    let far = with_top_schedule(
+        "\n[[wall.segment]]\nduration_s = 10.0\nvelocity_m_per_s = [0.0, 0.1]\n\n\
+         [[wall.segment]]\nduration_s = 50.0\nvelocity_m_per_s = [0.0, 1e4]\n",
+    );
+    check(
+        &far,
+        "[[wall.segment]]\nduration_s = 50.0",
+        0,
+        "wall[1].segment[1]",
+        &["100 domain sizes"],
+    );
+    // Walls that a schedule drives into each other within the run: the top
+    // wall comes down 4000 m by t = 60 s.
+    let crossing = with_top_schedule(
+        "\n[[wall.segment]]\nduration_s = 20.0\n\n[[wall.segment]]\nduration_s = 80.0\n\
+         velocity_m_per_s = [0.0, -100.0]\n",
+    );
+    check(
+        &crossing,
+        "[[wall]]\nside = \"top\"",
+        0,
+        "wall[1].segment",
+        &["close 4000 m in 60 s"],
+    );
+}
+
+#[test]
+fn only_a_prescribed_floe_follows_a_schedule() {
+    let floes = r#"title = "floes"
+duration_s = 100.0
+
+[domain]
+size_m = [4000.0, 4000.0]
+
+[[floe]]
+box_m = [100.0, 100.0, 900.0, 900.0]
+
+[[floe]]
+box_m = [2000.0, 100.0, 2900.0, 900.0]
+PRESCRIBED
+[[floe.segment]]
+duration_s = 10.0
+angular_velocity_rad_per_s = 0.01
+"#;
+    let free = floes.replace("PRESCRIBED\n", "");
+    check(
+        &free,
+        "[[floe.segment]]",
+        0,
+        "floe[1].segment",
+        &["prescribed = true"],
+    );
+    let both = floes.replace(
+        "PRESCRIBED",
+        "prescribed = true\nvelocity_m_per_s = [0.1, 0.0]\n",
+    );
+    check(
+        &both,
+        "[0.1, 0.0]",
+        0,
+        "floe[1].velocity_m_per_s",
+        &["not both"],
+    );
+    let ok = floes.replace("PRESCRIBED", "prescribed = true\n");
+    let s = Scenario::from_text(&ok, Path::new("ok.toml")).unwrap();
+    assert_eq!(s.build().unwrap().world.schedules().len(), 1);
+}

@@ -21,6 +21,7 @@ pub const SCENARIOS: &[(&str, &str)] = &[
     ("voronoi", base!("scenarios/voronoi.toml")),
     ("grid", base!("scenarios/grid.toml")),
     ("double-shear", base!("scenarios/double_shear.toml")),
+    ("scheduled", base!("scenarios/scheduled.toml")),
 ];
 
 /// Amontons friction on the lab apparatus; also the `p.toml` of the

@@ -13,7 +13,8 @@
 //!   friction, force gathering, integrator, energy accounting);
 //! * [`contact_model`], [`contact_kernel`]: the contact's parameters and
 //!   force formulas; [`forcing`]: wind, ocean, Coriolis;
-//!   [`periodicity`]: periodic axes; [`geometry`], [`tessellation`]: floe
+//!   [`periodicity`]: periodic axes; [`motion_schedule`]: prescribed
+//!   floes whose velocity follows segments in time; [`geometry`], [`tessellation`]: floe
 //!   shapes and how to make a pack of them; [`observables`]: assembly
 //!   diagnostics; [`run`]: the stepping loop with its observer and cadences.
 #![deny(missing_docs)]
@@ -26,6 +27,7 @@ pub mod error;
 pub mod floes;
 pub mod forcing;
 pub mod geometry;
+pub mod motion_schedule;
 pub mod observables;
 pub mod periodicity;
 pub mod pipeline;

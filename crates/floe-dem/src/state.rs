@@ -14,6 +14,7 @@ use crate::contacts::{BrokenContact, ContactRecord};
 use crate::energy_ledger::EnergyLedger;
 use crate::error::DemError;
 use crate::floes::Floes;
+use crate::motion_schedule::ScheduledMotion;
 use crate::Vec2;
 
 /// Everything a run needs to continue bitwise from the end of a step.
@@ -44,6 +45,8 @@ pub struct WorldState {
     pub external_force: Vec<Vec2>,
     /// External part of `torque`, N m.
     pub external_torque: Vec<f64>,
+    /// Prescribed floes that follow a motion schedule, sorted by floe id.
+    pub schedules: Vec<ScheduledMotion>,
 }
 
 impl WorldState {
@@ -62,6 +65,7 @@ impl WorldState {
             torque: vec![0.0; n],
             external_force: vec![Vec2::ZERO; n],
             external_torque: vec![0.0; n],
+            schedules: Vec::new(),
         }
     }
 
@@ -94,6 +98,19 @@ impl WorldState {
         }
         if !(self.dt_s.is_finite() && self.dt_s > 0.0) {
             return bad(format!("time step {} s is not > 0", self.dt_s));
+        }
+        let mut last = None;
+        for s in &self.schedules {
+            let id = s.floe_id;
+            if last >= Some(id) {
+                return bad("schedules are not sorted by floe id, one per floe".into());
+            }
+            last = Some(id);
+            match self.floes.handle_of(id) {
+                Some(h) if !self.floes.is_free(h) => {}
+                Some(_) => return bad(format!("floe {id} has a schedule but is not prescribed")),
+                None => return bad(format!("a schedule names floe {id}, which is not there")),
+            }
         }
         Ok(())
     }

@@ -57,7 +57,9 @@ use crate::energy_ledger::EnergyLedger;
 use crate::error::DemError;
 use crate::floes::{Floe, Floes, Motion};
 use crate::forcing::{ExternalForces, ForceRates};
+use crate::motion_schedule::{MotionSchedule, ScheduledMotion};
 use crate::periodicity::Periodicity;
+use crate::pipeline::boundary_motion;
 use crate::pipeline::broad_phase::BroadPhase;
 use crate::pipeline::force_gathering::ForceBuffers;
 use crate::pipeline::integrator::{self, floe_stable_step, KickForces};
@@ -346,13 +348,15 @@ impl<F: ExternalForces> World<F> {
         self.kick();
     }
 
-    /// First stage of a step: the first half kick and the drift, and the
+    /// First stage of a step: the scheduled floes' velocities for the step
+    /// (boundary motion), the first half kick and the drift, and the
     /// clock's advance. Panics unless the last step is complete.
     pub fn drift(&mut self) {
         self.pipeline.enter(Stage::Drift);
         let s = &mut self.state;
         let p = &mut self.pipeline;
         let dt = s.dt_s;
+        boundary_motion::apply(&mut s.floes, &s.schedules, s.time_s, dt);
         p.moved_far = integrator::drift(
             s.floes.columns_mut(),
             (&s.force, &s.torque),
@@ -539,7 +543,37 @@ impl<F: ExternalForces> World<F> {
             Motion::Prescribed { .. } => {}
         }
         self.state.floes.set_motion(h, motion);
+        // A floe set free, or given a constant velocity, leaves its schedule.
+        self.state.schedules.retain(|s| s.floe_id != id);
         Ok(())
+    }
+
+    /// Makes prescribed floe `id` follow `schedule` from the next step on
+    /// (replacing any schedule it had). The schedule's time is the world's
+    /// clock: `t = 0` at the start of the run.
+    pub fn set_schedule(&mut self, id: u64, schedule: MotionSchedule) -> Result<(), DemError> {
+        let h = self.handle(id)?;
+        if self.state.floes.is_free(h) {
+            return Err(DemError::FloeEdit {
+                id,
+                reason: "only a prescribed floe follows a motion schedule".into(),
+            });
+        }
+        let schedules = &mut self.state.schedules;
+        let entry = ScheduledMotion {
+            floe_id: id,
+            schedule,
+        };
+        match schedules.binary_search_by_key(&id, |s| s.floe_id) {
+            Ok(k) => schedules[k] = entry,
+            Err(k) => schedules.insert(k, entry),
+        }
+        Ok(())
+    }
+
+    /// The prescribed floes that follow a schedule, sorted by floe id.
+    pub fn schedules(&self) -> &[ScheduledMotion] {
+        &self.state.schedules
     }
 
     /// Refuses a free floe whose stable time step `limit_s` is below the
@@ -582,6 +616,8 @@ impl<F: ExternalForces> World<F> {
         let s = &mut self.state;
         let contacts = take_pairs_of(&mut s.contacts, h, &s.floes.id);
         let broken = take_pairs_of(&mut s.broken, h, &s.floes.id);
+        // Its schedule goes with it (a re-inserted floe has none).
+        s.schedules.retain(|m| m.floe_id != id);
         let detached = DetachedFloe {
             floe: s.floes.remove(h),
             force: s.force.remove(h),

@@ -21,8 +21,11 @@
 //! no new format. Bytes after the payload are ignored (a slot is reused
 //! for smaller states without shrinking).
 //!
-//! Version 3 (written now) added the time step and the slot counts, and
-//! dropped the count of owned floes. Versions 1 and 2 are still read: their
+//! Version 4 (written now) appends the motion schedules: per scheduled
+//! floe its id, then its segments (duration, start and end velocity, start
+//! and end angular velocity). Version 3 added the time step and the slot
+//! counts, and dropped the count of owned floes; it reads as version 4
+//! without schedules. Versions 1 and 2 are still read: their
 //! friction state is the force then three slots (`theta`, the solver's
 //! root, and from version 2 its trend; version 1 resumes with zero trends),
 //! and their time step comes from the caller (the scenario).
@@ -30,6 +33,7 @@
 use floe_dem::contacts::{BrokenContact, ContactRecord};
 use floe_dem::energy_ledger::EnergyLedger;
 use floe_dem::floes::{FloeColumns, Floes, Motion};
+use floe_dem::motion_schedule::{MotionSchedule, MotionSegment, ScheduledMotion};
 use floe_dem::state::WorldState;
 use floe_dem::Vec2;
 use floe_friction::{ContactState, LAW_STATE_SLOTS};
@@ -37,7 +41,7 @@ use floe_friction::{ContactState, LAW_STATE_SLOTS};
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
 /// Version of the encoding written.
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 /// The oldest version read; older and newer ones are refused.
 pub const OLDEST_READABLE_VERSION: u32 = 1;
 /// Bytes before the payload.
@@ -167,6 +171,7 @@ pub fn encode_version(
         torque,
         external_force,
         external_torque,
+        schedules,
     } = state;
     let FloeColumns {
         id,
@@ -295,6 +300,21 @@ pub fn encode_version(
     e.f64s(torque);
     e.v2s(external_force);
     e.f64s(external_torque);
+    if version >= 4 {
+        e.len(schedules.len());
+        for s in schedules {
+            e.u64(s.floe_id);
+            let segments = s.schedule.segments();
+            e.len(segments.len());
+            for g in segments {
+                e.f64(g.duration_s);
+                e.v2(g.velocity_start);
+                e.v2(g.velocity_end);
+                e.f64(g.angular_velocity_start);
+                e.f64(g.angular_velocity_end);
+            }
+        }
+    }
 
     let payload = e.0;
     let mut out = Vec::with_capacity(HEADER_LEN + payload.len());
@@ -587,6 +607,25 @@ pub fn decode(
         torque: d.f64s()?,
         external_force: d.v2s()?,
         external_torque: d.f64s()?,
+        schedules: if d.version >= 4 {
+            d.vec(16, |d| {
+                let floe_id = d.u64()?;
+                let segments = d.vec(56, |d| {
+                    Ok(MotionSegment {
+                        duration_s: d.f64()?,
+                        velocity_start: d.v2()?,
+                        velocity_end: d.v2()?,
+                        angular_velocity_start: d.f64()?,
+                        angular_velocity_end: d.f64()?,
+                    })
+                })?;
+                let schedule = MotionSchedule::new(segments)
+                    .map_err(|e| format!("the schedule of floe {floe_id}: {e}"))?;
+                Ok(ScheduledMotion { floe_id, schedule })
+            })?
+        } else {
+            Vec::new()
+        },
     };
     if d.pos != payload.len() {
         return Err(format!(
@@ -674,10 +713,51 @@ mod tests {
         let (back, _) = decode(&v3, || panic!("version 3 stores dt"), Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
         // A version from the future is refused, by name.
-        let mut v4 = v3.clone();
-        v4[8..12].copy_from_slice(&4u32.to_le_bytes());
-        let e = decode(&v4, dt, None).expect_err("version 4");
-        assert!(e.contains("format version 4"), "{e}");
+        let mut v5 = v3.clone();
+        v5[8..12].copy_from_slice(&5u32.to_le_bytes());
+        let e = decode(&v5, dt, None).expect_err("version 5");
+        assert!(e.contains("format version 5"), "{e}");
+    }
+
+    /// Version 4 keeps the motion schedules bitwise; version 3 (none) still
+    /// reads, as a state without schedules.
+    #[test]
+    fn motion_schedules_round_trip_and_version_3_reads_without_them() {
+        use floe_dem::motion_schedule::{MotionSchedule, MotionSegment};
+        let model = ContactModel::default();
+        let state = springing_pack(model.clone());
+        let mut world =
+            World::resume(state, model.clone(), NoForcing, Periodicity::default()).unwrap();
+        let id = world.floes().id[0];
+        let v = Vec2::new(0.1, -0.3);
+        world
+            .set_motion(id, Motion::Prescribed { velocity: v })
+            .unwrap();
+        let schedule = MotionSchedule::new(vec![
+            MotionSegment::ramp(0.7, v, Vec2::ZERO),
+            MotionSegment {
+                duration_s: 1.3,
+                velocity_start: Vec2::new(-0.2, 0.1),
+                velocity_end: Vec2::new(1.0 / 3.0, 0.0),
+                angular_velocity_start: 1e-3,
+                angular_velocity_end: -2e-3,
+            },
+        ])
+        .unwrap();
+        world.set_schedule(id, schedule).unwrap();
+        for _ in 0..3 {
+            world.step();
+        }
+        let state = world.state().clone();
+        assert_eq!(state.schedules.len(), 1);
+        let counts = OutputCounts::default();
+        let (back, _) = decode(&encode(&state, &counts, 3), || None, Some(3)).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{state:?}"));
+        let mut without = state.clone();
+        without.schedules.clear();
+        let v3 = encode_version(&state, &counts, 3, 3);
+        let (back, _) = decode(&v3, || None, Some(3)).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{without:?}"));
     }
 
     /// Each law's friction states take its own number of slots: Amontons
@@ -724,5 +804,6 @@ mod tests {
             + 5 * 8
             + 4 * 8
             + n * (16 + 8 + 16 + 8)
+            + 8 // the schedule count (none here)
     }
 }

@@ -617,7 +617,7 @@ impl RunWriter {
     /// the continued file ends as an uninterrupted run's would. Returns the
     /// writer, the state to resume from and where it stands. A checkpoint
     /// of format 1 or 2 takes its time step from `fallback_dt_s`; one of
-    /// format 3 must hold `law_state_slots` per contact (the law's).
+    /// format 3 or 4 must hold `law_state_slots` per contact (the law's).
     pub fn reopen_for_resume(
         path: &Path,
         fallback_dt_s: impl FnOnce() -> Option<f64>,

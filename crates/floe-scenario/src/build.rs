@@ -10,6 +10,7 @@ use std::ops::Range;
 
 use floe_dem::floes::{Floe, Floes};
 use floe_dem::geometry::FloeShape;
+use floe_dem::motion_schedule::MotionSchedule;
 use floe_dem::tessellation::{DiamondLattice, Rect, Tessellation, VoronoiFloes, MAX_FLOES};
 use floe_dem::world::stable_time_step;
 use floe_dem::Vec2;
@@ -35,6 +36,8 @@ pub(crate) struct Piece {
     pub velocity: Vec2,
     pub angular_velocity: f64,
     pub prescribed: bool,
+    /// The motion schedule of a prescribed piece that has one.
+    pub schedule: Option<MotionSchedule>,
     /// What it is, for messages (`floe[3]`, `wall[0] (bottom)`...).
     pub label: Option<String>,
     /// Where it was written, for explicit floes.
@@ -86,6 +89,7 @@ fn generate(
                 velocity: v,
                 angular_velocity: 0.0,
                 prescribed: false,
+                schedule: None,
                 label: None,
                 span: None,
             })
@@ -265,11 +269,18 @@ fn generate(
                 .map(|(i, (e, h))| Piece {
                     polygon: e.vertices.clone(),
                     thickness_m: e.thickness_m.unwrap_or(h),
-                    velocity: e
-                        .velocity
-                        .unwrap_or(if e.prescribed { Vec2::ZERO } else { v0 }),
-                    angular_velocity: e.angular_velocity_rad_per_s,
+                    velocity: match &e.schedule {
+                        Some(s) => s.velocity_at(0.0).0,
+                        None => e
+                            .velocity
+                            .unwrap_or(if e.prescribed { Vec2::ZERO } else { v0 }),
+                    },
+                    angular_velocity: match &e.schedule {
+                        Some(s) => s.velocity_at(0.0).1,
+                        None => e.angular_velocity_rad_per_s,
+                    },
                     prescribed: e.prescribed,
+                    schedule: e.schedule.clone(),
                     label: Some(format!("floe[{i}]")),
                     span: Some(e.span.clone()),
                 })
@@ -349,6 +360,7 @@ fn double_shear(
             velocity: Vec2::new(v, 0.0),
             angular_velocity: 0.0,
             prescribed: false,
+            schedule: None,
             label: Some("block".into()),
             span: None,
         },
@@ -358,6 +370,7 @@ fn double_shear(
             velocity: Vec2::ZERO,
             angular_velocity: 0.0,
             prescribed: true,
+            schedule: None,
             label: Some("upper side block".into()),
             span: None,
         },
@@ -367,6 +380,7 @@ fn double_shear(
             velocity: Vec2::ZERO,
             angular_velocity: 0.0,
             prescribed: true,
+            schedule: None,
             label: Some("lower side block".into()),
             span: None,
         },
@@ -376,6 +390,7 @@ fn double_shear(
             velocity: Vec2::new(v, 0.0),
             angular_velocity: 0.0,
             prescribed: true,
+            schedule: None,
             label: Some("pusher".into()),
             span: None,
         },
@@ -470,10 +485,10 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
             "wall[{}]: {} side, {}, {} segments {} m long, {} m thick",
             w.index,
             w.side.name(),
-            if w.velocity == Vec2::ZERO {
-                "fixed".to_string()
-            } else {
-                format!("moving at [{}, {}] m/s", w.velocity.x, w.velocity.y)
+            match &w.schedule {
+                Some(s) => describe_schedule(s),
+                None if w.velocity == Vec2::ZERO => "fixed".to_string(),
+                None => format!("moving at [{}, {}] m/s", w.velocity.x, w.velocity.y),
             },
             segments.len(),
             sig(segments.first().map_or(0.0, |s| {
@@ -493,6 +508,7 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
                 velocity: w.velocity,
                 angular_velocity: 0.0,
                 prescribed: true,
+                schedule: w.schedule.clone(),
                 label: Some(format!("wall[{}] ({})", w.index, w.side.name())),
                 span: Some(w.span.clone()),
             });
@@ -500,6 +516,7 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
     }
     let periodicity = r.domain.periodicity();
     let mut floes = Floes::default();
+    let mut schedules = Vec::new();
     let mut spans = Vec::with_capacity(pieces.len());
     let mut labels = Vec::with_capacity(pieces.len());
     for (i, p) in pieces.into_iter().enumerate() {
@@ -531,11 +548,15 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
                 (Some(s), Some(l)) => f.error(s.clone(), l.clone(), e.to_string()),
                 _ => f.error(r.floes_span.clone(), "tessellation", e.to_string()),
             })?;
+        if let Some(schedule) = p.schedule {
+            schedules.push((i as u64, schedule));
+        }
         spans.push(p.span);
         labels.push(p.label);
     }
     let built = BuiltFloes {
         floes,
+        schedules,
         pieces_span: spans,
         labels,
         report,
@@ -554,12 +575,11 @@ fn wall_segments(r: &Resolved, w: &Wall, r_max: f64) -> Vec<Vec<Vec2>> {
     let d = &r.domain;
     let t = w.thickness_m.unwrap_or(r_max);
     let along = 1 - w.side.axis();
-    let vmax = r
+    let reach = t + r
         .walls
         .iter()
-        .map(|w| w.velocity.length())
+        .map(|w| w.most_travel_m(r.duration_s))
         .fold(0.0, f64::max);
-    let reach = t + vmax * r.duration_s;
     let (lo, hi) = if d.periodic[along] {
         (d.min_m[along], d.min_m[along] + d.size_m[along])
     } else {
@@ -702,4 +722,30 @@ pub(crate) fn time_step(
             ))
         }
     }
+}
+
+/// A wall's schedule for the report: its segments' velocities in order.
+fn describe_schedule(s: &MotionSchedule) -> String {
+    let parts: Vec<String> = s
+        .segments()
+        .iter()
+        .map(|g| {
+            let v = |v: Vec2| format!("[{}, {}]", sig(v.x), sig(v.y));
+            if g.velocity_start == g.velocity_end {
+                format!("{} for {} s", v(g.velocity_start), sig(g.duration_s))
+            } else {
+                format!(
+                    "{} to {} over {} s",
+                    v(g.velocity_start),
+                    v(g.velocity_end),
+                    sig(g.duration_s)
+                )
+            }
+        })
+        .collect();
+    format!(
+        "on a schedule of {} segments (m/s): {}, then the last velocity",
+        parts.len(),
+        parts.join(", ")
+    )
 }

@@ -4,10 +4,13 @@
 use std::ops::Range;
 
 use floe_dem::floes::Floes;
+use floe_dem::motion_schedule::MotionSchedule;
 
 /// The floes and what was done to make them.
 pub(crate) struct BuiltFloes {
     pub floes: Floes,
+    /// The motion schedules of prescribed floes, by floe id.
+    pub schedules: Vec<(u64, MotionSchedule)>,
     pub pieces_span: Vec<Option<Range<usize>>>,
     pub labels: Vec<Option<String>>,
     pub report: Vec<String>,

@@ -8,7 +8,7 @@ use floe_dem::geometry::{overlap, ClipScratch};
 use crate::built_floes::BuiltFloes;
 use crate::error::ScenarioError;
 use crate::numbers::sig;
-use crate::resolve::{Resolved, Side};
+use crate::resolve::{Resolved, Side, Wall};
 use crate::source_file::SourceFile;
 
 /// Overlap area, as a fraction of the smaller floe, above which explicit
@@ -96,31 +96,31 @@ pub(crate) fn walls_fit(f: &SourceFile, r: &Resolved) -> Result<(), ScenarioErro
                 ),
             ));
         }
-        let v_lo = lo.map_or(0.0, |w| w.velocity[axis]);
-        let v_hi = hi.map_or(0.0, |w| w.velocity[axis]);
-        let closing = v_lo - v_hi;
-        if closing > 0.0 {
-            let gap = extent - insets;
-            let meet_s = gap / closing;
-            if meet_s <= r.duration_s {
-                let w = if v_hi < 0.0 { hi } else { lo }.expect("a closing wall exists");
-                return Err(f.error(
-                    w.velocity_span.clone(),
-                    format!("wall[{}].velocity_m_per_s", w.index),
-                    format!(
-                        "the walls across {} close {} m in {} s, before duration_s = {} s: {}",
-                        axis_label,
-                        sig(gap),
-                        sig(meet_s),
-                        sig(r.duration_s),
-                        if lo.is_some() && hi.is_some() {
-                            "they would cross each other"
-                        } else {
-                            "the wall would cross the whole domain"
-                        }
-                    ),
-                ));
-            }
+        let gap = extent - insets;
+        if let Some(meet_s) = walls_meet_s(lo, hi, axis, gap, r.duration_s) {
+            let moves_in = |w: &&Wall| w.schedule.is_some() || w.velocity[axis] != 0.0;
+            let w = hi.filter(moves_in).or(lo).expect("a closing wall exists");
+            let key = if w.schedule.is_some() {
+                "segment"
+            } else {
+                "velocity_m_per_s"
+            };
+            return Err(f.error(
+                w.velocity_span.clone(),
+                format!("wall[{}].{key}", w.index),
+                format!(
+                    "the walls across {} close {} m in {} s, before duration_s = {} s: {}",
+                    axis_label,
+                    sig(gap),
+                    sig(meet_s),
+                    sig(r.duration_s),
+                    if lo.is_some() && hi.is_some() {
+                        "they would cross each other"
+                    } else {
+                        "the wall would cross the whole domain"
+                    }
+                ),
+            ));
         }
     }
     Ok(())
@@ -179,4 +179,73 @@ pub(crate) fn no_initial_overlap(
         }
     }
     Ok(())
+}
+
+/// When the walls `lo` and `hi` across `axis` (either may be absent) first
+/// close a gap of `gap` m within `duration_s`, if they do. The closing is
+/// piecewise quadratic in time (linear velocities per segment): it is
+/// largest at a segment boundary or where the walls' relative velocity
+/// along the axis is zero, and those are the times tested.
+fn walls_meet_s(
+    lo: Option<&Wall>,
+    hi: Option<&Wall>,
+    axis: usize,
+    gap: f64,
+    duration_s: f64,
+) -> Option<f64> {
+    let closing = |t: f64| {
+        lo.map_or(0.0, |w| w.travel_to(t)[axis]) - hi.map_or(0.0, |w| w.travel_to(t)[axis])
+    };
+    let mut times = vec![0.0, duration_s];
+    for w in [lo, hi].into_iter().flatten() {
+        if let Some(s) = &w.schedule {
+            let mut t = 0.0;
+            for g in s.segments() {
+                t += g.duration_s;
+                if t < duration_s {
+                    times.push(t);
+                }
+            }
+        }
+    }
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    let mut candidates = times.clone();
+    for pair in times.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        // Relative velocity is linear on (a, b): its root from two points.
+        let velocity = |t: f64| {
+            let v = |w: Option<&Wall>| {
+                w.map_or(0.0, |w| match &w.schedule {
+                    Some(s) => s.velocity_at(t).0[axis],
+                    None => w.velocity[axis],
+                })
+            };
+            v(lo) - v(hi)
+        };
+        let (p, q) = (a + 0.25 * (b - a), a + 0.75 * (b - a));
+        let (vp, vq) = (velocity(p), velocity(q));
+        if vp != vq {
+            let root = p + vp * (q - p) / (vp - vq);
+            if root > a && root < b {
+                candidates.push(root);
+            }
+        }
+    }
+    candidates.sort_by(f64::total_cmp);
+    let k = candidates.iter().position(|&t| closing(t) >= gap)?;
+    if k == 0 {
+        return Some(0.0);
+    }
+    // Between two candidates the closing is monotone: bisect for the time.
+    let (mut a, mut b) = (candidates[k - 1], candidates[k]);
+    for _ in 0..64 {
+        let m = 0.5 * (a + b);
+        if closing(m) >= gap {
+            b = m;
+        } else {
+            a = m;
+        }
+    }
+    Some(b)
 }

@@ -8,6 +8,7 @@ use std::ops::Range;
 
 use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::{Coriolis, DragParameters, Envelope, Forcing, VelocityField};
+use floe_dem::motion_schedule::MotionSchedule;
 use floe_dem::tessellation::{max_jitter_fraction, ThicknessDistribution, MAX_FLOES};
 use floe_dem::{DemError, Vec2};
 use floe_friction::experiments::Preset;
@@ -16,7 +17,9 @@ use toml::Spanned;
 
 use crate::domain::Domain;
 use crate::error::ScenarioError;
+use crate::extent::{Extent, MAX_TRAVEL_DOMAINS};
 use crate::law_table::{law_from_table, preset_applies, RawLawTable};
+use crate::motion_segments::resolve_schedule;
 use crate::numbers::{short, short_list, sig, thousands};
 use crate::output_cadence::OutputCadence;
 use crate::source_file::SourceFile;
@@ -77,12 +80,33 @@ impl Side {
 pub(crate) struct Wall {
     pub index: usize,
     pub side: Side,
+    /// The velocity at the start (the schedule's, when it has one).
     pub velocity: Vec2,
+    /// `[[wall.segment]]`, when given.
+    pub schedule: Option<MotionSchedule>,
     pub inset_m: f64,
     pub thickness_m: Option<f64>,
     pub span: Range<usize>,
     pub velocity_span: Range<usize>,
     pub inset_span: Range<usize>,
+}
+
+impl Wall {
+    /// The most the wall can be from where it started over `duration_s`, m.
+    pub(crate) fn most_travel_m(&self, duration_s: f64) -> f64 {
+        match &self.schedule {
+            Some(s) => s.most_travel_m(duration_s),
+            None => self.velocity.length() * duration_s,
+        }
+    }
+
+    /// Its displacement from the start at time `t_s`, m.
+    pub(crate) fn travel_to(&self, t_s: f64) -> Vec2 {
+        match &self.schedule {
+            Some(s) => s.travel_to(t_s).0,
+            None => self.velocity * t_s,
+        }
+    }
 }
 
 /// A `[[floe]]`, checked.
@@ -93,6 +117,8 @@ pub(crate) struct ExplicitFloe {
     pub velocity: Option<Vec2>,
     pub angular_velocity_rad_per_s: f64,
     pub prescribed: bool,
+    /// `[[floe.segment]]` of a prescribed floe.
+    pub schedule: Option<MotionSchedule>,
     pub span: Range<usize>,
 }
 
@@ -178,20 +204,6 @@ fn span_of<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
     v.as_ref().map(|s| s.span())
 }
 
-/// A finite `[x, y]`.
-fn pair(f: &SourceFile, v: &Spanned<Exact<f64, 2>>, key: &str) -> Result<Vec2, ScenarioError> {
-    let [x, y] = v.get_ref().0;
-    if x.is_finite() && y.is_finite() {
-        Ok(Vec2::new(x, y))
-    } else {
-        Err(f.error(
-            v.span(),
-            key,
-            format!("must be finite, got {}", short_list(&[x, y])),
-        ))
-    }
-}
-
 /// A count in `[min, max]`: every count of work is bounded before the
 /// work starts.
 fn count(
@@ -260,18 +272,6 @@ fn at_most(
         )),
     }
 }
-
-/// What bounds a prescribed motion: the run's duration and its domain.
-#[derive(Debug, Clone, Copy)]
-struct Extent {
-    duration_s: f64,
-    domain: Domain,
-}
-
-/// How far, in domain sizes, a prescribed floe or wall may travel across a
-/// non-periodic axis: walls are built as long as their travel, so this
-/// bounds their segments (along a periodic axis they wrap and nothing grows).
-const MAX_TRAVEL_DOMAINS: f64 = 100.0;
 
 /// Refuses a constant `velocity` (at `v`) that would carry a prescribed
 /// `what` more than [`MAX_TRAVEL_DOMAINS`] domain sizes across the
@@ -504,7 +504,7 @@ fn resolve_domain(
     let d = raw.get_ref();
     let min_m = match &d.min_m {
         Some(v) => {
-            let p = pair(f, v, "domain.min_m")?;
+            let p = f.pair(v, "domain.min_m")?;
             at_most(f, v.span(), "domain.min_m", &[p.x, p.y], MAX_LENGTH_M, "m")?;
             p
         }
@@ -517,7 +517,7 @@ fn resolve_domain(
             "missing: give the domain's `size_m = [width, height]` in metres",
         ));
     };
-    let size_m = pair(f, size, "domain.size_m")?;
+    let size_m = f.pair(size, "domain.size_m")?;
     if !(size_m.x > 0.0 && size_m.y > 0.0) {
         return Err(f.error(
             size.span(),
@@ -641,7 +641,7 @@ fn resolve_ice(
         None => DEFAULT_ICE_DENSITY_KG_PER_M3,
     };
     let velocity = match &ice.initial_velocity_m_per_s {
-        Some(v) => pair(f, v, "ice.initial_velocity_m_per_s")?,
+        Some(v) => f.pair(v, "ice.initial_velocity_m_per_s")?,
         None => Vec2::ZERO,
     };
     Ok((thickness, density, velocity))
@@ -726,6 +726,46 @@ fn resolve_explicit_floe(
             ))
         }
     };
+    let prescribed = fl.prescribed.as_ref().is_some_and(|p| *p.get_ref());
+    let schedule = match &fl.segment {
+        None => None,
+        Some(segments) => {
+            let first = segments.first().map_or(raw.span(), |s| s.span());
+            if !prescribed {
+                return Err(f.error(
+                    first,
+                    key("segment"),
+                    "only a prescribed floe (prescribed = true) follows a motion schedule",
+                ));
+            }
+            for (given, name) in [
+                (
+                    fl.velocity_m_per_s.as_ref().map(|v| v.span()),
+                    "velocity_m_per_s",
+                ),
+                (
+                    fl.angular_velocity_rad_per_s.as_ref().map(|v| v.span()),
+                    "angular_velocity_rad_per_s",
+                ),
+            ] {
+                if let Some(span) = given {
+                    return Err(f.error(
+                        span,
+                        key(name),
+                        "give the floe's motion either as velocities or as [[floe.segment]] \
+                         tables, not both",
+                    ));
+                }
+            }
+            Some(resolve_schedule(
+                f,
+                segments,
+                &format!("floe[{i}]"),
+                true,
+                extent,
+            )?)
+        }
+    };
     Ok(ExplicitFloe {
         vertices,
         thickness_m: fl
@@ -737,7 +777,7 @@ fn resolve_explicit_floe(
             .velocity_m_per_s
             .as_ref()
             .map(|v| {
-                let velocity = pair(f, v, &key("velocity_m_per_s"))?;
+                let velocity = f.pair(v, &key("velocity_m_per_s"))?;
                 // A prescribed floe keeps its velocity: bound its travel.
                 if fl.prescribed.as_ref().is_some_and(|p| *p.get_ref()) {
                     travel_within(f, v, &key("velocity_m_per_s"), velocity, extent, "floe")?;
@@ -752,6 +792,7 @@ fn resolve_explicit_floe(
             .transpose()?
             .unwrap_or(0.0),
         prescribed: fl.prescribed.as_ref().is_some_and(|p| *p.get_ref()),
+        schedule,
         span: raw.span(),
     })
 }
@@ -993,7 +1034,7 @@ fn resolve_tessellation(
                 let Some(v) = v else {
                     return Err(need(key));
                 };
-                let p = pair(f, v, &format!("tessellation.{key}"))?;
+                let p = f.pair(v, &format!("tessellation.{key}"))?;
                 if !(p.x > 0.0 && p.y > 0.0) {
                     return Err(f.error(
                         v.span(),
@@ -1201,7 +1242,7 @@ fn resolve_field(
             .map_err(|e| f.error(span, format!("{table}.{key}"), e.to_string()))
     };
     let field = if let Some(v) = &raw.velocity_m_per_s {
-        VelocityField::Uniform(pair(f, v, &format!("{table}.velocity_m_per_s"))?)
+        VelocityField::Uniform(f.pair(v, &format!("{table}.velocity_m_per_s"))?)
     } else if let Some(ts) = &raw.time_series {
         let t = ts.get_ref();
         check(
@@ -1379,19 +1420,39 @@ fn resolve_walls(
                 ),
             ));
         }
-        let velocity = match &r.velocity_m_per_s {
-            Some(v) => {
-                let velocity = pair(f, v, &key("velocity_m_per_s"))?;
+        let schedule = match (&r.segment, &r.velocity_m_per_s) {
+            (Some(_), Some(v)) => {
+                return Err(f.error(
+                    v.span(),
+                    key("velocity_m_per_s"),
+                    "give the wall's motion either as velocity_m_per_s or as [[wall.segment]] \
+                     tables, not both",
+                ))
+            }
+            (Some(segments), None) => Some(resolve_schedule(
+                f,
+                segments,
+                &format!("wall[{i}]"),
+                false,
+                extent,
+            )?),
+            (None, _) => None,
+        };
+        let velocity = match (&schedule, &r.velocity_m_per_s) {
+            (Some(s), _) => s.velocity_at(0.0).0,
+            (None, Some(v)) => {
+                let velocity = f.pair(v, &key("velocity_m_per_s"))?;
                 // The wall is built as long as its travel: bound that.
                 travel_within(f, v, &key("velocity_m_per_s"), velocity, extent, "wall")?;
                 velocity
             }
-            None => Vec2::ZERO,
+            (None, None) => Vec2::ZERO,
         };
         walls.push(Wall {
             index: i,
             side,
             velocity,
+            schedule,
             inset_m: match &r.inset_m {
                 Some(v) => distance(f, v, &key("inset_m"))?,
                 None => 0.0,

@@ -163,13 +163,16 @@ impl Scenario {
         report.push(dt_line);
         report.push(describe_contact(&r.model));
         report.push(describe_forcing(&r.forcing));
-        let world = World::new(
+        let mut world = World::new(
             built.floes,
             r.model.clone(),
             r.forcing.clone(),
             r.domain.periodicity(),
             dt_s,
         )?;
+        for (id, schedule) in built.schedules {
+            world.set_schedule(id, schedule)?;
+        }
         report.push(format!(
             "  {} contacts at the start",
             thousands(world.contacts().len())

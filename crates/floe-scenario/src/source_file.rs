@@ -293,6 +293,27 @@ impl SourceFile {
         }
     }
 
+    /// A finite `[x, y]`.
+    pub(crate) fn pair(
+        &self,
+        v: &Spanned<crate::exact::Exact<f64, 2>>,
+        key: &str,
+    ) -> Result<floe_dem::Vec2, ScenarioError> {
+        let [x, y] = v.get_ref().0;
+        if x.is_finite() && y.is_finite() {
+            Ok(floe_dem::Vec2::new(x, y))
+        } else {
+            Err(self.error(
+                v.span(),
+                key,
+                format!(
+                    "must be finite, got {}",
+                    crate::numbers::short_list(&[x, y])
+                ),
+            ))
+        }
+    }
+
     /// A finite number.
     pub fn finite(&self, v: &Spanned<f64>, key: &str) -> Result<f64, ScenarioError> {
         let x = *v.get_ref();

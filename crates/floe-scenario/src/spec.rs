@@ -9,21 +9,7 @@ use toml::Spanned;
 
 use crate::law_table::RawLawTable;
 
-/// A TOML array of exactly `N` elements. (serde's own arrays take the
-/// first `N` and drop the rest without a word.)
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Exact<T, const N: usize>(pub [T; N]);
-
-impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exact<T, N> {
-    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        let v = Vec::<T>::deserialize(d)?;
-        let n = v.len();
-        let expected = format!("an array of {N} elements");
-        v.try_into()
-            .map(Exact)
-            .map_err(|_| serde::de::Error::invalid_length(n, &expected.as_str()))
-    }
-}
+pub use crate::exact::Exact;
 
 /// A number with its location.
 pub(crate) type Num = Option<Spanned<f64>>;
@@ -107,6 +93,7 @@ pub(crate) struct RawFloe {
     pub velocity_m_per_s: Pair,
     pub angular_velocity_rad_per_s: Num,
     pub prescribed: Flag,
+    pub segment: Option<Vec<Spanned<RawSegment>>>,
 }
 
 /// `[ice]`
@@ -202,6 +189,18 @@ pub(crate) struct RawWall {
     pub velocity_m_per_s: Pair,
     pub inset_m: Num,
     pub thickness_m: Num,
+    pub segment: Option<Vec<Spanned<RawSegment>>>,
+}
+
+/// `[[wall.segment]]`, `[[floe.segment]]`: one piece of a motion schedule.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSegment {
+    pub duration_s: Num,
+    pub velocity_m_per_s: Pair,
+    pub end_velocity_m_per_s: Pair,
+    pub angular_velocity_rad_per_s: Num,
+    pub end_angular_velocity_rad_per_s: Num,
 }
 
 /// `[output]`

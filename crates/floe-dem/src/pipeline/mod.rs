@@ -2,6 +2,7 @@
 //!
 //! | stage | module | reads | writes |
 //! |---|---|---|---|
+//! | boundary motion | `boundary_motion` | motion schedules, clock | velocities of scheduled prescribed floes |
 //! | drift | [`integrator`] | forces, velocities | positions, angles, half-step velocities; per-floe rotation; whether the candidate list is stale |
 //! | broad phase | [`broad_phase`] | positions, angles, radii | candidate pairs (rebuilt when stale) |
 //! | narrow phase | [`narrow_phase`] | candidate pairs, floes | contact list: overlaps, normal forces; contacts formed, continued, ended; contact memory |
@@ -21,6 +22,7 @@
 //! the candidate list, caches. Nothing in it is needed to continue a run:
 //! the state is in [`WorldState`](crate::state::WorldState).
 
+pub(crate) mod boundary_motion;
 pub mod broad_phase;
 pub(crate) mod contact_memory;
 pub(crate) mod contact_merge;
