@@ -136,7 +136,7 @@ fn everything_written_reads_back_bitwise() {
     let mut sorted = names.clone();
     sorted.sort();
     assert_eq!(names, sorted);
-    assert_eq!(names.len(), 12);
+    assert_eq!(names.len(), 13);
     let ke = file.observable("kinetic_translational").unwrap();
     assert_eq!(ke.unit, "J");
     assert!(ke.sample_shape.is_empty());
@@ -168,6 +168,16 @@ fn everything_written_reads_back_bitwise() {
         .flat_map(|(_, o)| o.mean_stress_n_per_m)
         .collect();
     assert_eq!(bits(&stress.value), bits(&flat));
+    let load = file.observable("load_point_force").unwrap();
+    assert_eq!(
+        (load.sample_shape.clone(), load.unit.as_str()),
+        (vec![2], "N")
+    );
+    let flat: Vec<f64> = observables
+        .iter()
+        .flat_map(|(_, o)| o.load_point_force_n)
+        .collect();
+    assert_eq!(bits(&load.value), bits(&flat));
     let friction = file.observable("friction_dissipation").unwrap();
     assert_eq!(
         bits(&friction.value),

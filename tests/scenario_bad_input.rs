@@ -576,3 +576,81 @@ angular_velocity_rad_per_s = 0.01
     let s = Scenario::from_text(&ok, Path::new("ok.toml")).unwrap();
     assert_eq!(s.build().unwrap().world.schedules().len(), 1);
 }
+
+#[test]
+fn a_load_point_is_checked_where_it_is_written() {
+    let floes = r#"title = "load point"
+duration_s = 10.0
+
+[domain]
+size_m = [100.0, 100.0]
+
+[[floe]]
+box_m = [10.0, 10.0, 11.0, 11.0]
+PRESCRIBED
+[floe.load_point]
+STIFFNESS
+SEGMENTS"#;
+    let make = |p: &str, k: &str, s: &str| {
+        floes
+            .replace("PRESCRIBED", p)
+            .replace("STIFFNESS", k)
+            .replace("SEGMENTS", s)
+    };
+    let segment =
+        "\n[[floe.load_point.segment]]\nduration_s = 5.0\nvelocity_m_per_s = [0.01, 0.0]\n";
+    let k = "stiffness_n_per_m = 1000.0";
+    let ok = make("", k, segment);
+    let s = Scenario::from_text(&ok, Path::new("ok.toml")).unwrap();
+    let world = s.build().unwrap().world;
+    let lp = &world.load_points()[0];
+    assert_eq!(lp.stiffness_n_per_m, 1000.0);
+    assert_eq!(
+        lp.anchor,
+        world.floes().position[0],
+        "anchored where the floe starts"
+    );
+    check(
+        &make("prescribed = true", k, segment),
+        "[floe.load_point]",
+        0,
+        "floe[0].load_point",
+        &["free floe"],
+    );
+    check(
+        &make("", "", segment),
+        "[floe.load_point]",
+        0,
+        "floe[0].load_point.stiffness_n_per_m",
+        &["missing", "N/m"],
+    );
+    check(
+        &make("", "stiffness_n_per_m = -1.0", segment),
+        "-1.0",
+        0,
+        "floe[0].load_point.stiffness_n_per_m",
+        &["[0.001, 1e12] N/m"],
+    );
+    check(
+        &make("", k, ""),
+        "[floe.load_point]",
+        0,
+        "floe[0].load_point.segment",
+        &["missing"],
+    );
+    let turning = segment.replace(
+        "duration_s = 5.0",
+        "duration_s = 5.0\nangular_velocity_rad_per_s = 1.0",
+    );
+    check(
+        &make("", k, &turning),
+        "1.0\nvelocity",
+        0,
+        "floe[0].load_point.segment[0].angular_velocity_rad_per_s",
+        &["translates only"],
+    );
+    // A spring too stiff for the given step names the spring.
+    let stiff = make("", "stiffness_n_per_m = 1e12", segment)
+        .replace("duration_s = 10.0\n", "duration_s = 10.0\ndt_s = 0.001\n");
+    check(&stiff, "0.001", 0, "dt_s", &["load-point spring"]);
+}

@@ -14,7 +14,8 @@
 //! * [`contact_model`], [`contact_kernel`]: the contact's parameters and
 //!   force formulas; [`forcing`]: wind, ocean, Coriolis;
 //!   [`periodicity`]: periodic axes; [`motion_schedule`]: prescribed
-//!   floes whose velocity follows segments in time; [`geometry`], [`tessellation`]: floe
+//!   floes whose velocity follows segments in time; [`load_point`]: free
+//!   floes driven through a spring from a moving point; [`geometry`], [`tessellation`]: floe
 //!   shapes and how to make a pack of them; [`observables`]: assembly
 //!   diagnostics; [`run`]: the stepping loop with its observer and cadences.
 #![deny(missing_docs)]
@@ -27,6 +28,7 @@ pub mod error;
 pub mod floes;
 pub mod forcing;
 pub mod geometry;
+pub mod load_point;
 pub mod motion_schedule;
 pub mod observables;
 pub mod periodicity;

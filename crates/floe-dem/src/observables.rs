@@ -30,6 +30,10 @@ pub struct Observables {
     pub sliding_fraction: f64,
     /// Mean friction coefficient over contacts, weighted by normal force.
     pub mean_mu: f64,
+    /// Sum of the load points' spring forces on their floes, N (`[x, y]`;
+    /// zero without load points): the force a spring-driven block is
+    /// pushed with.
+    pub load_point_force_n: [f64; 2],
 }
 
 impl<F: ExternalForces> World<F> {
@@ -77,6 +81,13 @@ impl<F: ExternalForces> World<F> {
         }
         if normal_sum > 0.0 {
             o.mean_mu = mu_weighted / normal_sum;
+        }
+        for l in self.load_points() {
+            if let Some(h) = f.handle_of(l.floe_id) {
+                let force = l.force(self.time_s(), f.position[h], self.periodicity());
+                o.load_point_force_n[0] += force.x;
+                o.load_point_force_n[1] += force.y;
+            }
         }
         o
     }

@@ -14,6 +14,7 @@ use crate::contacts::{BrokenContact, ContactRecord};
 use crate::energy_ledger::EnergyLedger;
 use crate::error::DemError;
 use crate::floes::Floes;
+use crate::load_point::LoadPoint;
 use crate::motion_schedule::ScheduledMotion;
 use crate::Vec2;
 
@@ -47,6 +48,9 @@ pub struct WorldState {
     pub external_torque: Vec<f64>,
     /// Prescribed floes that follow a motion schedule, sorted by floe id.
     pub schedules: Vec<ScheduledMotion>,
+    /// Free floes driven through a spring from a moving point, sorted by
+    /// floe id.
+    pub load_points: Vec<LoadPoint>,
 }
 
 impl WorldState {
@@ -66,6 +70,7 @@ impl WorldState {
             external_force: vec![Vec2::ZERO; n],
             external_torque: vec![0.0; n],
             schedules: Vec::new(),
+            load_points: Vec::new(),
         }
     }
 
@@ -110,6 +115,19 @@ impl WorldState {
                 Some(h) if !self.floes.is_free(h) => {}
                 Some(_) => return bad(format!("floe {id} has a schedule but is not prescribed")),
                 None => return bad(format!("a schedule names floe {id}, which is not there")),
+            }
+        }
+        let mut last = None;
+        for l in &self.load_points {
+            let id = l.floe_id;
+            if last >= Some(id) {
+                return bad("load points are not sorted by floe id, one per floe".into());
+            }
+            last = Some(id);
+            match self.floes.handle_of(id) {
+                Some(h) if self.floes.is_free(h) => {}
+                Some(_) => return bad(format!("floe {id} has a load point but is not free")),
+                None => return bad(format!("a load point names floe {id}, which is not there")),
             }
         }
         Ok(())

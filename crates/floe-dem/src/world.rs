@@ -57,6 +57,7 @@ use crate::energy_ledger::EnergyLedger;
 use crate::error::DemError;
 use crate::floes::{Floe, Floes, Motion};
 use crate::forcing::{ExternalForces, ForceRates};
+use crate::load_point::LoadPoint;
 use crate::motion_schedule::{MotionSchedule, ScheduledMotion};
 use crate::periodicity::Periodicity;
 use crate::pipeline::boundary_motion;
@@ -429,6 +430,13 @@ impl<F: ExternalForces> World<F> {
             .gather(floes, contacts, &self.forcing, s.time_s, out, || {
                 accounting.sum_contact_power(contacts, floes)
             });
+        boundary_motion::add_load_point_forces(
+            &s.floes,
+            &s.load_points,
+            self.periodicity,
+            s.time_s,
+            (&mut s.force, &mut s.external_force),
+        );
     }
 
     /// Last stage: the second half kick, and the step's work and
@@ -543,8 +551,12 @@ impl<F: ExternalForces> World<F> {
             Motion::Prescribed { .. } => {}
         }
         self.state.floes.set_motion(h, motion);
-        // A floe set free, or given a constant velocity, leaves its schedule.
+        // A floe set free, or given a constant velocity, leaves its
+        // schedule; a prescribed one leaves its load point.
         self.state.schedules.retain(|s| s.floe_id != id);
+        if matches!(motion, Motion::Prescribed { .. }) {
+            self.state.load_points.retain(|l| l.floe_id != id);
+        }
         Ok(())
     }
 
@@ -574,6 +586,43 @@ impl<F: ExternalForces> World<F> {
     /// The prescribed floes that follow a schedule, sorted by floe id.
     pub fn schedules(&self) -> &[ScheduledMotion] {
         &self.state.schedules
+    }
+
+    /// Drives free floe `load_point.floe_id` through `load_point`'s spring
+    /// (replacing any load point it had). The spring's force at the
+    /// current time joins the floe's force at once, so the next half kick
+    /// feels it.
+    pub fn set_load_point(&mut self, load_point: LoadPoint) -> Result<(), DemError> {
+        let id = load_point.floe_id;
+        let h = self.handle(id)?;
+        if !self.state.floes.is_free(h) {
+            return Err(DemError::FloeEdit {
+                id,
+                reason: "a load point drives a free floe".into(),
+            });
+        }
+        let s = &mut self.state;
+        let new = load_point.force(s.time_s, s.floes.position[h], self.periodicity);
+        let list = &mut s.load_points;
+        let old = match list.binary_search_by_key(&id, |l| l.floe_id) {
+            Ok(k) => {
+                let old = list[k].force(s.time_s, s.floes.position[h], self.periodicity);
+                list[k] = load_point;
+                old
+            }
+            Err(k) => {
+                list.insert(k, load_point);
+                Vec2::ZERO
+            }
+        };
+        s.force[h] += new - old;
+        s.external_force[h] += new - old;
+        Ok(())
+    }
+
+    /// The load points, sorted by floe id.
+    pub fn load_points(&self) -> &[LoadPoint] {
+        &self.state.load_points
     }
 
     /// Refuses a free floe whose stable time step `limit_s` is below the
@@ -616,8 +665,10 @@ impl<F: ExternalForces> World<F> {
         let s = &mut self.state;
         let contacts = take_pairs_of(&mut s.contacts, h, &s.floes.id);
         let broken = take_pairs_of(&mut s.broken, h, &s.floes.id);
-        // Its schedule goes with it (a re-inserted floe has none).
+        // Its schedule and load point go with it (a re-inserted floe has
+        // none).
         s.schedules.retain(|m| m.floe_id != id);
+        s.load_points.retain(|l| l.floe_id != id);
         let detached = DetachedFloe {
             floe: s.floes.remove(h),
             force: s.force.remove(h),

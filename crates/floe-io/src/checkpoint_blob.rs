@@ -21,9 +21,10 @@
 //! no new format. Bytes after the payload are ignored (a slot is reused
 //! for smaller states without shrinking).
 //!
-//! Version 4 (written now) appends the motion schedules: per scheduled
-//! floe its id, then its segments (duration, start and end velocity, start
-//! and end angular velocity). Version 3 added the time step and the slot
+//! Version 4 (written now) appends the motion schedules (per scheduled
+//! floe its id, then its segments: duration, start and end velocity, start
+//! and end angular velocity) and the load points (floe id, stiffness,
+//! anchor, segments). Version 3 added the time step and the slot
 //! counts, and dropped the count of owned floes; it reads as version 4
 //! without schedules. Versions 1 and 2 are still read: their
 //! friction state is the force then three slots (`theta`, the solver's
@@ -33,6 +34,7 @@
 use floe_dem::contacts::{BrokenContact, ContactRecord};
 use floe_dem::energy_ledger::EnergyLedger;
 use floe_dem::floes::{FloeColumns, Floes, Motion};
+use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::{MotionSchedule, MotionSegment, ScheduledMotion};
 use floe_dem::state::WorldState;
 use floe_dem::Vec2;
@@ -120,6 +122,16 @@ impl Enc {
             self.u32(self.2 as u32);
         }
     }
+    fn segments(&mut self, segments: &[MotionSegment]) {
+        self.len(segments.len());
+        for g in segments {
+            self.f64(g.duration_s);
+            self.v2(g.velocity_start);
+            self.v2(g.velocity_end);
+            self.f64(g.angular_velocity_start);
+            self.f64(g.angular_velocity_end);
+        }
+    }
     fn str(&mut self, s: &str) {
         self.len(s.len());
         self.0.extend_from_slice(s.as_bytes());
@@ -172,6 +184,7 @@ pub fn encode_version(
         external_force,
         external_torque,
         schedules,
+        load_points,
     } = state;
     let FloeColumns {
         id,
@@ -304,15 +317,14 @@ pub fn encode_version(
         e.len(schedules.len());
         for s in schedules {
             e.u64(s.floe_id);
-            let segments = s.schedule.segments();
-            e.len(segments.len());
-            for g in segments {
-                e.f64(g.duration_s);
-                e.v2(g.velocity_start);
-                e.v2(g.velocity_end);
-                e.f64(g.angular_velocity_start);
-                e.f64(g.angular_velocity_end);
-            }
+            e.segments(s.schedule.segments());
+        }
+        e.len(load_points.len());
+        for l in load_points {
+            e.u64(l.floe_id);
+            e.f64(l.stiffness_n_per_m);
+            e.v2(l.anchor);
+            e.segments(l.schedule.segments());
         }
     }
 
@@ -435,6 +447,18 @@ impl<'a> Dec<'a> {
                 Ok(n)
             }
         }
+    }
+    fn schedule(&mut self, floe_id: u64) -> DecResult<MotionSchedule> {
+        let segments = self.vec(56, |d| {
+            Ok(MotionSegment {
+                duration_s: d.f64()?,
+                velocity_start: d.v2()?,
+                velocity_end: d.v2()?,
+                angular_velocity_start: d.f64()?,
+                angular_velocity_end: d.f64()?,
+            })
+        })?;
+        MotionSchedule::new(segments).map_err(|e| format!("the schedule of floe {floe_id}: {e}"))
     }
     fn str(&mut self) -> DecResult<String> {
         let n = self.len(1)?;
@@ -610,18 +634,19 @@ pub fn decode(
         schedules: if d.version >= 4 {
             d.vec(16, |d| {
                 let floe_id = d.u64()?;
-                let segments = d.vec(56, |d| {
-                    Ok(MotionSegment {
-                        duration_s: d.f64()?,
-                        velocity_start: d.v2()?,
-                        velocity_end: d.v2()?,
-                        angular_velocity_start: d.f64()?,
-                        angular_velocity_end: d.f64()?,
-                    })
-                })?;
-                let schedule = MotionSchedule::new(segments)
-                    .map_err(|e| format!("the schedule of floe {floe_id}: {e}"))?;
+                let schedule = d.schedule(floe_id)?;
                 Ok(ScheduledMotion { floe_id, schedule })
+            })?
+        } else {
+            Vec::new()
+        },
+        load_points: if d.version >= 4 {
+            d.vec(40, |d| {
+                let floe_id = d.u64()?;
+                let (k, anchor) = (d.f64()?, d.v2()?);
+                let schedule = d.schedule(floe_id)?;
+                LoadPoint::new(floe_id, k, anchor, schedule)
+                    .map_err(|e| format!("the load point of floe {floe_id}: {e}"))
             })?
         } else {
             Vec::new()
@@ -719,10 +744,10 @@ mod tests {
         assert!(e.contains("format version 5"), "{e}");
     }
 
-    /// Version 4 keeps the motion schedules bitwise; version 3 (none) still
-    /// reads, as a state without schedules.
+    /// Version 4 keeps the motion schedules and load points bitwise;
+    /// version 3 (neither) still reads, as a state without them.
     #[test]
-    fn motion_schedules_round_trip_and_version_3_reads_without_them() {
+    fn schedules_and_load_points_round_trip_and_version_3_reads_without_them() {
         use floe_dem::motion_schedule::{MotionSchedule, MotionSegment};
         let model = ContactModel::default();
         let state = springing_pack(model.clone());
@@ -744,17 +769,23 @@ mod tests {
             },
         ])
         .unwrap();
-        world.set_schedule(id, schedule).unwrap();
+        world.set_schedule(id, schedule.clone()).unwrap();
+        let driven = world.floes().id[5];
+        let anchor = world.floes().position[5] + Vec2::new(0.25, -1.0 / 3.0);
+        world
+            .set_load_point(LoadPoint::new(driven, 2e6, anchor, schedule).unwrap())
+            .unwrap();
         for _ in 0..3 {
             world.step();
         }
         let state = world.state().clone();
-        assert_eq!(state.schedules.len(), 1);
+        assert_eq!((state.schedules.len(), state.load_points.len()), (1, 1));
         let counts = OutputCounts::default();
         let (back, _) = decode(&encode(&state, &counts, 3), || None, Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
         let mut without = state.clone();
         without.schedules.clear();
+        without.load_points.clear();
         let v3 = encode_version(&state, &counts, 3, 3);
         let (back, _) = decode(&v3, || None, Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{without:?}"));
@@ -805,5 +836,6 @@ mod tests {
             + 4 * 8
             + n * (16 + 8 + 16 + 8)
             + 8 // the schedule count (none here)
+            + 8 // the load-point count (none here)
     }
 }

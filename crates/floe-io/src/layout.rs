@@ -53,10 +53,11 @@ pub const SERIES_CHUNK: usize = 256;
 pub const MAX_FLOE_CHUNK: usize = 65_536;
 
 /// The observables written for each sample: name, unit, and the values
-/// (one, or four for the stress tensor `[xx, xy, yx, yy]`).
+/// (one, two for the load-point force `[x, y]`, or four for the stress
+/// tensor `[xx, xy, yx, yy]`).
 pub fn observable_samples(
     o: &floe_dem::observables::Observables,
-) -> [(&'static str, &'static str, Vec<f64>); 12] {
+) -> [(&'static str, &'static str, Vec<f64>); 13] {
     let l = &o.ledger;
     [
         (
@@ -75,6 +76,7 @@ pub fn observable_samples(
         ("contacts", "1", vec![o.contacts as f64]),
         ("sliding_fraction", "1", vec![o.sliding_fraction]),
         ("mean_mu", "1", vec![o.mean_mu]),
+        ("load_point_force", "N", o.load_point_force_n.to_vec()),
     ]
 }
 

@@ -365,15 +365,9 @@ impl RunWriter {
             let g = file.create_group(layout::OBSERVABLES)?;
             let mut v = Vec::new();
             for (name, unit, values) in layout::observable_samples(&Observables::default()) {
-                let inner: Vec<usize> = if values.len() == 1 {
-                    vec![]
-                } else {
-                    vec![values.len()]
-                };
-                let storage = Storage::plain(layout::SERIES_CHUNK, &inner);
                 v.push((
                     name.to_string(),
-                    Element::create(&g, name, unit, &inner, &storage)?,
+                    create_observable(&g, name, unit, values.len())?,
                 ));
             }
             Ok(v)
@@ -674,8 +668,15 @@ impl RunWriter {
         .at(path, what)?;
         let og = file.group(layout::OBSERVABLES).at(path, what)?;
         let mut observables = Vec::new();
-        for (name, _, _) in layout::observable_samples(&Observables::default()) {
-            observables.push((name.to_string(), Element::open(&og, name).at(path, what)?));
+        for (name, unit, values) in layout::observable_samples(&Observables::default()) {
+            // A file from a floe without this observable gets it now: its
+            // series starts at the resume.
+            let el = if og.link_exists(name) {
+                Element::open(&og, name)
+            } else {
+                create_observable(&og, name, unit, values.len())
+            };
+            observables.push((name.to_string(), el.at(path, what)?));
         }
         // Truncate to the checkpoint's counts; refuse counts the file does
         // not reach (the checkpoint would describe output that is not there).
@@ -789,4 +790,12 @@ fn check_scenario_unchanged(file: &hdf5::File, path: &Path) -> Result<(), IoErro
             ),
         })
     }
+}
+
+/// An observable's element: plain (uncompressed) chunks of
+/// [`layout::SERIES_CHUNK`] samples of `values` numbers each.
+fn create_observable(g: &Group, name: &str, unit: &str, values: usize) -> hdf5::Result<Element> {
+    let inner: Vec<usize> = if values == 1 { vec![] } else { vec![values] };
+    let storage = Storage::plain(layout::SERIES_CHUNK, &inner);
+    Element::create(g, name, unit, &inner, &storage)
 }

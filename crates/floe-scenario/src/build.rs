@@ -11,6 +11,7 @@ use std::ops::Range;
 use floe_dem::floes::{Floe, Floes};
 use floe_dem::geometry::FloeShape;
 use floe_dem::motion_schedule::MotionSchedule;
+use floe_dem::pipeline::integrator::STABILITY_SAFETY;
 use floe_dem::tessellation::{DiamondLattice, Rect, Tessellation, VoronoiFloes, MAX_FLOES};
 use floe_dem::world::stable_time_step;
 use floe_dem::Vec2;
@@ -38,6 +39,8 @@ pub(crate) struct Piece {
     pub prescribed: bool,
     /// The motion schedule of a prescribed piece that has one.
     pub schedule: Option<MotionSchedule>,
+    /// The load point (stiffness, N/m, and schedule) of a free piece.
+    pub load_point: Option<(f64, MotionSchedule)>,
     /// What it is, for messages (`floe[3]`, `wall[0] (bottom)`...).
     pub label: Option<String>,
     /// Where it was written, for explicit floes.
@@ -90,6 +93,7 @@ fn generate(
                 angular_velocity: 0.0,
                 prescribed: false,
                 schedule: None,
+                load_point: None,
                 label: None,
                 span: None,
             })
@@ -281,6 +285,7 @@ fn generate(
                     },
                     prescribed: e.prescribed,
                     schedule: e.schedule.clone(),
+                    load_point: e.load_point.clone(),
                     label: Some(format!("floe[{i}]")),
                     span: Some(e.span.clone()),
                 })
@@ -361,6 +366,7 @@ fn double_shear(
             angular_velocity: 0.0,
             prescribed: false,
             schedule: None,
+            load_point: None,
             label: Some("block".into()),
             span: None,
         },
@@ -371,6 +377,7 @@ fn double_shear(
             angular_velocity: 0.0,
             prescribed: true,
             schedule: None,
+            load_point: None,
             label: Some("upper side block".into()),
             span: None,
         },
@@ -381,6 +388,7 @@ fn double_shear(
             angular_velocity: 0.0,
             prescribed: true,
             schedule: None,
+            load_point: None,
             label: Some("lower side block".into()),
             span: None,
         },
@@ -391,6 +399,7 @@ fn double_shear(
             angular_velocity: 0.0,
             prescribed: true,
             schedule: None,
+            load_point: None,
             label: Some("pusher".into()),
             span: None,
         },
@@ -509,6 +518,7 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
                 angular_velocity: 0.0,
                 prescribed: true,
                 schedule: w.schedule.clone(),
+                load_point: None,
                 label: Some(format!("wall[{}] ({})", w.index, w.side.name())),
                 span: Some(w.span.clone()),
             });
@@ -517,6 +527,7 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
     let periodicity = r.domain.periodicity();
     let mut floes = Floes::default();
     let mut schedules = Vec::new();
+    let mut load_points = Vec::new();
     let mut spans = Vec::with_capacity(pieces.len());
     let mut labels = Vec::with_capacity(pieces.len());
     for (i, p) in pieces.into_iter().enumerate() {
@@ -551,12 +562,22 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         if let Some(schedule) = p.schedule {
             schedules.push((i as u64, schedule));
         }
+        if let Some((k, schedule)) = p.load_point {
+            report.push(format!(
+                "{}: driven through a {} N/m spring from a load point {}",
+                p.label.as_deref().unwrap_or("floe"),
+                sig(k),
+                describe_schedule(&schedule)
+            ));
+            load_points.push((i as u64, (k, schedule)));
+        }
         spans.push(p.span);
         labels.push(p.label);
     }
     let built = BuiltFloes {
         floes,
         schedules,
+        load_points,
         pieces_span: spans,
         labels,
         report,
@@ -622,10 +643,24 @@ pub(crate) fn time_step(
     built: &BuiltFloes,
     max_steps: f64,
 ) -> Result<(f64, f64, String), ScenarioError> {
-    let (limit, culprit) = stable_time_step(&built.floes, &r.model);
+    let (mut limit, mut culprit) = stable_time_step(&built.floes, &r.model);
+    // A load point's spring is one more stiffness on its floe.
+    let mut spring_sets_it = false;
+    for (id, (k, _)) in &built.load_points {
+        let h = built.floes.handle_of(*id).expect("built with the floes");
+        let spring = STABILITY_SAFETY * 2.0 * (built.floes.mass_kg[h] / k).sqrt();
+        if spring < limit {
+            (limit, culprit, spring_sets_it) = (spring, h, true);
+        }
+    }
     let culprit_name = built.labels[culprit]
         .clone()
         .unwrap_or_else(|| format!("floe {culprit}"));
+    let culprit_name = if spring_sets_it {
+        format!("{culprit_name}'s load-point spring")
+    } else {
+        culprit_name
+    };
     if !(limit.is_finite() && limit > 0.0) {
         let span = built.pieces_span[culprit]
             .clone()

@@ -11,6 +11,9 @@ pub(crate) struct BuiltFloes {
     pub floes: Floes,
     /// The motion schedules of prescribed floes, by floe id.
     pub schedules: Vec<(u64, MotionSchedule)>,
+    /// The load points of free floes (stiffness, N/m, and schedule), by
+    /// floe id; anchored where the floe starts.
+    pub load_points: Vec<(u64, (f64, MotionSchedule))>,
     pub pieces_span: Vec<Option<Range<usize>>>,
     pub labels: Vec<Option<String>>,
     pub report: Vec<String>,

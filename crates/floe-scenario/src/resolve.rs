@@ -119,6 +119,8 @@ pub(crate) struct ExplicitFloe {
     pub prescribed: bool,
     /// `[[floe.segment]]` of a prescribed floe.
     pub schedule: Option<MotionSchedule>,
+    /// `[floe.load_point]` of a free floe: stiffness (N/m) and schedule.
+    pub load_point: Option<(f64, MotionSchedule)>,
     pub span: Range<usize>,
 }
 
@@ -362,6 +364,10 @@ fn density(
 ) -> Result<f64, ScenarioError> {
     sized(f, v, key, zero_ok, (MAX_DENSITY_KG_PER_M3, "kg/m^3"))
 }
+
+/// Accepted load-point spring stiffnesses, N/m (the paper's apparatus:
+/// 2e7 lab, 2e6 tank).
+pub const LOAD_POINT_STIFFNESS_RANGE_N_PER_M: (f64, f64) = (1e-3, 1e12);
 
 /// Accepted contact Young's moduli, Pa: sea ice is about 1e9; below 1e3 Pa
 /// floes pass through each other, above 1e13 the stable step vanishes.
@@ -766,6 +772,43 @@ fn resolve_explicit_floe(
             )?)
         }
     };
+    let load_point = match &fl.load_point {
+        None => None,
+        Some(lp) => {
+            let owner = format!("floe[{i}].load_point");
+            if prescribed {
+                return Err(f.error(
+                    lp.span(),
+                    key("load_point"),
+                    "a load point drives a free floe through its spring; a prescribed floe \
+                     ignores forces (drop prescribed = true, or give it [[floe.segment]])",
+                ));
+            }
+            let r = lp.get_ref();
+            let Some(k) = &r.stiffness_n_per_m else {
+                return Err(f.error(
+                    lp.span(),
+                    format!("{owner}.stiffness_n_per_m"),
+                    "missing: the spring's stiffness in N/m (the paper's apparatus: 2e7 lab, \
+                     2e6 tank)",
+                ));
+            };
+            let k = f.in_range(
+                k,
+                &format!("{owner}.stiffness_n_per_m"),
+                LOAD_POINT_STIFFNESS_RANGE_N_PER_M,
+                "N/m",
+            )?;
+            let Some(segments) = &r.segment else {
+                return Err(f.error(
+                    lp.span(),
+                    format!("{owner}.segment"),
+                    "missing: [[floe.load_point.segment]] tables saying how the load point moves",
+                ));
+            };
+            Some((k, resolve_schedule(f, segments, &owner, false, extent)?))
+        }
+    };
     Ok(ExplicitFloe {
         vertices,
         thickness_m: fl
@@ -793,6 +836,7 @@ fn resolve_explicit_floe(
             .unwrap_or(0.0),
         prescribed: fl.prescribed.as_ref().is_some_and(|p| *p.get_ref()),
         schedule,
+        load_point,
         span: raw.span(),
     })
 }

@@ -6,6 +6,7 @@ use std::path::Path;
 
 use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
+use floe_dem::load_point::LoadPoint;
 use floe_dem::periodicity::Periodicity;
 use floe_dem::world::World;
 
@@ -172,6 +173,11 @@ impl Scenario {
         )?;
         for (id, schedule) in built.schedules {
             world.set_schedule(id, schedule)?;
+        }
+        for (id, (k, schedule)) in built.load_points {
+            let h = world.floes().handle_of(id).expect("built with the floes");
+            let anchor = world.floes().position[h];
+            world.set_load_point(LoadPoint::new(id, k, anchor, schedule)?)?;
         }
         report.push(format!(
             "  {} contacts at the start",

@@ -94,6 +94,15 @@ pub(crate) struct RawFloe {
     pub angular_velocity_rad_per_s: Num,
     pub prescribed: Flag,
     pub segment: Option<Vec<Spanned<RawSegment>>>,
+    pub load_point: Option<Spanned<RawLoadPoint>>,
+}
+
+/// `[floe.load_point]`: a spring from a moving point to a free floe.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLoadPoint {
+    pub stiffness_n_per_m: Num,
+    pub segment: Option<Vec<Spanned<RawSegment>>>,
 }
 
 /// `[ice]`

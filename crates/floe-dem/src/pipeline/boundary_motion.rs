@@ -1,10 +1,14 @@
 //! Boundary motion, the first thing a step does: each scheduled floe's
 //! velocity and rotation rate become their mean over the coming step
 //! ([`MotionSchedule::mean_velocity`](crate::motion_schedule::MotionSchedule::mean_velocity)),
-//! so the drift moves it by the schedule's displacement.
+//! so the drift moves it by the schedule's displacement. And the load
+//! points' springs, added to the gathered forces.
 
 use crate::floes::{Floes, Motion};
+use crate::load_point::LoadPoint;
 use crate::motion_schedule::ScheduledMotion;
+use crate::periodicity::Periodicity;
+use crate::Vec2;
 
 /// Sets the velocities of the floes in `schedules` for the step from
 /// `t0_s` to `t0_s + dt_s`.
@@ -15,6 +19,25 @@ pub(crate) fn apply(floes: &mut Floes, schedules: &[ScheduledMotion], t0_s: f64,
             let (velocity, angular_velocity) = s.schedule.mean_velocity(t0_s, dt_s);
             floes.set_motion(h, Motion::Prescribed { velocity });
             floes.set_velocity(h, velocity, angular_velocity);
+        }
+    }
+}
+
+/// Adds each load point's spring force at time `t_s` to its floe's total
+/// and external force, in floe-id order.
+pub(crate) fn add_load_point_forces(
+    floes: &Floes,
+    load_points: &[LoadPoint],
+    periodicity: Periodicity,
+    t_s: f64,
+    (force, external_force): (&mut [Vec2], &mut [Vec2]),
+) {
+    for l in load_points {
+        // WorldState::validate and the world's edits keep every id present.
+        if let Some(h) = floes.handle_of(l.floe_id) {
+            let f = l.force(t_s, floes.position[h], periodicity);
+            force[h] += f;
+            external_force[h] += f;
         }
     }
 }

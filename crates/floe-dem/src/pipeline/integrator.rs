@@ -133,6 +133,7 @@ pub(crate) fn kick(
             for (k, (v, omega)) in vs.iter_mut().zip(omegas).enumerate() {
                 let i = block * ENERGY_CHUNK + k;
                 if let Motion::Free = motion[i] {
+                    let (v_half, omega_half) = (*v, *omega);
                     let (dv, dw) = implicit_half_kick(
                         (fs[k], ts[k]),
                         &rates[i],
@@ -154,8 +155,8 @@ pub(crate) fn kick(
                     power_w += forcing_power(
                         (previous_external.0[i], previous_external.1[i]),
                         (efs[k], ets[k]),
-                        *v,
-                        *omega,
+                        v_half,
+                        omega_half,
                     );
                 }
             }
