@@ -654,3 +654,53 @@ SEGMENTS"#;
         .replace("duration_s = 10.0\n", "duration_s = 10.0\ndt_s = 0.001\n");
     check(&stiff, "0.001", 0, "dt_s", &["load-point spring"]);
 }
+
+#[test]
+fn the_double_shear_pusher_schedule_is_checked_where_it_is_written() {
+    let shear = r#"title = "double shear"
+duration_s = 10.0
+
+[domain]
+size_m = [8.0, 8.0]
+
+[tessellation]
+kind = "double-shear"
+block_m = [2.0, 2.0]
+side_block_m = [4.0, 2.0]
+normal_load_per_face_n = 5000.0
+PUSH
+[[tessellation.segment]]
+duration_s = 5.0
+velocity_m_per_s = VELOCITY
+
+[ice]
+thickness_m = 0.25
+"#;
+    let make = |push: &str, v: &str| shear.replace("PUSH", push).replace("VELOCITY", v);
+    let ok = make("", "[0.008, 0.0]");
+    let s = Scenario::from_text(&ok, Path::new("ok.toml")).unwrap();
+    assert_eq!(s.build().unwrap().world.schedules().len(), 1, "the pusher");
+    check(
+        &make("push_velocity_m_per_s = 0.008", "[0.008, 0.0]"),
+        "0.008\n",
+        0,
+        "tessellation.push_velocity_m_per_s",
+        &["not both"],
+    );
+    check(
+        &make("", "[0.008, 0.001]"),
+        "[[tessellation.segment]]",
+        0,
+        "tessellation.segment[0]",
+        &["along the block"],
+    );
+    // Segments belong to the double shear only.
+    let grid = format!("{BASE}\n[[tessellation.segment]]\nduration_s = 1.0\n");
+    check(
+        &grid,
+        "[[tessellation.segment]]",
+        0,
+        "tessellation.segment",
+        &["grid"],
+    );
+}

@@ -297,6 +297,7 @@ fn generate(
             pusher_m,
             normal_load_per_face_n,
             push_velocity_m_per_s,
+            push_schedule,
         } => double_shear(
             f,
             r,
@@ -304,7 +305,7 @@ fn generate(
             *side_block_m,
             *pusher_m,
             *normal_load_per_face_n,
-            *push_velocity_m_per_s,
+            (*push_velocity_m_per_s, push_schedule.as_ref()),
             report,
         ),
     }
@@ -321,7 +322,7 @@ fn double_shear(
     side: [f64; 2],
     pusher: [f64; 2],
     load: f64,
-    v: f64,
+    (v, schedule): (f64, Option<&MotionSchedule>),
     report: &mut Vec<String>,
 ) -> Result<Vec<Piece>, ScenarioError> {
     let span = r.floes_span.clone();
@@ -338,7 +339,10 @@ fn double_shear(
             ),
         ));
     }
-    let travel = v * r.duration_s;
+    let travel = match schedule {
+        Some(s) => s.most_travel_m(r.duration_s),
+        None => v * r.duration_s,
+    };
     if side[0] < block[0] + travel {
         return Err(f.error(
             span,
@@ -398,7 +402,7 @@ fn double_shear(
             velocity: Vec2::new(v, 0.0),
             angular_velocity: 0.0,
             prescribed: true,
-            schedule: None,
+            schedule: schedule.cloned(),
             load_point: None,
             label: Some("pusher".into()),
             span: None,
@@ -407,7 +411,11 @@ fn double_shear(
     // Everything, with its travel, must lie in the domain.
     let (lo, hi) = (d.min_m, d.min_m + d.size_m);
     for p in &pieces {
-        let moves = if p.velocity.x != 0.0 { travel } else { 0.0 };
+        let moves = if p.velocity.x != 0.0 || p.schedule.is_some() || !p.prescribed {
+            travel
+        } else {
+            0.0
+        };
         for q in &p.polygon {
             if q.x < lo.x || q.x + moves > hi.x || q.y < lo.y || q.y > hi.y {
                 return Err(f.error(
@@ -423,9 +431,17 @@ fn double_shear(
             }
         }
     }
+    let pushed = match schedule {
+        Some(s) => format!("pushed {}", describe_schedule(s)),
+        None => format!("pushed at {} m/s", sig(v)),
+    };
     report.push(format!(
-        "floes: double shear: block {} x {} x {} m pushed at {} m/s between fixed side blocks {} x {} m",
-        block[0], block[1], sig(h), sig(v), side[0], side[1]
+        "floes: double shear: block {} x {} x {} m {pushed} between fixed side blocks {} x {} m",
+        block[0],
+        block[1],
+        sig(h),
+        side[0],
+        side[1]
     ));
     report.push(format!(
         "  normal load {} N per face ({} N on both) from an overlap {} m deep; contact kappa = E h / sqrt(A) = {} Pa",

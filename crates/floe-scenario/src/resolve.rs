@@ -151,7 +151,10 @@ pub(crate) enum FloeSource {
         side_block_m: [f64; 2],
         pusher_m: [f64; 2],
         normal_load_per_face_n: f64,
+        /// The pusher's velocity at the start.
         push_velocity_m_per_s: f64,
+        /// `[[tessellation.segment]]`, when the pusher follows a schedule.
+        push_schedule: Option<MotionSchedule>,
     },
     Explicit(Vec<ExplicitFloe>),
 }
@@ -678,7 +681,7 @@ fn resolve_floes(
             let span = floes.first().map_or(0..0, |fl| fl.span());
             Ok((FloeSource::Explicit(out), span, 0.0))
         }
-        (Some(t), None) => resolve_tessellation(f, t),
+        (Some(t), None) => resolve_tessellation(f, t, extent),
     }
 }
 
@@ -844,6 +847,7 @@ fn resolve_explicit_floe(
 fn resolve_tessellation(
     f: &SourceFile,
     raw: &Spanned<RawTessellation>,
+    extent: Extent,
 ) -> Result<(FloeSource, Range<usize>, f64), ScenarioError> {
     let t = raw.get_ref();
     let span = raw.span();
@@ -873,6 +877,10 @@ fn resolve_tessellation(
         (span_of(&t.pusher_m), "pusher_m"),
         (span_of(&t.normal_load_per_face_n), "normal_load_per_face_n"),
         (span_of(&t.push_velocity_m_per_s), "push_velocity_m_per_s"),
+        (
+            t.segment.as_ref().and_then(|s| s.first()).map(|s| s.span()),
+            "segment",
+        ),
     ];
     let allowed: &[&str] = match kind {
         "diamond" => &[
@@ -896,6 +904,7 @@ fn resolve_tessellation(
             "pusher_m",
             "normal_load_per_face_n",
             "push_velocity_m_per_s",
+            "segment",
         ],
         other => {
             return Err(f.error(
@@ -1105,16 +1114,48 @@ fn resolve_tessellation(
             let Some(load) = &t.normal_load_per_face_n else {
                 return Err(need("normal_load_per_face_n"));
             };
-            let Some(push) = &t.push_velocity_m_per_s else {
-                return Err(need("push_velocity_m_per_s"));
-            };
+            let (push_velocity_m_per_s, push_schedule) =
+                match (&t.push_velocity_m_per_s, &t.segment) {
+                    (Some(push), None) => (
+                        f.non_negative(push, "tessellation.push_velocity_m_per_s")?,
+                        None,
+                    ),
+                    (None, Some(segments)) => {
+                        let s = resolve_schedule(f, segments, "tessellation", false, extent)?;
+                        (s.velocity_at(0.0).0.x, Some(s))
+                    }
+                    (Some(push), Some(_)) => {
+                        return Err(f.error(
+                            push.span(),
+                            "tessellation.push_velocity_m_per_s",
+                            "give the pusher's motion either as push_velocity_m_per_s or as \
+                         [[tessellation.segment]] tables, not both",
+                        ))
+                    }
+                    (None, None) => return Err(need("push_velocity_m_per_s")),
+                };
+            if let Some(s) = &push_schedule {
+                // The pusher pushes along +x: a segment across is refused.
+                if let Some(k) = s
+                    .segments()
+                    .iter()
+                    .position(|g| g.velocity_start.y != 0.0 || g.velocity_end.y != 0.0)
+                {
+                    let segments = t.segment.as_deref().unwrap_or(&[]);
+                    return Err(f.error(
+                        segments[k].span(),
+                        format!("tessellation.segment[{k}]"),
+                        "the pusher moves along the block (x) only: give velocities [v, 0.0]",
+                    ));
+                }
+            }
             FloeSource::DoubleShear {
                 block_m,
                 side_block_m,
                 pusher_m,
                 normal_load_per_face_n: f.positive(load, "tessellation.normal_load_per_face_n")?,
-                push_velocity_m_per_s: f
-                    .non_negative(push, "tessellation.push_velocity_m_per_s")?,
+                push_velocity_m_per_s,
+                push_schedule,
             }
         }
     };

@@ -81,6 +81,8 @@ pub(crate) struct RawTessellation {
     pub pusher_m: Pair,
     pub normal_load_per_face_n: Num,
     pub push_velocity_m_per_s: Num,
+    /// `[[tessellation.segment]]`: the double shear's pusher on a schedule.
+    pub segment: Option<Vec<Spanned<RawSegment>>>,
 }
 
 /// `[[floe]]`: one explicit floe.
