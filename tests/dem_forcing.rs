@@ -939,3 +939,68 @@ fn force_and_torque_does_not_allocate() {
     assert!(acc.is_finite());
     assert_eq!(after - before, 0, "allocations in 20 000 evaluations");
 }
+
+#[test]
+fn the_force_rates_are_the_derivatives_of_the_force() {
+    // Every velocity-dependent term at once: ocean and air drag relative to
+    // the ice with turning angles of both signs, Coriolis, tilt, rotational
+    // drag in a sheared current; rates against central differences.
+    let forcing = Forcing {
+        wind: VelocityField::Uniform(Vec2::new(8.0, -3.0)),
+        current: VelocityField::LinearShear {
+            y_min_m: 0.0,
+            y_max_m: 5000.0,
+            velocity_at_y_min_m_per_s: Vec2::new(0.1, 0.05),
+            velocity_at_y_max_m_per_s: Vec2::new(0.2, 0.05),
+        },
+        air: DragParameters {
+            relative_to_ice: true,
+            turning_angle_deg: -10.0,
+            ..DragParameters::air()
+        },
+        ocean: DragParameters {
+            turning_angle_deg: 25.0,
+            ..DragParameters::ocean()
+        },
+        coriolis: Coriolis::LatitudeDeg(75.0),
+        ..Forcing::default()
+    };
+    let mut state = floe(1.5);
+    state.position = Vec2::new(300.0, 2000.0);
+    state.velocity = Vec2::new(0.23, -0.11);
+    state.angular_velocity = 3e-5;
+    let (_, _, rates) = forcing.force_torque_and_rates(0.0, &state);
+    let h = 1e-6;
+    for j in 0..2 {
+        let at = |dv: f64| {
+            let mut s = state;
+            if j == 0 {
+                s.velocity.x += dv;
+            } else {
+                s.velocity.y += dv;
+            }
+            forcing.force_and_torque(0.0, &s).0
+        };
+        let d = (at(h) - at(-h)) / (2.0 * h);
+        for (i, fd) in [d.x, d.y].into_iter().enumerate() {
+            let analytic = rates.force_per_velocity[i][j];
+            assert!(
+                (analytic - fd).abs() < 1e-6 * analytic.abs().max(1.0),
+                "dF{i}/du{j}: {analytic} vs {fd}"
+            );
+        }
+    }
+    let spin = |dw: f64| {
+        let mut s = state;
+        s.angular_velocity += dw;
+        forcing.force_and_torque(0.0, &s).1
+    };
+    let hw = 1e-9;
+    let fd = (spin(hw) - spin(-hw)) / (2.0 * hw);
+    let analytic = rates.torque_per_angular_velocity;
+    assert!(
+        (analytic - fd).abs() < 1e-6 * analytic.abs(),
+        "{analytic} vs {fd}"
+    );
+    assert!(analytic < 0.0, "rotational drag resists spin");
+}

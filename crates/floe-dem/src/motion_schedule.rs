@@ -66,6 +66,8 @@ pub struct MotionSchedule {
     segments: Vec<MotionSegment>,
     /// Start time of each segment, s (`starts[0] = 0`).
     starts: Vec<f64>,
+    /// Displacement and rotation at each segment's start (summed in order).
+    travel_at_start: Vec<(Vec2, f64)>,
 }
 
 impl MotionSchedule {
@@ -80,6 +82,8 @@ impl MotionSchedule {
             });
         }
         let mut starts = Vec::with_capacity(segments.len());
+        let mut travel_at_start = Vec::with_capacity(segments.len());
+        let (mut x, mut a) = (Vec2::ZERO, 0.0);
         let mut t = 0.0;
         for s in &segments {
             let finite = s.velocity_start.is_finite()
@@ -94,9 +98,17 @@ impl MotionSchedule {
                 });
             }
             starts.push(t);
+            travel_at_start.push((x, a));
             t += s.duration_s;
+            let (dx, da) = s.travel(s.duration_s);
+            x += dx;
+            a += da;
         }
-        Ok(MotionSchedule { segments, starts })
+        Ok(MotionSchedule {
+            segments,
+            starts,
+            travel_at_start,
+        })
     }
 
     /// The segments, in order.
@@ -124,12 +136,7 @@ impl MotionSchedule {
     /// Displacement (m) and rotation (rad) from time 0 to `t_s` (>= 0).
     pub fn travel_to(&self, t_s: f64) -> (Vec2, f64) {
         let k = self.segment_at(t_s);
-        let (mut x, mut a) = (Vec2::ZERO, 0.0);
-        for s in &self.segments[..k] {
-            let (dx, da) = s.travel(s.duration_s);
-            x += dx;
-            a += da;
-        }
+        let (x, a) = self.travel_at_start[k];
         let s = &self.segments[k];
         let into = t_s - self.starts[k];
         let (dx, da) = if into <= s.duration_s {
@@ -149,10 +156,12 @@ impl MotionSchedule {
     /// Mean velocity and angular velocity over `[t0_s, t0_s + dt_s]`: what
     /// moves the floe by the schedule's displacement in one step.
     pub fn mean_velocity(&self, t0_s: f64, dt_s: f64) -> (Vec2, f64) {
-        let k0 = self.segment_at(t0_s);
-        let k1 = self.segment_at(t0_s + dt_s);
-        if k0 == k1 {
-            // Within one segment the mean of a linear ramp is its midpoint.
+        let (k0, t1) = (self.segment_at(t0_s), t0_s + dt_s);
+        let end = self.starts[k0] + self.segments[k0].duration_s;
+        // Within one segment (or both past the last one's end) the mean of
+        // a linear ramp is its midpoint; a step across the last segment's
+        // end is not.
+        if self.segment_at(t1) == k0 && (t1 <= end || t0_s >= end) {
             return self.velocity_at(t0_s + 0.5 * dt_s);
         }
         let (x0, a0) = self.travel_to(t0_s);
@@ -245,6 +254,25 @@ mod tests {
             t += dt;
             assert!((x - s.travel_to(t).0.x).abs() < 1e-12, "t {t}");
         }
+    }
+
+    #[test]
+    fn a_step_across_the_end_of_a_final_ramp_moves_by_the_schedule() {
+        let s = MotionSchedule::new(vec![MotionSegment::ramp(
+            1.0,
+            Vec2::ZERO,
+            Vec2::new(1.0, 0.0),
+        )])
+        .unwrap();
+        // 0.9 .. 1.1 s: 0.095 m of ramp then 0.1 m at 1 m/s.
+        assert!((s.mean_velocity(0.9, 0.2).0.x - 0.975).abs() < 1e-12);
+        // Stepping by the mean velocity, against the hand integral.
+        let (mut x, dt) = (0.0, 0.3);
+        for k in 0..10 {
+            x += s.mean_velocity(k as f64 * dt, dt).0.x * dt;
+        }
+        let t = 10.0 * dt;
+        assert!((x - (0.5 + (t - 1.0))).abs() < 1e-12, "{x}");
     }
 
     #[test]

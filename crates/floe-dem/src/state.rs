@@ -104,30 +104,41 @@ impl WorldState {
         if !(self.dt_s.is_finite() && self.dt_s > 0.0) {
             return bad(format!("time step {} s is not > 0", self.dt_s));
         }
+        self.check_driven(
+            self.schedules.iter().map(|s| s.floe_id),
+            "a schedule",
+            false,
+        )?;
+        self.check_driven(
+            self.load_points.iter().map(|l| l.floe_id),
+            "a load point",
+            true,
+        )?;
+        Ok(())
+    }
+
+    /// Refuses `ids` (of floes with `what`) unless they are increasing and
+    /// name floes that exist and are free (`free`) or prescribed.
+    fn check_driven(
+        &self,
+        ids: impl Iterator<Item = u64>,
+        what: &str,
+        free: bool,
+    ) -> Result<(), DemError> {
+        let bad = |reason: String| Err(DemError::InvalidCheckpoint { reason });
         let mut last = None;
-        for s in &self.schedules {
-            let id = s.floe_id;
+        for id in ids {
             if last >= Some(id) {
-                return bad("schedules are not sorted by floe id, one per floe".into());
+                return bad(format!("{what} per floe, sorted by floe id, expected"));
             }
             last = Some(id);
             match self.floes.handle_of(id) {
-                Some(h) if !self.floes.is_free(h) => {}
-                Some(_) => return bad(format!("floe {id} has a schedule but is not prescribed")),
-                None => return bad(format!("a schedule names floe {id}, which is not there")),
-            }
-        }
-        let mut last = None;
-        for l in &self.load_points {
-            let id = l.floe_id;
-            if last >= Some(id) {
-                return bad("load points are not sorted by floe id, one per floe".into());
-            }
-            last = Some(id);
-            match self.floes.handle_of(id) {
-                Some(h) if self.floes.is_free(h) => {}
-                Some(_) => return bad(format!("floe {id} has a load point but is not free")),
-                None => return bad(format!("a load point names floe {id}, which is not there")),
+                Some(h) if self.floes.is_free(h) == free => {}
+                Some(_) => {
+                    let kind = if free { "free" } else { "prescribed" };
+                    return bad(format!("floe {id} has {what} but is not {kind}"));
+                }
+                None => return bad(format!("{what} names floe {id}, which is not there")),
             }
         }
         Ok(())

@@ -21,12 +21,12 @@
 //! no new format. Bytes after the payload are ignored (a slot is reused
 //! for smaller states without shrinking).
 //!
-//! Version 4 (written now) appends the motion schedules (per scheduled
-//! floe its id, then its segments: duration, start and end velocity, start
-//! and end angular velocity) and the load points (floe id, stiffness,
-//! anchor, segments). Version 3 added the time step and the slot
-//! counts, and dropped the count of owned floes; it reads as version 4
-//! without schedules. Versions 1 and 2 are still read: their
+//! Version 5 (written now) appends the load points (floe id, stiffness,
+//! anchor, segments) to version 4, which appended the motion schedules (per
+//! scheduled floe its id, then its segments: duration, start and end
+//! velocity, start and end angular velocity). Version 3 added the time step
+//! and the slot counts, and dropped the count of owned floes; versions 3
+//! and 4 read as states without what they lack. Versions 1 and 2 are still read: their
 //! friction state is the force then three slots (`theta`, the solver's
 //! root, and from version 2 its trend; version 1 resumes with zero trends),
 //! and their time step comes from the caller (the scenario).
@@ -43,7 +43,7 @@ use floe_friction::{ContactState, LAW_STATE_SLOTS};
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
 /// Version of the encoding written.
-pub const FORMAT_VERSION: u32 = 4;
+pub const FORMAT_VERSION: u32 = 5;
 /// The oldest version read; older and newer ones are refused.
 pub const OLDEST_READABLE_VERSION: u32 = 1;
 /// Bytes before the payload.
@@ -319,6 +319,8 @@ pub fn encode_version(
             e.u64(s.floe_id);
             e.segments(s.schedule.segments());
         }
+    }
+    if version >= 5 {
         e.len(load_points.len());
         for l in load_points {
             e.u64(l.floe_id);
@@ -640,7 +642,7 @@ pub fn decode(
         } else {
             Vec::new()
         },
-        load_points: if d.version >= 4 {
+        load_points: if d.version >= 5 {
             d.vec(40, |d| {
                 let floe_id = d.u64()?;
                 let (k, anchor) = (d.f64()?, d.v2()?);
@@ -738,14 +740,14 @@ mod tests {
         let (back, _) = decode(&v3, || panic!("version 3 stores dt"), Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
         // A version from the future is refused, by name.
-        let mut v5 = v3.clone();
-        v5[8..12].copy_from_slice(&5u32.to_le_bytes());
-        let e = decode(&v5, dt, None).expect_err("version 5");
-        assert!(e.contains("format version 5"), "{e}");
+        let mut v6 = v3.clone();
+        v6[8..12].copy_from_slice(&6u32.to_le_bytes());
+        let e = decode(&v6, dt, None).expect_err("version 6");
+        assert!(e.contains("format version 6"), "{e}");
     }
 
-    /// Version 4 keeps the motion schedules and load points bitwise;
-    /// version 3 (neither) still reads, as a state without them.
+    /// Version 5 keeps the motion schedules and load points bitwise;
+    /// versions 4 (schedules only) and 3 (neither) still read.
     #[test]
     fn schedules_and_load_points_round_trip_and_version_3_reads_without_them() {
         use floe_dem::motion_schedule::{MotionSchedule, MotionSegment};
@@ -783,9 +785,13 @@ mod tests {
         let counts = OutputCounts::default();
         let (back, _) = decode(&encode(&state, &counts, 3), || None, Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
+        // Version 4: the schedules, no load points; version 3: neither.
         let mut without = state.clone();
-        without.schedules.clear();
         without.load_points.clear();
+        let v4 = encode_version(&state, &counts, 3, 4);
+        let (back, _) = decode(&v4, || None, Some(3)).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{without:?}"));
+        without.schedules.clear();
         let v3 = encode_version(&state, &counts, 3, 3);
         let (back, _) = decode(&v3, || None, Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{without:?}"));

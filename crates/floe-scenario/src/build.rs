@@ -11,7 +11,7 @@ use std::ops::Range;
 use floe_dem::floes::{Floe, Floes};
 use floe_dem::geometry::FloeShape;
 use floe_dem::motion_schedule::MotionSchedule;
-use floe_dem::pipeline::integrator::STABILITY_SAFETY;
+use floe_dem::pipeline::integrator::{damping_step_factor, STABILITY_SAFETY};
 use floe_dem::tessellation::{DiamondLattice, Rect, Tessellation, VoronoiFloes, MAX_FLOES};
 use floe_dem::world::stable_time_step;
 use floe_dem::Vec2;
@@ -697,6 +697,25 @@ pub(crate) fn time_step(
     // A step longer than the run would be the whole run.
     let limit = limit.min(r.duration_s / AUTO_DT_FRACTION);
     let steps = |dt: f64| ((r.duration_s / dt).round() as u64).max(1);
+    // What sets the limit, for messages: the contact stiffness and, when a
+    // strong dashpot shortens the step, the restitution.
+    let damping = damping_step_factor(&r.model);
+    let (stiffness, soften) = if damping < 1.0 {
+        (
+            format!(
+                "E = {} Pa, restitution {} (which shortens the step {} times)",
+                short(r.model.youngs_modulus_pa),
+                short(r.model.restitution),
+                sig(1.0 / damping)
+            ),
+            "soften contact.youngs_modulus_pa, raise contact.restitution",
+        )
+    } else {
+        (
+            format!("E = {} Pa", short(r.model.youngs_modulus_pa)),
+            "soften contact.youngs_modulus_pa",
+        )
+    };
     let too_many = |dt: f64| ((r.duration_s / dt).round() <= max_steps).not();
     let above = |dt: f64| {
         format!(
@@ -716,10 +735,9 @@ pub(crate) fn time_step(
                     "duration_s",
                     format!(
                         "{} (dt is automatic: {AUTO_DT_FRACTION} x the stable limit, set by {culprit_name} \
-                         with E = {} Pa); shorten duration_s, soften contact.youngs_modulus_pa, \
+                         with {stiffness}); shorten duration_s, {soften}, \
                          or raise the limit with --step-limit N",
                         above(dt),
-                        short(r.model.youngs_modulus_pa)
                     ),
                 ));
             }
@@ -741,9 +759,8 @@ pub(crate) fn time_step(
                     span.clone(),
                     "dt_s",
                     format!(
-                        "{dt} s is above the stable limit {} s (set by {culprit_name}, E = {} Pa); use at most that, or omit dt_s for {} s",
+                        "{dt} s is above the stable limit {} s (set by {culprit_name}, {stiffness}); use at most that, or omit dt_s for {} s",
                         sig(limit),
-                        r.model.youngs_modulus_pa,
                         sig(AUTO_DT_FRACTION * limit)
                     ),
                 ));

@@ -14,3 +14,7 @@ pub(crate) struct Extent {
     pub(crate) duration_s: f64,
     pub(crate) domain: Domain,
 }
+
+/// Fastest spin a file may give a floe or a schedule, rad/s (a turn in
+/// 0.06 s; sea ice turns at most a few degrees an hour).
+pub(crate) const MAX_ANGULAR_VELOCITY_RAD_PER_S: f64 = 100.0;

@@ -8,10 +8,14 @@ use floe_dem::Vec2;
 use toml::Spanned;
 
 use crate::error::ScenarioError;
-use crate::extent::{Extent, MAX_TRAVEL_DOMAINS};
+use crate::extent::{Extent, MAX_ANGULAR_VELOCITY_RAD_PER_S, MAX_TRAVEL_DOMAINS};
 use crate::numbers::sig;
 use crate::source_file::SourceFile;
 use crate::spec::RawSegment;
+
+/// Most segments one schedule may have (checks of wall travel and meeting
+/// look at every boundary).
+pub(crate) const MAX_SEGMENTS: usize = 10_000;
 
 /// The schedule of `segments` (keys named `{owner}.segment[k].…`), with
 /// rotation allowed only when `rotation` is true. Refuses a schedule that
@@ -19,11 +23,21 @@ use crate::spec::RawSegment;
 /// domain's non-periodic axes within the run.
 pub(crate) fn resolve_schedule(
     f: &SourceFile,
-    segments: &[toml::Spanned<RawSegment>],
+    (segments, owner_span): (&[toml::Spanned<RawSegment>], Range<usize>),
     owner: &str,
     rotation: bool,
     extent: Extent,
 ) -> Result<MotionSchedule, ScenarioError> {
+    if segments.len() > MAX_SEGMENTS {
+        return Err(f.error(
+            segments[MAX_SEGMENTS].span(),
+            format!("{owner}.segment[{MAX_SEGMENTS}]"),
+            format!(
+                "{} segments, more than the {MAX_SEGMENTS} a schedule may have",
+                segments.len()
+            ),
+        ));
+    }
     let mut out = Vec::with_capacity(segments.len());
     for (k, s) in segments.iter().enumerate() {
         let key = |name: &str| format!("{owner}.segment[{k}].{name}");
@@ -51,7 +65,8 @@ pub(crate) fn resolve_schedule(
                      a rotating boundary is a prescribed [[floe]]",
                 ));
             }
-            f.finite(w, &key(name)).map(Some)
+            let most = MAX_ANGULAR_VELOCITY_RAD_PER_S;
+            f.in_range(w, &key(name), (-most, most), "rad/s").map(Some)
         };
         let w0 = spin(&r.angular_velocity_rad_per_s, "angular_velocity_rad_per_s")?.unwrap_or(0.0);
         let w1 = spin(
@@ -66,6 +81,13 @@ pub(crate) fn resolve_schedule(
             angular_velocity_start: w0,
             angular_velocity_end: w1,
         });
+    }
+    if out.is_empty() {
+        return Err(f.error(
+            owner_span,
+            format!("{owner}.segment"),
+            "is empty: a schedule needs at least one segment table with duration_s",
+        ));
     }
     let schedule = MotionSchedule::new(out).map_err(|e| {
         let span = segments.first().map_or(0..0, |s| s.span());
@@ -99,16 +121,15 @@ fn travel_bound(
         if start >= extent.duration_s {
             break;
         }
-        // The last segment's end velocity continues to the end of the run.
-        let t = if k == last {
-            extent.duration_s - start
-        } else {
-            s.duration_s.min(extent.duration_s - start)
-        };
+        let t = s.duration_s.min(extent.duration_s - start);
         let speed = mask(s.velocity_start)
             .length()
             .max(mask(s.velocity_end).length());
         travel += speed * t;
+        // The last segment's end velocity continues to the end of the run.
+        if k == last {
+            travel += mask(s.velocity_end).length() * (extent.duration_s - start - t).max(0.0);
+        }
         if travel > most {
             return Err(f.error(
                 span_of(segments, k),

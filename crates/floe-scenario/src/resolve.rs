@@ -17,7 +17,7 @@ use toml::Spanned;
 
 use crate::domain::Domain;
 use crate::error::ScenarioError;
-use crate::extent::{Extent, MAX_TRAVEL_DOMAINS};
+use crate::extent::{Extent, MAX_ANGULAR_VELOCITY_RAD_PER_S, MAX_TRAVEL_DOMAINS};
 use crate::law_table::{law_from_table, preset_applies, RawLawTable};
 use crate::motion_segments::resolve_schedule;
 use crate::numbers::{short, short_list, sig, thousands};
@@ -768,7 +768,7 @@ fn resolve_explicit_floe(
             }
             Some(resolve_schedule(
                 f,
-                segments,
+                (segments, raw.span()),
                 &format!("floe[{i}]"),
                 true,
                 extent,
@@ -809,7 +809,10 @@ fn resolve_explicit_floe(
                     "missing: [[floe.load_point.segment]] tables saying how the load point moves",
                 ));
             };
-            Some((k, resolve_schedule(f, segments, &owner, false, extent)?))
+            Some((
+                k,
+                resolve_schedule(f, (segments, lp.span()), &owner, false, extent)?,
+            ))
         }
     };
     Ok(ExplicitFloe {
@@ -834,7 +837,15 @@ fn resolve_explicit_floe(
         angular_velocity_rad_per_s: fl
             .angular_velocity_rad_per_s
             .as_ref()
-            .map(|w| f.finite(w, &key("angular_velocity_rad_per_s")))
+            .map(|w| {
+                let most = MAX_ANGULAR_VELOCITY_RAD_PER_S;
+                f.in_range(
+                    w,
+                    &key("angular_velocity_rad_per_s"),
+                    (-most, most),
+                    "rad/s",
+                )
+            })
             .transpose()?
             .unwrap_or(0.0),
         prescribed: fl.prescribed.as_ref().is_some_and(|p| *p.get_ref()),
@@ -1121,7 +1132,13 @@ fn resolve_tessellation(
                         None,
                     ),
                     (None, Some(segments)) => {
-                        let s = resolve_schedule(f, segments, "tessellation", false, extent)?;
+                        let s = resolve_schedule(
+                            f,
+                            (segments, span.clone()),
+                            "tessellation",
+                            false,
+                            extent,
+                        )?;
                         (s.velocity_at(0.0).0.x, Some(s))
                     }
                     (Some(push), Some(_)) => {
@@ -1183,11 +1200,12 @@ fn resolve_contact(
         }
         if let Some(v) = &c.restitution {
             m.restitution = within(f, v, "contact.restitution", 0.0, 1.0, false)?;
-            if m.restitution == 0.0 {
+            if m.restitution < 1e-12 {
                 return Err(f.error(
                     v.span(),
                     "contact.restitution",
-                    "must lie in (0, 1]; 0 would be an infinitely stiff dashpot",
+                    "must lie in [1e-12, 1]; 0 would be an infinitely stiff dashpot, and \
+                     below 1e-12 the stable time step vanishes",
                 ));
             }
         }
@@ -1516,7 +1534,7 @@ fn resolve_walls(
             }
             (Some(segments), None) => Some(resolve_schedule(
                 f,
-                segments,
+                (segments, w.span()),
                 &format!("wall[{i}]"),
                 false,
                 extent,

@@ -13,13 +13,14 @@ use floe_dem::world::World;
 use floe_friction::LawRegistry;
 
 use crate::build;
+use crate::checks;
 use crate::describe::{describe_contact, describe_forcing, describe_thickness};
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::numbers::thousands;
 pub use crate::output_cadence::OutputCadence;
 use crate::resolve::MAX_RUN_STEPS;
-use crate::resolve::{self, Resolved};
+use crate::resolve::{self, FloeSource, Resolved};
 use crate::source_file::SourceFile;
 
 /// A built scenario, ready to step.
@@ -131,6 +132,31 @@ impl Scenario {
     /// The output cadence.
     pub fn output(&self) -> OutputCadence {
         self.resolved.output
+    }
+
+    /// For a double-shear scenario, the normal load per face (N) and the
+    /// set-up's stiffnesses (the loading spring in series with the side
+    /// contacts: what a spring-slider of the same test needs).
+    pub fn double_shear(&self) -> Option<(f64, checks::DoubleShearGeometry)> {
+        let r = &self.resolved;
+        match &r.floes {
+            FloeSource::DoubleShear {
+                block_m,
+                pusher_m,
+                normal_load_per_face_n,
+                ..
+            } => Some((
+                *normal_load_per_face_n,
+                checks::double_shear_geometry(
+                    &r.model,
+                    r.thickness.mean_m(),
+                    *block_m,
+                    *pusher_m,
+                    *normal_load_per_face_n,
+                ),
+            )),
+            _ => None,
+        }
     }
 
     /// The contact model, friction law included.

@@ -10,6 +10,7 @@
 #![deny(missing_docs)]
 
 pub mod compare;
+pub mod double_shear_protocol;
 pub mod error;
 pub mod plot;
 pub mod render;
