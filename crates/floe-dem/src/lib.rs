@@ -15,7 +15,8 @@
 //!   force formulas; [`forcing`]: wind, ocean, Coriolis;
 //!   [`periodicity`]: periodic axes; [`motion_schedule`]: prescribed
 //!   floes whose velocity follows segments in time; [`load_point`]: free
-//!   floes driven through a spring from a moving point; [`geometry`], [`tessellation`]: floe
+//!   floes driven through a spring from a moving point; [`stress_control`]:
+//!   walls that hold a normal stress; [`geometry`], [`tessellation`]: floe
 //!   shapes and how to make a pack of them; [`observables`]: assembly
 //!   diagnostics; [`run`]: the stepping loop with its observer and cadences.
 #![deny(missing_docs)]
@@ -35,6 +36,7 @@ pub mod periodicity;
 pub mod pipeline;
 pub mod run;
 pub mod state;
+pub mod stress_control;
 pub mod tessellation;
 pub mod world;
 

@@ -16,6 +16,7 @@ use crate::error::DemError;
 use crate::floes::Floes;
 use crate::load_point::LoadPoint;
 use crate::motion_schedule::ScheduledMotion;
+use crate::stress_control::StressControl;
 use crate::Vec2;
 
 /// Everything a run needs to continue bitwise from the end of a step.
@@ -51,6 +52,8 @@ pub struct WorldState {
     /// Free floes driven through a spring from a moving point, sorted by
     /// floe id.
     pub load_points: Vec<LoadPoint>,
+    /// Walls holding a normal stress (each piece in at most one).
+    pub stress_controls: Vec<StressControl>,
 }
 
 impl WorldState {
@@ -71,6 +74,7 @@ impl WorldState {
             external_torque: vec![0.0; n],
             schedules: Vec::new(),
             load_points: Vec::new(),
+            stress_controls: Vec::new(),
         }
     }
 
@@ -114,6 +118,13 @@ impl WorldState {
             "a load point",
             true,
         )?;
+        let mut pieces: Vec<u64> = self
+            .stress_controls
+            .iter()
+            .flat_map(|c| c.floe_ids.iter().copied())
+            .collect();
+        pieces.sort_unstable();
+        self.check_driven(pieces.into_iter(), "a stress control", false)?;
         Ok(())
     }
 

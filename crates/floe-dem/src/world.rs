@@ -67,6 +67,7 @@ use crate::pipeline::integrator::{self, floe_stable_step, KickForces};
 use crate::pipeline::narrow_phase::{ContactSet, DetectionInput};
 use crate::pipeline::{Pipeline, Stage};
 use crate::state::WorldState;
+use crate::stress_control::StressControl;
 use crate::Vec2;
 use floe_friction::{FrictionLaw, LAW_STATE_SLOTS};
 
@@ -358,6 +359,7 @@ impl<F: ExternalForces> World<F> {
         let p = &mut self.pipeline;
         let dt = s.dt_s;
         boundary_motion::apply(&mut s.floes, &s.schedules, s.time_s, dt);
+        boundary_motion::apply_stress_controls(&mut s.floes, &s.force, &s.stress_controls);
         p.moved_far = integrator::drift(
             s.floes.columns_mut(),
             (&s.force, &s.torque),
@@ -556,6 +558,13 @@ impl<F: ExternalForces> World<F> {
         self.state.schedules.retain(|s| s.floe_id != id);
         if matches!(motion, Motion::Prescribed { .. }) {
             self.state.load_points.retain(|l| l.floe_id != id);
+        } else {
+            for c in &mut self.state.stress_controls {
+                c.floe_ids.retain(|&f| f != id);
+            }
+            self.state
+                .stress_controls
+                .retain(|c| !c.floe_ids.is_empty());
         }
         Ok(())
     }
@@ -625,6 +634,42 @@ impl<F: ExternalForces> World<F> {
         &self.state.load_points
     }
 
+    /// Makes the prescribed floes of `control` (a wall) hold its normal
+    /// stress from the next step on; a floe already in a control is
+    /// refused.
+    pub fn add_stress_control(&mut self, control: StressControl) -> Result<(), DemError> {
+        for &id in &control.floe_ids {
+            let h = self.handle(id)?;
+            if self.state.floes.is_free(h) {
+                return Err(DemError::FloeEdit {
+                    id,
+                    reason: "a stress-controlled wall is made of prescribed floes".into(),
+                });
+            }
+            if self.stress_control_of(id).is_some() {
+                return Err(DemError::FloeEdit {
+                    id,
+                    reason: "already in a stress-controlled wall".into(),
+                });
+            }
+        }
+        self.state.stress_controls.push(control);
+        Ok(())
+    }
+
+    /// The stress-controlled walls.
+    pub fn stress_controls(&self) -> &[StressControl] {
+        &self.state.stress_controls
+    }
+
+    /// The stress control floe `id` belongs to, if any.
+    fn stress_control_of(&self, id: u64) -> Option<usize> {
+        self.state
+            .stress_controls
+            .iter()
+            .position(|c| c.floe_ids.binary_search(&id).is_ok())
+    }
+
     /// Refuses a free floe whose stable time step `limit_s` is below the
     /// world's.
     fn check_stable(&self, id: u64, limit_s: f64) -> Result<(), DemError> {
@@ -669,6 +714,10 @@ impl<F: ExternalForces> World<F> {
         // none).
         s.schedules.retain(|m| m.floe_id != id);
         s.load_points.retain(|l| l.floe_id != id);
+        for c in &mut s.stress_controls {
+            c.floe_ids.retain(|&f| f != id);
+        }
+        s.stress_controls.retain(|c| !c.floe_ids.is_empty());
         let detached = DetachedFloe {
             floe: s.floes.remove(h),
             force: s.force.remove(h),

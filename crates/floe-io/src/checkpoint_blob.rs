@@ -21,8 +21,10 @@
 //! no new format. Bytes after the payload are ignored (a slot is reused
 //! for smaller states without shrinking).
 //!
-//! Version 5 (written now) appends the load points (floe id, stiffness,
-//! anchor, segments) to version 4, which appended the motion schedules (per
+//! Version 6 (written now) appends the stress-controlled walls (their
+//! pieces' ids, inward normal, length, target stress, gain) to version 5,
+//! which appended the load points (floe id, stiffness, anchor, segments) to
+//! version 4, which appended the motion schedules (per
 //! scheduled floe its id, then its segments: duration, start and end
 //! velocity, start and end angular velocity). Version 3 added the time step
 //! and the slot counts, and dropped the count of owned floes; versions 3
@@ -37,13 +39,14 @@ use floe_dem::floes::{FloeColumns, Floes, Motion};
 use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::{MotionSchedule, MotionSegment, ScheduledMotion};
 use floe_dem::state::WorldState;
+use floe_dem::stress_control::StressControl;
 use floe_dem::Vec2;
 use floe_friction::{ContactState, LAW_STATE_SLOTS};
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
 /// Version of the encoding written.
-pub const FORMAT_VERSION: u32 = 5;
+pub const FORMAT_VERSION: u32 = 6;
 /// The oldest version read; older and newer ones are refused.
 pub const OLDEST_READABLE_VERSION: u32 = 1;
 /// Bytes before the payload.
@@ -185,6 +188,7 @@ pub fn encode_version(
         external_torque,
         schedules,
         load_points,
+        stress_controls,
     } = state;
     let FloeColumns {
         id,
@@ -327,6 +331,17 @@ pub fn encode_version(
             e.f64(l.stiffness_n_per_m);
             e.v2(l.anchor);
             e.segments(l.schedule.segments());
+        }
+    }
+    if version >= 6 {
+        e.len(stress_controls.len());
+        for c in stress_controls {
+            e.len(c.floe_ids.len());
+            c.floe_ids.iter().for_each(|&id| e.u64(id));
+            e.v2(c.inward_normal);
+            e.f64(c.length_m);
+            e.f64(c.target_stress_n_per_m);
+            e.f64(c.gain_m_per_s_per_n_per_m);
         }
     }
 
@@ -653,6 +668,17 @@ pub fn decode(
         } else {
             Vec::new()
         },
+        stress_controls: if d.version >= 6 {
+            d.vec(48, |d| {
+                let ids = d.vec(8, |d| d.u64())?;
+                let (normal, length) = (d.v2()?, d.f64()?);
+                let (target, gain) = (d.f64()?, d.f64()?);
+                StressControl::new(ids, normal, length, target, gain)
+                    .map_err(|e| format!("a stress-controlled wall: {e}"))
+            })?
+        } else {
+            Vec::new()
+        },
     };
     if d.pos != payload.len() {
         return Err(format!(
@@ -740,16 +766,17 @@ mod tests {
         let (back, _) = decode(&v3, || panic!("version 3 stores dt"), Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
         // A version from the future is refused, by name.
-        let mut v6 = v3.clone();
-        v6[8..12].copy_from_slice(&6u32.to_le_bytes());
-        let e = decode(&v6, dt, None).expect_err("version 6");
-        assert!(e.contains("format version 6"), "{e}");
+        let mut v7 = v3.clone();
+        v7[8..12].copy_from_slice(&7u32.to_le_bytes());
+        let e = decode(&v7, dt, None).expect_err("version 7");
+        assert!(e.contains("format version 7"), "{e}");
     }
 
-    /// Version 5 keeps the motion schedules and load points bitwise;
-    /// versions 4 (schedules only) and 3 (neither) still read.
+    /// Version 6 keeps the motion schedules, load points and stress
+    /// controls bitwise; versions 5, 4 and 3 still read, without what they
+    /// lack.
     #[test]
-    fn schedules_and_load_points_round_trip_and_version_3_reads_without_them() {
+    fn boundaries_round_trip_and_older_versions_read_without_them() {
         use floe_dem::motion_schedule::{MotionSchedule, MotionSegment};
         let model = ContactModel::default();
         let state = springing_pack(model.clone());
@@ -777,16 +804,40 @@ mod tests {
         world
             .set_load_point(LoadPoint::new(driven, 2e6, anchor, schedule).unwrap())
             .unwrap();
+        let wall = world.floes().id[9];
+        world
+            .set_motion(
+                wall,
+                Motion::Prescribed {
+                    velocity: Vec2::ZERO,
+                },
+            )
+            .unwrap();
+        let normal = Vec2::new(0.6, 0.8);
+        let control = StressControl::new(vec![wall], normal, 98.0, 1e3 / 3.0, 1e-7).unwrap();
+        world.add_stress_control(control).unwrap();
         for _ in 0..3 {
             world.step();
         }
         let state = world.state().clone();
-        assert_eq!((state.schedules.len(), state.load_points.len()), (1, 1));
+        assert_eq!(
+            (
+                state.schedules.len(),
+                state.load_points.len(),
+                state.stress_controls.len()
+            ),
+            (1, 1, 1)
+        );
         let counts = OutputCounts::default();
         let (back, _) = decode(&encode(&state, &counts, 3), || None, Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
-        // Version 4: the schedules, no load points; version 3: neither.
+        // Version 5: no stress controls; 4: nor load points; 3: nor
+        // schedules.
         let mut without = state.clone();
+        without.stress_controls.clear();
+        let v5 = encode_version(&state, &counts, 3, 5);
+        let (back, _) = decode(&v5, || None, Some(3)).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{without:?}"));
         without.load_points.clear();
         let v4 = encode_version(&state, &counts, 3, 4);
         let (back, _) = decode(&v4, || None, Some(3)).unwrap();
@@ -843,5 +894,6 @@ mod tests {
             + n * (16 + 8 + 16 + 8)
             + 8 // the schedule count (none here)
             + 8 // the load-point count (none here)
+            + 8 // the stress-control count (none here)
     }
 }

@@ -17,7 +17,7 @@ use floe_dem::world::stable_time_step;
 use floe_dem::Vec2;
 use floe_friction::Law;
 
-use crate::built_floes::BuiltFloes;
+use crate::built_floes::{BuiltFloes, StressWall};
 use crate::checks;
 use crate::error::ScenarioError;
 use crate::numbers::{short, sig, thousands};
@@ -504,7 +504,9 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         })
         .fold(0.0, f64::max);
     let mean_h = r.thickness.mean_m();
+    let mut stress_walls = Vec::new();
     for w in &r.walls {
+        let first_piece = pieces.len();
         let segments = wall_segments(r, w, r_max);
         report.push(format!(
             "wall[{}]: {} side, {}, {} segments {} m long, {} m thick",
@@ -537,6 +539,23 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
                 load_point: None,
                 label: Some(format!("wall[{}] ({})", w.index, w.side.name())),
                 span: Some(w.span.clone()),
+            });
+        }
+        if let Some((target, gain)) = w.stress {
+            let along = 1 - w.side.axis();
+            let inward = match w.side {
+                Side::Left => Vec2::X,
+                Side::Right => -Vec2::X,
+                Side::Bottom => Vec2::Y,
+                Side::Top => -Vec2::Y,
+            };
+            stress_walls.push(StressWall {
+                index: w.index,
+                floe_ids: (first_piece..pieces.len()).map(|i| i as u64).collect(),
+                inward_normal: inward,
+                length_m: region.max[along] - region.min[along],
+                target_n_per_m: target,
+                gain,
             });
         }
     }
@@ -594,6 +613,7 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         floes,
         schedules,
         load_points,
+        stress_walls,
         pieces_span: spans,
         labels,
         report,

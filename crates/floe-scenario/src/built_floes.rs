@@ -14,9 +14,27 @@ pub(crate) struct BuiltFloes {
     /// The load points of free floes (stiffness, N/m, and schedule), by
     /// floe id; anchored where the floe starts.
     pub load_points: Vec<(u64, (f64, MotionSchedule))>,
+    /// Walls that hold a normal stress.
+    pub stress_walls: Vec<StressWall>,
     pub pieces_span: Vec<Option<Range<usize>>>,
     pub labels: Vec<Option<String>>,
     pub report: Vec<String>,
     /// Number of free floes.
     pub free: usize,
+}
+
+/// A wall that holds a normal stress, as built: its pieces and geometry.
+pub(crate) struct StressWall {
+    /// `wall[index]` in the file.
+    pub index: usize,
+    /// Ids of its pieces, increasing.
+    pub floe_ids: Vec<u64>,
+    /// Unit normal into the ice.
+    pub inward_normal: floe_dem::Vec2,
+    /// The ice region's extent along the wall, m.
+    pub length_m: f64,
+    /// Compressive stress to hold, N/m.
+    pub target_n_per_m: f64,
+    /// The file's gain, (m/s)/(N/m), if given.
+    pub gain: Option<f64>,
 }

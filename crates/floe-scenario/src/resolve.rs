@@ -84,6 +84,8 @@ pub(crate) struct Wall {
     pub velocity: Vec2,
     /// `[[wall.segment]]`, when given.
     pub schedule: Option<MotionSchedule>,
+    /// `normal_stress_n_per_m` and the gain, when the wall holds a stress.
+    pub stress: Option<(f64, Option<f64>)>,
     pub inset_m: f64,
     pub thickness_m: Option<f64>,
     pub span: Range<usize>,
@@ -367,6 +369,10 @@ fn density(
 ) -> Result<f64, ScenarioError> {
     sized(f, v, key, zero_ok, (MAX_DENSITY_KG_PER_M3, "kg/m^3"))
 }
+
+/// Largest normal stress a wall may hold, N/m (vertically integrated; the
+/// pack's strength is tens of kN/m).
+pub const MAX_WALL_STRESS_N_PER_M: f64 = 1e9;
 
 /// Accepted load-point spring stiffnesses, N/m (the paper's apparatus:
 /// 2e7 lab, 2e6 tank).
@@ -1551,11 +1557,58 @@ fn resolve_walls(
             }
             (None, None) => Vec2::ZERO,
         };
+        let stress = match &r.normal_stress_n_per_m {
+            None => {
+                if let Some(g) = &r.stress_gain_m_per_s_per_n_per_m {
+                    return Err(f.error(
+                        g.span(),
+                        key("stress_gain_m_per_s_per_n_per_m"),
+                        "a gain without normal_stress_n_per_m: give the stress the wall holds",
+                    ));
+                }
+                None
+            }
+            Some(target) => {
+                let target = f.in_range(
+                    target,
+                    &key("normal_stress_n_per_m"),
+                    (0.0, MAX_WALL_STRESS_N_PER_M),
+                    "N/m",
+                )?;
+                // The servo sets the normal velocity: none may be given.
+                let axis = side.axis();
+                let across = |v: Vec2| v[axis] != 0.0;
+                let normal_given = match (&schedule, &r.velocity_m_per_s) {
+                    (Some(s), _) => s
+                        .segments()
+                        .iter()
+                        .any(|g| across(g.velocity_start) || across(g.velocity_end)),
+                    (None, Some(_)) => across(velocity),
+                    (None, None) => false,
+                };
+                if normal_given {
+                    let span = r.velocity_m_per_s.as_ref().map_or(w.span(), |v| v.span());
+                    return Err(f.error(
+                        span,
+                        key("velocity_m_per_s"),
+                        "a wall holding normal_stress_n_per_m moves across itself as the \
+                         stress asks: give its velocity along the wall only",
+                    ));
+                }
+                let gain = r
+                    .stress_gain_m_per_s_per_n_per_m
+                    .as_ref()
+                    .map(|g| f.positive(g, &key("stress_gain_m_per_s_per_n_per_m")))
+                    .transpose()?;
+                Some((target, gain))
+            }
+        };
         walls.push(Wall {
             index: i,
             side,
             velocity,
             schedule,
+            stress,
             inset_m: match &r.inset_m {
                 Some(v) => distance(f, v, &key("inset_m"))?,
                 None => 0.0,

@@ -8,6 +8,7 @@ use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
 use floe_dem::load_point::LoadPoint;
 use floe_dem::periodicity::Periodicity;
+use floe_dem::stress_control::StressControl;
 use floe_dem::world::World;
 
 use floe_friction::LawRegistry;
@@ -17,7 +18,7 @@ use crate::checks;
 use crate::describe::{describe_contact, describe_forcing, describe_thickness};
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
-use crate::numbers::thousands;
+use crate::numbers::{sig, thousands};
 pub use crate::output_cadence::OutputCadence;
 use crate::resolve::MAX_RUN_STEPS;
 use crate::resolve::{self, FloeSource, Resolved};
@@ -200,6 +201,28 @@ impl Scenario {
         for (id, schedule) in built.schedules {
             world.set_schedule(id, schedule)?;
         }
+        for w in built.stress_walls {
+            let gain = match w.gain {
+                Some(g) => g,
+                None => default_stress_gain(&world, dt_s),
+            };
+            report.push(format!(
+                "wall[{}]: holds a normal stress of {} N/m over {} m; gain {} (m/s)/(N/m), {} of the stability limit",
+                w.index,
+                sig(w.target_n_per_m),
+                sig(w.length_m),
+                sig(gain),
+                sig(gain / stress_gain_limit(&world, dt_s))
+            ));
+            let control = StressControl::new(
+                w.floe_ids,
+                w.inward_normal,
+                w.length_m,
+                w.target_n_per_m,
+                gain,
+            )?;
+            world.add_stress_control(control)?;
+        }
         for (id, (k, schedule)) in built.load_points {
             let h = world.floes().handle_of(id).expect("built with the floes");
             let anchor = world.floes().position[h];
@@ -237,4 +260,40 @@ impl Scenario {
         let built = build::build_floes(f, r)?;
         Ok(build::time_step(f, r, &built, f64::INFINITY)?.0)
     }
+}
+
+/// The default gain of a stress-controlled wall as a fraction of the
+/// stability limit [`stress_gain_limit`].
+pub const STRESS_GAIN_FRACTION: f64 = 0.25;
+
+/// The largest stable gain of a stress-controlled wall, (m/s)/(N/m), for
+/// the mean free floe of `world` at time step `dt_s`. A stress error `e`
+/// moves the wall `G e dt` in a step, which raises the elastic stress by
+/// `kappa G e dt` (`kappa = E h / sqrt(area)`, the wall contact's
+/// stiffness per unit area): stable for `G dt kappa < 2`. And the wall's
+/// new speed `G e` raises the dashpot's stress at once by `G e c'`, with
+/// `c' = 2 zeta sqrt(kappa rho h r)` the dashpot per unit contact length
+/// (`r = sqrt(area)`): stable for `G c' < 1`. The limit is the smaller.
+pub fn stress_gain_limit<F: floe_dem::forcing::ExternalForces>(world: &World<F>, dt_s: f64) -> f64 {
+    let f = world.floes();
+    let (mut area, mut thickness, mut mass, mut n) = (0.0, 0.0, 0.0, 0usize);
+    for i in (0..f.len()).filter(|&i| f.is_free(i)) {
+        area += f.area_m2[i];
+        thickness += f.thickness_m[i];
+        mass += f.mass_kg[i];
+        n += 1;
+    }
+    let n = n.max(1) as f64;
+    let (area, h, mass) = (area / n, thickness / n, mass / n);
+    let model = world.model();
+    let kappa = model.youngs_modulus_pa * h / area.sqrt();
+    let r = area.sqrt();
+    let rho_h = mass / area;
+    let dashpot = 2.0 * model.damping_ratio() * (kappa * rho_h * r).sqrt();
+    (2.0 / (dt_s * kappa)).min(1.0 / dashpot)
+}
+
+/// [`STRESS_GAIN_FRACTION`] of [`stress_gain_limit`].
+fn default_stress_gain<F: floe_dem::forcing::ExternalForces>(world: &World<F>, dt_s: f64) -> f64 {
+    STRESS_GAIN_FRACTION * stress_gain_limit(world, dt_s)
 }

@@ -201,6 +201,8 @@ pub(crate) struct RawWall {
     pub inset_m: Num,
     pub thickness_m: Num,
     pub segment: Option<Vec<Spanned<RawSegment>>>,
+    pub normal_stress_n_per_m: Num,
+    pub stress_gain_m_per_s_per_n_per_m: Num,
 }
 
 /// `[[wall.segment]]`, `[[floe.segment]]`: one piece of a motion schedule.

@@ -8,6 +8,7 @@ use crate::floes::{Floes, Motion};
 use crate::load_point::LoadPoint;
 use crate::motion_schedule::ScheduledMotion;
 use crate::periodicity::Periodicity;
+use crate::stress_control::StressControl;
 use crate::Vec2;
 
 /// Sets the velocities of the floes in `schedules` for the step from
@@ -38,6 +39,26 @@ pub(crate) fn add_load_point_forces(
             let f = l.force(t_s, floes.position[h], periodicity);
             force[h] += f;
             external_force[h] += f;
+        }
+    }
+}
+
+/// Sets the normal velocity of each stress-controlled wall's pieces from
+/// the stress the last force gathering measured on it (`force`, per floe),
+/// keeping their velocity along the wall.
+pub(crate) fn apply_stress_controls(floes: &mut Floes, force: &[Vec2], controls: &[StressControl]) {
+    for c in controls {
+        let stress = c.stress(|id| floes.handle_of(id).map_or(Vec2::ZERO, |h| force[h]));
+        let v_n = c.normal_speed(stress);
+        let n = c.inward_normal;
+        for &id in &c.floe_ids {
+            if let Some(h) = floes.handle_of(id) {
+                let v = floes.velocity[h];
+                let velocity = v - n * v.dot(n) + n * v_n;
+                floes.set_motion(h, Motion::Prescribed { velocity });
+                let w = floes.angular_velocity[h];
+                floes.set_velocity(h, velocity, w);
+            }
         }
     }
 }

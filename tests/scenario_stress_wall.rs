@@ -1,0 +1,186 @@
+//! A stress-controlled wall (`normal_stress_n_per_m`): in steady shear the
+//! wall holds the set normal stress within 1 % on average, the stress the
+//! ice puts on it measured independently from the contact forces; and the
+//! loop stays stable across the gains the docs state.
+
+use std::path::Path;
+
+use floe_dem::contact_kernel::force_and_torques;
+use floe_scenario::Scenario;
+
+/// A 6 km x 3 km channel of 500 m diamonds, periodic along x, between a
+/// fixed bottom wall and a top wall sliding at 0.5 m/s and holding `STRESS`
+/// (and `GAIN`, if given).
+const CELL: &str = r#"title = "stress-controlled shear cell"
+duration_s = DURATION
+dt_s = 0.5
+seed = 3
+
+[domain]
+size_m = [6000.0, 3000.0]
+periodic = [true, false]
+
+[tessellation]
+kind = "diamond"
+side_m = 500.0
+jitter_fraction = 0.1
+min_area_fraction = 0.3
+
+[ice]
+thickness_m = 1.0
+
+[friction]
+law = "rate-state"
+
+[[wall]]
+side = "bottom"
+
+[[wall]]
+side = "top"
+velocity_m_per_s = [0.5, 0.0]
+normal_stress_n_per_m = 2000.0
+GAIN
+"#;
+
+fn pooled<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+/// Runs the cell for `duration` s; returns the compressive stress on the
+/// top wall (N/m) at every step of the second half, summed from the
+/// contact records (not from the gathered forces the controller reads).
+fn run(duration: f64, gain: &str) -> Vec<f64> {
+    let text = CELL
+        .replace("DURATION", &format!("{duration:.1}"))
+        .replace("GAIN", gain);
+    let s = Scenario::from_text(&text, Path::new("cell.toml")).unwrap();
+    let mut w = s.build().unwrap().world;
+    let control = w.stress_controls()[0].clone();
+    let steps = (duration / w.dt_s()).round() as usize;
+    let mut stress = Vec::new();
+    for k in 0..steps {
+        w.step();
+        if k < steps / 2 {
+            continue;
+        }
+        let f = w.floes();
+        let mut push = 0.0;
+        for c in w.contacts() {
+            let (a, b) = (f.id[c.a as usize], f.id[c.b as usize]);
+            let on_wall_a = control.floe_ids.binary_search(&a).is_ok();
+            let on_wall_b = control.floe_ids.binary_search(&b).is_ok();
+            if on_wall_a == on_wall_b {
+                continue;
+            }
+            let pb = f.position[c.b as usize] + c.image_offset;
+            let (force_on_b, _, _) = force_and_torques(c, f.position[c.a as usize], pb);
+            let on_wall = if on_wall_b { force_on_b } else { -force_on_b };
+            push -= on_wall.dot(control.inward_normal);
+        }
+        stress.push(push / control.length_m);
+    }
+    stress
+}
+
+#[test]
+fn a_stress_controlled_wall_holds_its_stress_in_steady_shear() {
+    let stress = pooled(|| run(4000.0, ""));
+    let mean = stress.iter().sum::<f64>() / stress.len() as f64;
+    let rms = (stress.iter().map(|s| (s - mean).powi(2)).sum::<f64>() / stress.len() as f64).sqrt();
+    eprintln!("mean stress on the wall {mean:.2} N/m (target 2000), rms fluctuation {rms:.1}");
+    assert!((mean - 2000.0).abs() < 0.01 * 2000.0, "{mean}");
+}
+
+#[test]
+fn the_loop_is_stable_below_the_stated_limit_and_not_above_it() {
+    // The default gain is a quarter of the limit; half the limit still holds
+    // the stress with small fluctuations, twice it does not.
+    let limit = {
+        let text = CELL.replace("DURATION", "100.0").replace("GAIN", "");
+        let s = Scenario::from_text(&text, Path::new("cell.toml")).unwrap();
+        let w = s.build().unwrap().world;
+        floe_scenario::scenario::stress_gain_limit(&w, w.dt_s())
+    };
+    let rms_at = |fraction: f64| {
+        let gain = format!("stress_gain_m_per_s_per_n_per_m = {}", fraction * limit);
+        let stress = pooled(|| run(2000.0, &gain));
+        let mean = stress.iter().sum::<f64>() / stress.len() as f64;
+        let rms =
+            (stress.iter().map(|s| (s - mean).powi(2)).sum::<f64>() / stress.len() as f64).sqrt();
+        eprintln!("gain {fraction} x the limit: mean {mean:.1} N/m, rms {rms:.1}");
+        rms / 2000.0
+    };
+    assert!(rms_at(0.5) < 0.1, "half the limit is stable");
+    assert!(rms_at(2.0) > 0.5, "twice the limit rings");
+}
+
+#[test]
+fn a_run_resumed_mid_control_is_bitwise_the_same() {
+    let text = CELL.replace("DURATION", "200.0").replace("GAIN", "");
+    let s = Scenario::from_text(&text, Path::new("cell.toml")).unwrap();
+    let (mut whole, mut part) = (s.build().unwrap().world, s.build().unwrap().world);
+    pooled(|| {
+        for _ in 0..150 {
+            whole.step();
+            part.step();
+        }
+        let parts = s.engine_parts();
+        let mut resumed = floe_dem::world::World::resume(
+            part.state().clone(),
+            parts.model,
+            parts.forcing,
+            parts.periodicity,
+        )
+        .unwrap();
+        for _ in 0..250 {
+            whole.step();
+            resumed.step();
+        }
+        assert_eq!(resumed.stress_controls().len(), 1);
+        assert!(whole.state() == resumed.state());
+    });
+}
+
+#[test]
+fn stress_keys_are_checked_where_they_are_written() {
+    let bad = |from: &str, to: &str| {
+        let text = CELL
+            .replace("DURATION", "100.0")
+            .replace("GAIN", "")
+            .replace(from, to);
+        Scenario::from_text(&text, Path::new("cell.toml"))
+            .and_then(|s| s.build().map(|_| ()))
+            .unwrap_err()
+            .to_string()
+    };
+    let stress = "normal_stress_n_per_m = 2000.0";
+    for (from, to, expect) in [
+        (
+            "velocity_m_per_s = [0.5, 0.0]",
+            "velocity_m_per_s = [0.5, -0.1]",
+            "wall[1].velocity_m_per_s",
+        ),
+        (
+            stress,
+            "normal_stress_n_per_m = -1.0",
+            "wall[1].normal_stress_n_per_m",
+        ),
+        (
+            stress,
+            "stress_gain_m_per_s_per_n_per_m = 1e-5",
+            "wall[1].stress_gain_m_per_s_per_n_per_m",
+        ),
+        (
+            stress,
+            "normal_stress_n_per_m = 2000.0\nstress_gain_m_per_s_per_n_per_m = 0.0",
+            "wall[1].stress_gain_m_per_s_per_n_per_m",
+        ),
+    ] {
+        let e = bad(from, to);
+        assert!(e.starts_with("cell.toml:") && e.contains(expect), "{e}");
+    }
+}
