@@ -179,8 +179,66 @@ fn stress_keys_are_checked_where_they_are_written() {
             "normal_stress_n_per_m = 2000.0\nstress_gain_m_per_s_per_n_per_m = 0.0",
             "wall[1].stress_gain_m_per_s_per_n_per_m",
         ),
+        (
+            stress,
+            "normal_stress_n_per_m = 2000.0\nglue_depth_m = -1.0",
+            "wall[1].glue_depth_m",
+        ),
+        (
+            stress,
+            "normal_stress_n_per_m = 2000.0\nglue_depth_m = 1e5",
+            "no free floes",
+        ),
     ] {
         let e = bad(from, to);
         assert!(e.starts_with("cell.toml:") && e.contains(expect), "{e}");
     }
+}
+
+/// The shear cell without friction (Amontons mu = 0), the top wall
+/// pressing with 1000 N/m: with smooth walls no shear reaches the ice;
+/// with the floes next to the walls glued to them (`glue_depth_m`, rough
+/// walls), the diamonds' slanted edges interlock and the pack is dragged.
+#[test]
+fn rough_walls_shear_a_frictionless_pack_and_smooth_ones_do_not() {
+    let mean_free_vx = |glue: &str| {
+        let text = CELL
+            .replace("DURATION", "1000.0")
+            .replace("law = \"rate-state\"", "law = \"amontons\"\nmu = 0.0")
+            .replace(
+                "normal_stress_n_per_m = 2000.0",
+                "normal_stress_n_per_m = 1000.0",
+            )
+            .replace(
+                "velocity_m_per_s = [0.5, 0.0]",
+                "velocity_m_per_s = [0.2, 0.0]",
+            )
+            .replace("GAIN", glue)
+            .replace(
+                "side = \"bottom\"\n",
+                &format!("side = \"bottom\"\n{glue}\n"),
+            );
+        let s = Scenario::from_text(&text, Path::new("cell.toml")).unwrap();
+        let mut w = s.build().unwrap().world;
+        let free = (0..w.floes().len())
+            .filter(|&i| w.floes().is_free(i))
+            .count();
+        pooled(|| {
+            for _ in 0..(1000.0 / w.dt_s()) as usize {
+                w.step();
+            }
+        });
+        let f = w.floes();
+        let vx: f64 = (0..f.len())
+            .filter(|&i| f.is_free(i))
+            .map(|i| f.velocity[i].x)
+            .sum();
+        (vx / free as f64, free)
+    };
+    let (smooth, n_smooth) = mean_free_vx("");
+    let (rough, n_rough) = mean_free_vx("glue_depth_m = 300.0");
+    eprintln!("mean free-floe velocity along the walls: smooth {smooth:.4} m/s ({n_smooth} floes), rough {rough:.4} m/s ({n_rough})");
+    assert!(n_rough < n_smooth, "floes were glued");
+    assert!(smooth.abs() < 0.01 * 0.2, "{smooth}");
+    assert!(rough > 0.2 * 0.2, "{rough}");
 }

@@ -484,12 +484,13 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         report.push(format!("scenario: {t}"));
     }
     let mut pieces = generate(f, r, region, &mut report)?;
+    let glued = glue_to_walls(r, region, &mut pieces, &mut report);
     let free = pieces.iter().filter(|p| !p.prescribed).count();
     if free == 0 {
         return Err(f.error(
             r.floes_span.clone(),
             "tessellation",
-            "no free floes: the tessellation is empty (cells larger than the ice region?) or every [[floe]] is prescribed",
+            "no free floes: the tessellation is empty (cells larger than the ice region?), every [[floe]] is prescribed, or every floe is glued to a wall (glue_depth_m)",
         ));
     }
     let r_max = pieces
@@ -549,9 +550,18 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
                 Side::Bottom => Vec2::Y,
                 Side::Top => -Vec2::Y,
             };
+            // The floes glued to the wall are part of it (their indices
+            // come before the wall's own pieces).
+            let glued_here = glued
+                .iter()
+                .filter(|(index, _)| *index == w.index)
+                .flat_map(|(_, k)| k.iter().copied());
             stress_walls.push(StressWall {
                 index: w.index,
-                floe_ids: (first_piece..pieces.len()).map(|i| i as u64).collect(),
+                floe_ids: glued_here
+                    .chain(first_piece..pieces.len())
+                    .map(|i| i as u64)
+                    .collect(),
                 inward_normal: inward,
                 length_m: region.max[along] - region.min[along],
                 target_n_per_m: target,
@@ -836,4 +846,48 @@ fn describe_schedule(s: &MotionSchedule) -> String {
         parts.len(),
         parts.join(", ")
     )
+}
+
+/// Rough walls: the free pieces whose centroid lies within a wall's
+/// `glue_depth_m` of its face become prescribed and move with the wall
+/// (its velocity or schedule). Returns, per wall index, the indices of the
+/// pieces glued to it.
+fn glue_to_walls(
+    r: &Resolved,
+    region: Rect,
+    pieces: &mut [Piece],
+    report: &mut Vec<String>,
+) -> Vec<(usize, Vec<usize>)> {
+    let mut out = Vec::new();
+    for w in r.walls.iter().filter(|w| w.glue_depth_m > 0.0) {
+        let mut glued = Vec::new();
+        for (k, p) in pieces.iter_mut().enumerate() {
+            if p.prescribed {
+                continue;
+            }
+            let c = p.polygon.iter().fold(Vec2::ZERO, |a, &b| a + b) / p.polygon.len() as f64;
+            let from_face = match w.side {
+                Side::Left => c.x - region.min.x,
+                Side::Right => region.max.x - c.x,
+                Side::Bottom => c.y - region.min.y,
+                Side::Top => region.max.y - c.y,
+            };
+            if from_face <= w.glue_depth_m {
+                p.prescribed = true;
+                p.velocity = w.velocity;
+                p.angular_velocity = 0.0;
+                p.schedule = w.schedule.clone();
+                p.label = Some(format!("wall[{}] (glued floe)", w.index));
+                glued.push(k);
+            }
+        }
+        report.push(format!(
+            "wall[{}]: {} floes within {} m of its face glued to it (a rough wall)",
+            w.index,
+            glued.len(),
+            sig(w.glue_depth_m)
+        ));
+        out.push((w.index, glued));
+    }
+    out
 }

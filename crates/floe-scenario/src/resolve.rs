@@ -86,6 +86,9 @@ pub(crate) struct Wall {
     pub schedule: Option<MotionSchedule>,
     /// `normal_stress_n_per_m` and the gain, when the wall holds a stress.
     pub stress: Option<(f64, Option<f64>)>,
+    /// Floes whose centroid lies within this distance of the wall's face
+    /// move with it (a rough wall), m; 0: none.
+    pub glue_depth_m: f64,
     pub inset_m: f64,
     pub thickness_m: Option<f64>,
     pub span: Range<usize>,
@@ -1611,6 +1614,10 @@ fn resolve_walls(
             stress,
             inset_m: match &r.inset_m {
                 Some(v) => distance(f, v, &key("inset_m"))?,
+                None => 0.0,
+            },
+            glue_depth_m: match &r.glue_depth_m {
+                Some(v) => distance(f, v, &key("glue_depth_m"))?,
                 None => 0.0,
             },
             thickness_m: r

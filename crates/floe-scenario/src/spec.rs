@@ -203,6 +203,7 @@ pub(crate) struct RawWall {
     pub segment: Option<Vec<Spanned<RawSegment>>>,
     pub normal_stress_n_per_m: Num,
     pub stress_gain_m_per_s_per_n_per_m: Num,
+    pub glue_depth_m: Num,
 }
 
 /// `[[wall.segment]]`, `[[floe.segment]]`: one piece of a motion schedule.
