@@ -13,17 +13,11 @@ use floe_dem::Vec2;
 use floe_friction::experiments::Preset;
 use floe_friction::{Amontons, Form, Law, RateDependent, RateState, StateLaw};
 
-const RHO_ICE: f64 = 917.0;
+#[path = "shape_support/mod.rs"]
+mod shape_support;
+use shape_support::rect;
 
-fn rect(center: Vec2, w: f64, h: f64) -> Vec<Vec2> {
-    let (a, b) = (0.5 * w, 0.5 * h);
-    vec![
-        center + Vec2::new(-a, -b),
-        center + Vec2::new(a, -b),
-        center + Vec2::new(a, b),
-        center + Vec2::new(-a, b),
-    ]
-}
+const RHO_ICE: f64 = 917.0;
 
 fn rate_state(form: Form, state_law: StateLaw) -> Law {
     Law::RateState(RateState::new(Preset::Tank.params(), form, state_law))

@@ -14,17 +14,11 @@ use floe_friction::rate_state::THETA;
 use floe_friction::spring_slider::{Apparatus, SpringSlider};
 use floe_friction::{Amontons, Form, Law, RateState, StateLaw};
 
-const RHO_ICE: f64 = 917.0;
+#[path = "shape_support/mod.rs"]
+mod shape_support;
+use shape_support::rect;
 
-fn rect(center: Vec2, w: f64, h: f64) -> Vec<Vec2> {
-    let (a, b) = (0.5 * w, 0.5 * h);
-    vec![
-        center + Vec2::new(-a, -b),
-        center + Vec2::new(a, -b),
-        center + Vec2::new(a, b),
-        center + Vec2::new(-a, b),
-    ]
-}
+const RHO_ICE: f64 = 917.0;
 
 fn frictionless_elastic() -> ContactModel {
     ContactModel {

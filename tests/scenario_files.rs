@@ -11,15 +11,9 @@ use floe_dem::Vec2;
 use floe_friction::FrictionLaw;
 use floe_scenario::{checks, Scenario};
 
-/// Runs `f` on a one-thread rayon pool: stepping a world from outside a
-/// pool hands every parallel loop to another thread (~0.1 ms per step).
-fn pooled<T: Send>(f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap()
-        .install(f)
-}
+#[path = "pool_support/mod.rs"]
+mod pool_support;
+use pool_support::pooled;
 
 fn scenario_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios")

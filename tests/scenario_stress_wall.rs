@@ -8,6 +8,10 @@ use std::path::Path;
 use floe_dem::contact_kernel::force_and_torques;
 use floe_scenario::Scenario;
 
+#[path = "pool_support/mod.rs"]
+mod pool_support;
+use pool_support::pooled;
+
 /// A 6 km x 3 km channel of 500 m diamonds, periodic along x, between a
 /// fixed bottom wall and a top wall sliding at 0.5 m/s and holding `STRESS`
 /// (and `GAIN`, if given).
@@ -41,14 +45,6 @@ velocity_m_per_s = [0.5, 0.0]
 normal_stress_n_per_m = 2000.0
 GAIN
 "#;
-
-fn pooled<T: Send>(f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap()
-        .install(f)
-}
 
 /// Runs the cell for `duration` s; returns the compressive stress on the
 /// top wall (N/m) at every step of the second half, summed from the

@@ -11,15 +11,9 @@ use std::path::Path;
 use floe_scenario::Scenario;
 use floe_study::double_shear_protocol::{run_protocol, ProtocolEvent};
 
-/// Runs `f` on a one-thread rayon pool (stepping from outside a pool hands
-/// every parallel loop to another thread).
-fn pooled<T: Send>(f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap()
-        .install(f)
-}
+#[path = "pool_support/mod.rs"]
+mod pool_support;
+use pool_support::pooled;
 
 fn shipped(name: &str) -> String {
     std::fs::read_to_string(

@@ -47,6 +47,13 @@ pub(crate) struct Piece {
     pub span: Option<Range<usize>>,
 }
 
+impl Piece {
+    /// The mean of its vertices (a point inside it), m.
+    fn vertex_mean(&self) -> Vec2 {
+        self.polygon.iter().fold(Vec2::ZERO, |a, &b| a + b) / self.polygon.len() as f64
+    }
+}
+
 /// The ice region: the domain minus the wall insets.
 pub(crate) fn ice_region(r: &Resolved) -> Rect {
     let d = &r.domain;
@@ -497,7 +504,7 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         .iter()
         .filter(|p| !p.prescribed)
         .map(|p| {
-            let c = p.polygon.iter().fold(Vec2::ZERO, |a, &b| a + b) / p.polygon.len() as f64;
+            let c = p.vertex_mean();
             p.polygon
                 .iter()
                 .map(|&q| (q - c).length())
@@ -865,7 +872,7 @@ fn glue_to_walls(
             if p.prescribed {
                 continue;
             }
-            let c = p.polygon.iter().fold(Vec2::ZERO, |a, &b| a + b) / p.polygon.len() as f64;
+            let c = p.vertex_mean();
             let from_face = match w.side {
                 Side::Left => c.x - region.min.x,
                 Side::Right => region.max.x - c.x,

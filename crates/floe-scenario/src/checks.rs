@@ -215,13 +215,7 @@ fn walls_meet_s(
         let (a, b) = (pair[0], pair[1]);
         // Relative velocity is linear on (a, b): its root from two points.
         let velocity = |t: f64| {
-            let v = |w: Option<&Wall>| {
-                w.map_or(0.0, |w| match &w.schedule {
-                    Some(s) => s.velocity_at(t).0[axis],
-                    None => w.velocity[axis],
-                })
-            };
-            v(lo) - v(hi)
+            lo.map_or(0.0, |w| w.velocity_at(t)[axis]) - hi.map_or(0.0, |w| w.velocity_at(t)[axis])
         };
         let (p, q) = (a + 0.25 * (b - a), a + 0.75 * (b - a));
         let (vp, vq) = (velocity(p), velocity(q));

@@ -105,6 +105,14 @@ impl Wall {
         }
     }
 
+    /// Its velocity at time `t_s`, m/s.
+    pub(crate) fn velocity_at(&self, t_s: f64) -> Vec2 {
+        match &self.schedule {
+            Some(s) => s.velocity_at(t_s).0,
+            None => self.velocity,
+        }
+    }
+
     /// Its displacement from the start at time `t_s`, m.
     pub(crate) fn travel_to(&self, t_s: f64) -> Vec2 {
         match &self.schedule {

@@ -201,27 +201,28 @@ impl Scenario {
         for (id, schedule) in built.schedules {
             world.set_schedule(id, schedule)?;
         }
-        for w in built.stress_walls {
-            let gain = match w.gain {
-                Some(g) => g,
-                None => default_stress_gain(&world, dt_s),
-            };
-            report.push(format!(
-                "wall[{}]: holds a normal stress of {} N/m over {} m; gain {} (m/s)/(N/m), {} of the stability limit",
-                w.index,
-                sig(w.target_n_per_m),
-                sig(w.length_m),
-                sig(gain),
-                sig(gain / stress_gain_limit(&world, dt_s))
-            ));
-            let control = StressControl::new(
-                w.floe_ids,
-                w.inward_normal,
-                w.length_m,
-                w.target_n_per_m,
-                gain,
-            )?;
-            world.add_stress_control(control)?;
+        if !built.stress_walls.is_empty() {
+            // The same for every wall (the mean free floe's): found once.
+            let limit = stress_gain_limit(&world, dt_s);
+            for w in built.stress_walls {
+                let gain = w.gain.unwrap_or(STRESS_GAIN_FRACTION * limit);
+                report.push(format!(
+                    "wall[{}]: holds a normal stress of {} N/m over {} m; gain {} (m/s)/(N/m), {} of the stability limit",
+                    w.index,
+                    sig(w.target_n_per_m),
+                    sig(w.length_m),
+                    sig(gain),
+                    sig(gain / limit)
+                ));
+                let control = StressControl::new(
+                    w.floe_ids,
+                    w.inward_normal,
+                    w.length_m,
+                    w.target_n_per_m,
+                    gain,
+                )?;
+                world.add_stress_control(control)?;
+            }
         }
         for (id, (k, schedule)) in built.load_points {
             let h = world.floes().handle_of(id).expect("built with the floes");
@@ -291,9 +292,4 @@ pub fn stress_gain_limit<F: floe_dem::forcing::ExternalForces>(world: &World<F>,
     let rho_h = mass / area;
     let dashpot = 2.0 * model.damping_ratio() * (kappa * rho_h * r).sqrt();
     (2.0 / (dt_s * kappa)).min(1.0 / dashpot)
-}
-
-/// [`STRESS_GAIN_FRACTION`] of [`stress_gain_limit`].
-fn default_stress_gain<F: floe_dem::forcing::ExternalForces>(world: &World<F>, dt_s: f64) -> f64 {
-    STRESS_GAIN_FRACTION * stress_gain_limit(world, dt_s)
 }

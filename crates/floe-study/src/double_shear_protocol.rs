@@ -50,7 +50,8 @@ pub struct ProtocolRun {
     pub dem: Vec<(f64, f64)>,
     /// The spring-slider's friction, `(t, mu)` every [`SLIDER_DT_S`].
     pub slider: Vec<(f64, f64)>,
-    /// The pusher's segments, `(velocity along the block, duration)`.
+    /// The pusher's segments, `(velocity along the block at the segment's
+    /// start, duration)`.
     pub segments: Vec<(f64, f64)>,
     /// Every hold and every step up in velocity.
     pub events: Vec<ProtocolEvent>,
@@ -75,6 +76,15 @@ pub fn run_protocol(scenario: &Scenario) -> Result<ProtocolRun, Error> {
         .iter()
         .map(|g| (g.velocity_start.x, g.duration_s))
         .collect();
+    // The slider's load point does what the pusher does, ramps included.
+    let protocol = Protocol::new(
+        scheduled
+            .schedule
+            .segments()
+            .iter()
+            .map(|g| Segment::ramp(g.velocity_start.x, g.velocity_end.x, g.duration_s))
+            .collect(),
+    )?;
     let pusher = world
         .floes()
         .handle_of(scheduled.floe_id)
@@ -94,12 +104,6 @@ pub fn run_protocol(scenario: &Scenario) -> Result<ProtocolRun, Error> {
     let apparatus = Apparatus::new(geometry.series_stiffness_n_per_m, 2.0 * load, SLIDER_DT_S)?;
     let law = scenario.contact_model().law.clone();
     let mut slider = SpringSlider::new(law, apparatus, segments[0].0);
-    let protocol = Protocol::new(
-        segments
-            .iter()
-            .map(|&(v, d)| Segment::constant(v, d))
-            .collect(),
-    )?;
     let mut reference = Vec::new();
     slider.run(&protocol, |p| reference.push((p.t_s, p.mu)));
     let events = events(&segments, &dem, &reference);
