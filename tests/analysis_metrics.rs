@@ -315,3 +315,125 @@ fn restart_response_of_a_constructed_overshoot() {
     assert!(floe_analysis::stress::restart_response(&t, &s, 3600.0, 7200.0, 0.0).is_err());
     assert!(floe_analysis::stress::restart_response(&t, &s, 7200.0, 3600.0, 10.0).is_err());
 }
+
+/// A square floe of side `s` centred at `(x, y)`.
+fn square(x: f64, y: f64, s: f64) -> Vec<[f64; 2]> {
+    let h = 0.5 * s;
+    vec![
+        [x - h, y - h],
+        [x + h, y - h],
+        [x + h, y + h],
+        [x - h, y + h],
+    ]
+}
+
+#[test]
+fn a_floe_squeezed_and_sheared_between_two_walls() {
+    use floe_analysis::rheology::{cell_sample, CellSnapshot};
+    // One free 400 m square between a bottom wall (touching at y = 0) and a
+    // top wall (at y = 400), in a cell 2 km long. The bottom wall pushes it
+    // up with 3 MN and drags it along +x with 1 MN; the top wall the
+    // reverse: P = 3e6 / 2000 = 1500 N/m, tau = 1e6 / 2000 = 500 N/m, and
+    // the Love-Weber sum over the free floe must give the same.
+    let length = 2000.0;
+    let position = [[1000.0, -300.0], [1000.0, 200.0], [1000.0, 700.0]];
+    let velocity = [[0.0, 0.0], [0.25, 0.0], [0.5, 0.0]];
+    let area = [2000.0 * 600.0, 400.0 * 400.0, 2000.0 * 600.0];
+    let mass = [1e9, 1.5e8, 1e9];
+    let prescribed = [true, false, true];
+    let vertices = [
+        vec![[0.0, -600.0], [2000.0, -600.0], [2000.0, 0.0], [0.0, 0.0]],
+        square(1000.0, 200.0, 400.0),
+        vec![
+            [0.0, 400.0],
+            [2000.0, 400.0],
+            [2000.0, 1000.0],
+            [0.0, 1000.0],
+        ],
+    ];
+    // Forces on b are `n F_n + perp(n) F_t` with perp(n) = (-n_y, n_x) =
+    // (-1, 0). Contact 0: a = bottom wall, b = floe; on the floe
+    // (-1e6, 3e6). Contact 1: a = floe, b = top wall; on the wall
+    // (-1e6, 3e6), the ice holding it back. Its point is given at the
+    // periodic image x + L of x = 950 m.
+    let pair = [[0, 1], [1, 2]];
+    let point = [[1000.0, 0.0], [950.0 + length, 400.0]];
+    let normal = [[0.0, 1.0], [0.0, 1.0]];
+    let normal_force = [3e6, 3e6];
+    let tangential_force = [1e6, 1e6];
+    let s = cell_sample(&CellSnapshot {
+        period_x_m: length,
+        position: &position,
+        velocity: &velocity,
+        area_m2: &area,
+        mass_kg: &mass,
+        prescribed: &prescribed,
+        vertices: &vertices,
+        pair: &pair,
+        point: &point,
+        normal: &normal,
+        normal_force_n: &normal_force,
+        tangential_force_n: &tangential_force,
+    })
+    .unwrap();
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+    assert!(close(s.height_m, 400.0), "{s:?}");
+    assert!(close(s.wall_normal_stress_n_per_m, 1500.0), "{s:?}");
+    assert!(close(s.wall_shear_stress_n_per_m, 500.0), "{s:?}");
+    assert!(close(s.bulk_normal_stress_n_per_m(), 1500.0), "{s:?}");
+    // sigma_xy = (1/LH) sum f_x arm_y = (-1e6 * -200 + 1e6 * 200) / (2000 * 400)
+    // = 500; sigma_yx = f_y arm_x: the top contact's -3e6 at -50 m (its
+    // image brought back), 187.5 (the constructed floe feels a net torque,
+    // so the two differ).
+    let c = s.contact_stress_n_per_m;
+    assert!(close(c[1], 500.0), "{c:?}");
+    assert!(close(c[2], 187.5), "{c:?}");
+    assert!(
+        close(s.bulk_shear_stress_n_per_m(), 0.5 * (500.0 + 187.5)),
+        "{s:?}"
+    );
+    // The floe's middle half (y from 100 to 300) is 400 m of a 2 km strip:
+    // solid fraction 0.2.
+    assert!(close(s.solid_fraction, 0.2), "{s:?}");
+    assert!(close(s.wall_shear_rate_per_s, 0.5 / 400.0), "{s:?}");
+    assert!(close(s.floe_size_m, 400.0), "{s:?}");
+}
+
+#[test]
+fn mu_of_i_fit_recovers_the_curve_it_was_sampled_from() {
+    use floe_analysis::rheology::{fit_mu_of_i, MuOfI};
+    for truth in [
+        MuOfI {
+            mu_s: 0.38,
+            mu_2: 0.64,
+            i_0: 0.279,
+            rms_residual: 0.0,
+            resolved: true,
+        },
+        // Weakening with I, as a velocity-weakening contact law may give.
+        MuOfI {
+            mu_s: 0.55,
+            mu_2: 0.30,
+            i_0: 3e-3,
+            rms_residual: 0.0,
+            resolved: true,
+        },
+    ] {
+        let i: Vec<f64> = (0..9)
+            .map(|k| truth.i_0 * 10f64.powf(-2.0 + 0.5 * k as f64))
+            .collect();
+        let mu: Vec<f64> = i.iter().map(|&x| truth.mu(x)).collect();
+        let fit = fit_mu_of_i(&i, &mu).unwrap();
+        assert!((fit.mu_s - truth.mu_s).abs() < 1e-6, "{fit:?}");
+        assert!((fit.mu_2 - truth.mu_2).abs() < 1e-6, "{fit:?}");
+        assert!((fit.i_0 / truth.i_0 - 1.0).abs() < 1e-5, "{fit:?}");
+        assert!(fit.rms_residual < 1e-8, "{fit:?}");
+        assert!(fit.resolved, "{fit:?}");
+    }
+    // A flat friction shows no transition: the fit says so.
+    let flat = fit_mu_of_i(&[1e-3, 1e-2, 1e-1, 1.0], &[0.42, 0.43, 0.42, 0.43]).unwrap();
+    assert!(!flat.resolved, "{flat:?}");
+    assert!(fit_mu_of_i(&[0.1, 0.1, 0.1], &[0.3, 0.4, 0.5]).is_err());
+    assert!(fit_mu_of_i(&[0.1, -0.2, 0.3], &[0.3, 0.4, 0.5]).is_err());
+    assert!(fit_mu_of_i(&[0.1, 0.2], &[0.3, 0.4]).is_err());
+}

@@ -240,3 +240,37 @@ fn bad_flags_and_missing_files_get_one_message() {
     assert!(err.contains("/nonexistent/p.toml"), "{err}");
     assert!(Path::new("/tmp").exists());
 }
+
+#[test]
+fn rheology_flags_and_scenarios_that_are_not_cells_get_one_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let out = out.to_string_lossy();
+    let shipped = |name: &str| {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenarios")
+            .join(name)
+            .to_string_lossy()
+            .into_owned()
+    };
+    let cell = shipped("shear_cell.toml");
+    for (args, expect) in [
+        (vec!["--speeds", "0.1,-2"], "--speeds -2"),
+        (vec!["--speeds", "0.1,nan"], "--speeds"),
+        (vec!["--speeds", "0.1,0.1,0.2"], "twice"),
+        (vec!["--strain", "0"], "--strain"),
+        (vec!["--snapshots", "1"], "--snapshots"),
+        (vec!["--transient", "1"], "--transient"),
+        (vec!["--laws", "amontons,nope"], "nope"),
+    ] {
+        let mut all = vec!["rheology", cell.as_str(), "-o", &out];
+        all.extend(args);
+        let (code, err) = floe(&all);
+        assert_one_clear_error(code, &err, 2);
+        assert!(err.contains(expect), "expected `{expect}` in: {err}");
+    }
+    let (code, err) = floe(&["rheology", &shipped("demo.toml"), "-o", &out]);
+    assert_one_clear_error(code, &err, 2);
+    assert!(err.contains("not a shear cell"), "{err}");
+    assert!(!dir.path().join("out").exists(), "nothing written");
+}

@@ -11,6 +11,7 @@ use floe_scenario::law_variants::{LawChoice, Matching};
 use floe_scenario::settings::parse_setting;
 use floe_study::compare::{self, CompareArgs};
 use floe_study::render::{self, ColourBy, Snapshots};
+use floe_study::rheology::{self, RheologyArgs};
 use floe_study::run_file::{self as run, RunArgs};
 use floe_study::sweep::{self, SweepArgs};
 
@@ -135,6 +136,48 @@ pub enum Command {
         metrics: MetricArgs,
         /// Most time steps each run may take (default 1e9); a longer one is
         /// refused before anything runs.
+        #[arg(long, value_name = "N", default_value_t = floe_scenario::MAX_RUN_STEPS, value_parser = step_count)]
+        step_limit: f64,
+    },
+    /// Shear a constant-pressure cell at several wall speeds under several
+    /// laws; report mu = tau/P and the solid fraction against the inertial
+    /// number, with a fit of mu(I).
+    #[command(allow_negative_numbers = true)]
+    Rheology {
+        /// Shear-cell scenario (periodic along x; bottom wall; top wall
+        /// holding normal_stress_n_per_m), e.g. scenarios/shear_cell.toml.
+        scenario: PathBuf,
+        /// Laws, comma-separated.
+        #[arg(long, default_value = "amontons,rate-state")]
+        laws: String,
+        /// The top wall's speeds along x, m/s, comma-separated.
+        #[arg(long, value_delimiter = ',', default_value = "0.005,0.02,0.1,0.5,2")]
+        speeds: Vec<f64>,
+        /// Shear strain of each run (its duration is strain x domain height / speed).
+        #[arg(long, default_value_t = 6.0)]
+        strain: f64,
+        /// Snapshots per run (the samples measured).
+        #[arg(long, default_value_t = 300)]
+        snapshots: usize,
+        /// Fraction of each run left out of the means (start-up).
+        #[arg(long, default_value_t = 1.0 / 3.0)]
+        transient: f64,
+        /// Output directory: LAW_vSPEED.{toml,h5}, results.csv, report.md, rheology.png.
+        #[arg(long, short)]
+        output: PathBuf,
+        /// Slip speed at which Amontons' mu equals the rate-and-state steady state, m/s.
+        #[arg(long, default_value_t = 1e-2, value_name = "M_PER_S", value_parser = load_point_speed)]
+        reference_slip_speed: f64,
+        /// Give Amontons' mu explicitly instead.
+        #[arg(long, value_name = "MU", value_parser = friction_coefficient, conflicts_with = "reference_slip_speed")]
+        amontons_mu: Option<f64>,
+        /// Total thread budget; runs go side by side, one thread each.
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Replace existing outputs.
+        #[arg(long)]
+        force: bool,
+        /// Most time steps each run may take (default 1e9).
         #[arg(long, value_name = "N", default_value_t = floe_scenario::MAX_RUN_STEPS, value_parser = step_count)]
         step_limit: f64,
     },
@@ -525,6 +568,41 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             } else {
                 format!("results: {}", path.display())
             })
+        }
+        Command::Rheology {
+            scenario,
+            laws,
+            speeds,
+            strain,
+            snapshots,
+            transient,
+            output,
+            reference_slip_speed,
+            amontons_mu,
+            threads,
+            force,
+            step_limit,
+        } => {
+            let args = RheologyArgs {
+                scenario,
+                laws: LawChoice::parse_list(&laws, &LawRegistry::builtin())?,
+                speeds_m_per_s: speeds,
+                strain,
+                snapshots,
+                transient_fraction: transient,
+                out_dir: output,
+                threads,
+                force,
+                matching: Matching {
+                    reference_slip_m_per_s: reference_slip_speed,
+                    amontons_mu,
+                },
+                provenance: provenance(),
+                registry: LawRegistry::builtin(),
+                step_limit,
+            };
+            let report = rheology::rheology(&args, &TerminalHooks { progress: false })?;
+            Ok(format!("report: {}", report.display()))
         }
         Command::Render {
             file,

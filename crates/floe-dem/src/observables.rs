@@ -1,6 +1,6 @@
 //! Whole-assembly diagnostics: energies, stress, contact statistics.
 
-use crate::contact_kernel::force_and_torques;
+use crate::contact_kernel::contact_force_on_b;
 use crate::energy_ledger::EnergyLedger;
 use crate::forcing::ExternalForces;
 use crate::world::World;
@@ -19,10 +19,12 @@ pub struct Observables {
     /// Cumulative work and dissipation since the start, J.
     pub ledger: EnergyLedger,
     /// Mean stress of the assembly, vertically integrated, N/m, as
-    /// `[xx, xy, yx, yy]`: `(1/A) sum over contacts of f_a (x) l`, with `f_a`
-    /// the contact force on the first floe and `l` the branch vector from
-    /// its centroid to the second floe's (Love-Weber formula); tension
-    /// positive, so a compressed pack has negative diagonal stress.
+    /// `[xx, xy, yx, yy]`: `(1/A) sum over free floes p and their contacts c
+    /// of f_cp (x) (x_c - x_p)`, the force on the floe times its arm from its
+    /// centroid to the contact point (Love-Weber formula; between two free
+    /// floes the pair sums to `f_a (x) (x_b - x_a)`, and a wall's side, whose
+    /// centroid is not in the ice, adds nothing). Tension positive, so a
+    /// compressed pack has negative diagonal stress.
     pub mean_stress_n_per_m: [f64; 4],
     /// Number of contacts.
     pub contacts: usize,
@@ -60,13 +62,21 @@ impl<F: ExternalForces> World<F> {
                 f.position[c.a as usize],
                 f.position[c.b as usize] + c.image_offset,
             );
-            let (force_on_b, _, _) = force_and_torques(c, pa, pb);
-            let force = -force_on_b;
-            let l = pb - pa;
-            o.mean_stress_n_per_m[0] += force.x * l.x;
-            o.mean_stress_n_per_m[1] += force.x * l.y;
-            o.mean_stress_n_per_m[2] += force.y * l.x;
-            o.mean_stress_n_per_m[3] += force.y * l.y;
+            let force_on_b = contact_force_on_b(c);
+            // Each free floe's share, force on it (x) its arm to the point;
+            // a prescribed floe's arm (a wall's centroid) is not the ice's.
+            for (free, force, centroid) in [
+                (f.is_free(c.a as usize), -force_on_b, pa),
+                (f.is_free(c.b as usize), force_on_b, pb),
+            ] {
+                if free {
+                    let arm = c.point - centroid;
+                    o.mean_stress_n_per_m[0] += force.x * arm.x;
+                    o.mean_stress_n_per_m[1] += force.x * arm.y;
+                    o.mean_stress_n_per_m[2] += force.y * arm.x;
+                    o.mean_stress_n_per_m[3] += force.y * arm.y;
+                }
+            }
             if c.slip_rate_m_per_s.abs() > self.model().sliding_threshold_m_per_s {
                 sliding += 1;
             }

@@ -9,7 +9,8 @@ use toml_edit::{Item, Table, Value};
 use crate::error::ScenarioError;
 use crate::source_file::SourceFile;
 
-/// One `--set` option: a dotted key and the values it takes.
+/// One `--set` option: a dotted key and the values it takes. A part
+/// `name[k]` names the k-th `[[name]]` table (from 0): `wall[1].velocity_m_per_s`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Setting {
     /// Dotted key, e.g. `friction.a`.
@@ -134,16 +135,26 @@ pub fn apply(
         let (last, path) = s.key.split_last().expect("non-empty key");
         let mut table: &mut Table = doc.as_table_mut();
         for part in path {
-            let item = table
-                .entry(part)
-                .or_insert_with(|| Item::Table(Table::new()));
-            table = item.as_table_mut().ok_or_else(|| {
+            let not_there = |what: &str| {
                 ScenarioError::Usage(format!(
-                    "--set {}: `{part}` is not a table in {}",
+                    "--set {}: `{part}` is not {what} in {}",
                     s.dotted(),
                     origin.display()
                 ))
-            })?;
+            };
+            table = match indexed(part) {
+                // `wall[1]`: the second `[[wall]]` table, which must exist.
+                Some((name, k)) => table
+                    .get_mut(name)
+                    .and_then(Item::as_array_of_tables_mut)
+                    .and_then(|array| array.get_mut(k))
+                    .ok_or_else(|| not_there(&format!("one of the `[[{name}]]` tables")))?,
+                None => table
+                    .entry(part)
+                    .or_insert_with(|| Item::Table(Table::new()))
+                    .as_table_mut()
+                    .ok_or_else(|| not_there("a table"))?,
+            };
         }
         // In place when the key exists, so its comments stay with it.
         match table.get_mut(last).and_then(Item::as_value_mut) {
@@ -158,6 +169,38 @@ pub fn apply(
         }
     }
     Ok(doc.to_string())
+}
+
+/// The index of the first `[[array]]` table of `text` whose `key` is the
+/// string `value` (e.g. the `[[wall]]` with `side = "top"`), for a `--set`
+/// path `array[k]`.
+pub fn find_table(
+    text: &str,
+    origin: &Path,
+    array: &str,
+    key: &str,
+    value: &str,
+) -> Result<Option<usize>, ScenarioError> {
+    let doc = SourceFile {
+        path: origin.to_path_buf(),
+        text: text.to_string(),
+    }
+    .parse_document()?;
+    Ok(doc
+        .get(array)
+        .and_then(Item::as_array_of_tables)
+        .and_then(|tables| {
+            tables
+                .iter()
+                .position(|t| t.get(key).and_then(Item::as_str) == Some(value))
+        }))
+}
+
+/// `name[k]` as `(name, k)` (k counts from 0, as error messages do).
+fn indexed(part: &str) -> Option<(&str, usize)> {
+    let (name, rest) = part.split_once('[')?;
+    let k = rest.strip_suffix(']')?.trim().parse().ok()?;
+    Some((name.trim(), k))
 }
 
 /// A short label of a combination, e.g. `friction.a=0.25 friction.critical_slip_m=0.005`.

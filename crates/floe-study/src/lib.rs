@@ -14,8 +14,10 @@ pub mod double_shear_protocol;
 pub mod error;
 pub mod plot;
 pub mod render;
+pub mod rheology;
 pub mod run_file;
 pub mod same_file;
+mod side_by_side;
 pub mod sweep;
 
 pub use error::Error;

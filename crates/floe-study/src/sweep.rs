@@ -9,20 +9,18 @@
 //! there, so a job array's results are collected the same way.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 
 use floe_io::RunFile;
 
 use crate::compare::metrics::{measure, MetricOptions, RunMetrics};
 use crate::error::Error;
 use crate::same_file::refuse_overwriting_input;
-use floe_dem::run::{Progress, Silent};
 use floe_friction::LawRegistry;
 use floe_scenario::settings::{apply, cartesian, label, Setting};
 use floe_scenario::Scenario;
 
-use crate::run_file::{run, thread_count, Provenance, RunArgs, RunHooks};
+use crate::run_file::{thread_count, Provenance, RunArgs, RunHooks};
+use crate::side_by_side::run_side_by_side;
 
 /// What `floe sweep` was asked to do.
 #[derive(Debug, Clone)]
@@ -48,21 +46,6 @@ pub struct SweepArgs {
     /// Most time steps a variant may take ([`floe_scenario::MAX_RUN_STEPS`]
     /// by default): a longer one is refused before anything runs.
     pub step_limit: f64,
-}
-
-/// The caller's hooks without progress reports: variants run side by side.
-struct WithoutProgress<'a>(&'a dyn RunHooks);
-
-impl RunHooks for WithoutProgress<'_> {
-    fn say(&self, line: &str) {
-        self.0.say(line);
-    }
-    fn progress(&self, _: u64, _: u64, _: f64) -> Box<dyn Progress> {
-        Box::new(Silent)
-    }
-    fn interrupt(&self) -> &std::sync::atomic::AtomicBool {
-        self.0.interrupt()
-    }
 }
 
 const MANIFEST: &str = "variants.csv";
@@ -127,46 +110,33 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
         std::fs::write(&script, slurm_array(rows.len())).map_err(|e| Error::io(&script, e))?;
         return Ok(manifest);
     }
-    let jobs = budget.min(rows.len()).max(1);
-    let per_job = (budget / jobs).max(1);
-    let next = AtomicUsize::new(0);
-    let failures = Mutex::new(Vec::new());
-    std::thread::scope(|scope| {
-        for _ in 0..jobs {
-            scope.spawn(|| loop {
-                let k = next.fetch_add(1, Ordering::SeqCst);
-                let Some(row) = rows.get(k) else { break };
-                let output = args.out_dir.join(format!("{}.h5", row.name));
-                let result = run(
-                    &RunArgs {
-                        scenario: Some(args.out_dir.join(format!("{}.toml", row.name))),
-                        output: output.clone(),
-                        threads: Some(per_job),
-                        force: args.force,
-                        resume: false,
-                        max_steps: None,
-                        step_limit: args.step_limit,
-                        provenance: args.provenance.clone(),
-                        laws: args.laws.clone(),
-                    },
-                    &WithoutProgress(hooks),
-                );
-                match result {
-                    Ok(summary) => hooks.say(&format!("sweep: {}", summary.describe(&output))),
-                    Err(e) => {
-                        hooks.say(&format!("sweep: {}: {e}", row.name));
-                        failures.lock().expect("no panics").push(row.name.clone());
-                        if matches!(e, Error::Interrupted { .. }) {
-                            // Leave the remaining variants unstarted.
-                            next.store(usize::MAX / 2, Ordering::SeqCst);
-                        }
-                    }
-                }
-            });
-        }
-    });
+    let jobs: Vec<(PathBuf, PathBuf)> = rows
+        .iter()
+        .map(|row| {
+            (
+                args.out_dir.join(format!("{}.toml", row.name)),
+                args.out_dir.join(format!("{}.h5", row.name)),
+            )
+        })
+        .collect();
+    let failed = run_side_by_side(
+        &jobs,
+        budget,
+        &RunArgs {
+            scenario: None,
+            output: PathBuf::new(),
+            threads: None,
+            force: args.force,
+            resume: false,
+            max_steps: None,
+            step_limit: args.step_limit,
+            provenance: args.provenance.clone(),
+            laws: args.laws.clone(),
+        },
+        "sweep",
+        hooks,
+    );
     let table = gather(&args.out_dir, &args.metrics)?;
-    let failed = failures.into_inner().expect("no panics");
     if !failed.is_empty() {
         return Err(Error::VariantsFailed {
             failed: failed.len(),

@@ -1,0 +1,144 @@
+//! A shear cell's rheology read from its run file: one
+//! [`CellSample`] per snapshot, and their means over the steady part.
+
+use std::path::Path;
+
+use floe_analysis::rheology::{cell_sample, inertial_number, CellSample, CellSnapshot};
+use floe_io::RunFile;
+
+use crate::error::Error;
+
+/// The cell's samples at every snapshot after the first (which has no
+/// contacts yet), with their times.
+pub fn cell_samples(path: &Path) -> Result<Vec<(f64, CellSample)>, Error> {
+    let run = RunFile::open(path)?;
+    let meta = run.metadata()?;
+    if !meta.domain.periodic[0] || meta.domain.periodic[1] {
+        return Err(Error::Usage(format!(
+            "{}: a shear cell is periodic along x only, with walls at the bottom and top",
+            path.display()
+        )));
+    }
+    let floes = run.static_floes()?;
+    let mut out = Vec::new();
+    for k in 1..run.snapshot_count()? {
+        let snap = run.snapshot(k)?;
+        let contacts = run.contacts(k)?;
+        let vertices: Vec<Vec<[f64; 2]>> = (0..floes.len())
+            .map(|i| snap.world_vertices(&floes, i))
+            .collect();
+        let cell = CellSnapshot {
+            period_x_m: meta.domain.size_m[0],
+            position: &snap.position,
+            velocity: &snap.velocity,
+            area_m2: &floes.area_m2,
+            mass_kg: &floes.mass_kg,
+            prescribed: &floes.prescribed,
+            vertices: &vertices,
+            pair: &contacts.pair,
+            point: &contacts.point,
+            normal: &contacts.normal,
+            normal_force_n: &contacts.normal_force_n,
+            tangential_force_n: &contacts.tangential_force_n,
+        };
+        out.push((snap.time_s, cell_sample(&cell)?));
+    }
+    Ok(out)
+}
+
+/// A mean over samples, with the standard error of the mean from the
+/// scatter (samples taken as independent: snapshots far apart in strain).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mean {
+    /// The mean.
+    pub value: f64,
+    /// Its standard error.
+    pub error: f64,
+}
+
+fn mean(values: impl Iterator<Item = f64> + Clone) -> Mean {
+    let n = values.clone().count() as f64;
+    let m = values.clone().sum::<f64>() / n;
+    let var = values.map(|v| (v - m).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
+    Mean {
+        value: m,
+        error: (var / n).sqrt(),
+    }
+}
+
+fn ratio(num: Mean, den: Mean) -> Mean {
+    let value = num.value / den.value;
+    Mean {
+        value,
+        error: value.abs()
+            * ((num.error / num.value).powi(2) + (den.error / den.value).powi(2)).sqrt(),
+    }
+}
+
+/// The steady state of one cell run: means over the samples from
+/// `from_fraction` of the run's snapshots on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteadyCell {
+    /// Samples averaged.
+    pub samples: usize,
+    /// Normal stress on the walls, N/m.
+    pub wall_normal_stress_n_per_m: Mean,
+    /// Shear stress on the walls, N/m.
+    pub wall_shear_stress_n_per_m: Mean,
+    /// Normal stress from the contacts and fluctuations inside, N/m.
+    pub bulk_normal_stress_n_per_m: Mean,
+    /// Shear stress from the contacts and fluctuations inside, N/m.
+    pub bulk_shear_stress_n_per_m: Mean,
+    /// `mu = <tau> / <P>` on the walls (a ratio of means: in stick-slip `P`
+    /// nearly vanishes between events, and a mean of ratios would not be
+    /// defined), its error from the two errors as if independent.
+    pub mu: Mean,
+    /// Solid fraction in the middle half of the layer.
+    pub solid_fraction: Mean,
+    /// Shear rate of the fitted profile, 1/s.
+    pub shear_rate_per_s: Mean,
+    /// The walls' speed difference over the layer height, 1/s.
+    pub wall_shear_rate_per_s: Mean,
+    /// Inertial number from the mean shear rate and wall pressure.
+    pub inertial_number: f64,
+    /// Layer height, m.
+    pub height_m: Mean,
+}
+
+/// Means over the samples from `from_fraction` (in [0, 1)) of the list on.
+pub fn steady(samples: &[(f64, CellSample)], from_fraction: f64) -> Result<SteadyCell, Error> {
+    let start = ((samples.len() as f64) * from_fraction).floor() as usize;
+    let used: Vec<&CellSample> = samples[start.min(samples.len())..]
+        .iter()
+        .map(|(_, s)| s)
+        .collect();
+    if used.len() < 2 {
+        return Err(Error::Usage(format!(
+            "the cell's steady part has {} snapshots; at least 2 are needed (more snapshots: output.snapshot_every_s)",
+            used.len()
+        )));
+    }
+    let pick = |f: fn(&CellSample) -> f64| mean(used.iter().map(move |s| f(s)));
+    let p = pick(|s| s.wall_normal_stress_n_per_m);
+    let shear = pick(|s| s.wall_shear_stress_n_per_m);
+    let rate = pick(|s| s.shear_rate_per_s);
+    let first = used[0];
+    Ok(SteadyCell {
+        samples: used.len(),
+        wall_normal_stress_n_per_m: p,
+        wall_shear_stress_n_per_m: shear,
+        bulk_normal_stress_n_per_m: pick(|s| s.bulk_normal_stress_n_per_m()),
+        bulk_shear_stress_n_per_m: pick(|s| s.bulk_shear_stress_n_per_m()),
+        mu: ratio(shear, p),
+        solid_fraction: pick(|s| s.solid_fraction),
+        shear_rate_per_s: rate,
+        wall_shear_rate_per_s: pick(|s| s.wall_shear_rate_per_s),
+        inertial_number: inertial_number(
+            rate.value,
+            first.floe_size_m,
+            first.areal_density_kg_per_m2,
+            p.value,
+        ),
+        height_m: pick(|s| s.height_m),
+    })
+}

@@ -1,0 +1,249 @@
+//! `floe rheology`: a constant-pressure simple-shear cell (periodic along
+//! x, a fixed bottom wall, a top wall that holds a normal stress and
+//! slides along x) run at several wall speeds under several friction laws,
+//! each run measured ([`measure`]) and each law's `mu(I)` fitted. Writes
+//! `DIR/<law>_v<speed>.{toml,h5}`, `DIR/results.csv`, `DIR/report.md` and
+//! `DIR/rheology.png`.
+
+pub mod measure;
+mod report;
+
+use std::path::PathBuf;
+
+use floe_analysis::rheology::fit_mu_of_i;
+use floe_friction::LawRegistry;
+use floe_scenario::law_variants::{reference_law, variant, LawChoice, Matching};
+use floe_scenario::settings::{apply, find_table, Setting};
+use floe_scenario::Scenario;
+
+use crate::error::Error;
+use crate::run_file::{thread_count, Provenance, RunArgs, RunHooks};
+use crate::same_file::refuse_overwriting_input;
+use crate::side_by_side::run_side_by_side;
+use measure::{cell_samples, steady, SteadyCell};
+
+/// What `floe rheology` was asked to do.
+#[derive(Debug, Clone)]
+pub struct RheologyArgs {
+    /// The shear-cell scenario.
+    pub scenario: PathBuf,
+    /// The laws, in report order.
+    pub laws: Vec<LawChoice>,
+    /// The top wall's speeds along x, m/s.
+    pub speeds_m_per_s: Vec<f64>,
+    /// Shear strain each run lasts: duration = strain x domain height / speed.
+    pub strain: f64,
+    /// Snapshots each run writes (the measured samples).
+    pub snapshots: usize,
+    /// Fraction of each run left out of the means (the start-up).
+    pub transient_fraction: f64,
+    /// Output directory.
+    pub out_dir: PathBuf,
+    /// Thread budget: runs go side by side, one thread each.
+    pub threads: Option<usize>,
+    /// Replace existing outputs.
+    pub force: bool,
+    /// How Amontons and the rate law are matched to rate-and-state.
+    pub matching: Matching,
+    /// Who runs it (recorded in each run file).
+    pub provenance: Provenance,
+    /// The friction laws the scenario may name.
+    pub registry: LawRegistry,
+    /// Most time steps a run may take.
+    pub step_limit: f64,
+}
+
+/// One run's steady state.
+#[derive(Debug, Clone)]
+pub struct CellRun {
+    /// The law's name.
+    pub law: String,
+    /// The top wall's speed, m/s.
+    pub speed_m_per_s: f64,
+    /// The run's measured steady state.
+    pub steady: SteadyCell,
+}
+
+/// Runs the cells, writes the results; returns the report's path.
+pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
+    let budget = thread_count(args.threads)?;
+    check_args(args)?;
+    let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
+    let origin = args.scenario.as_path();
+    let scenario = Scenario::from_text_with(&text, origin, &args.registry)?;
+    let domain = scenario.domain();
+    let not_a_cell = |why: &str| {
+        Error::Usage(format!(
+            "{}: not a shear cell ({why}); see scenarios/shear_cell.toml",
+            origin.display()
+        ))
+    };
+    if domain.periodic != [true, false] {
+        return Err(not_a_cell("the domain must be periodic along x only"));
+    }
+    let top = find_table(&text, origin, "wall", "side", "top")?
+        .ok_or_else(|| not_a_cell("it has no [[wall]] with side = \"top\""))?;
+    find_table(&text, origin, "wall", "side", "bottom")?
+        .ok_or_else(|| not_a_cell("it has no [[wall]] with side = \"bottom\""))?;
+    if scenario.build()?.world.stress_controls().is_empty() {
+        return Err(not_a_cell(
+            "no wall holds a normal stress (normal_stress_n_per_m)",
+        ));
+    }
+    let (reference, reference_text) = reference_law(&text, origin, |t| {
+        Ok(Scenario::from_text_with(t, origin, &args.registry)?
+            .contact_model()
+            .law
+            .clone())
+    })?;
+
+    // Every variant is made and built before anything is written.
+    let height = domain.size_m.y;
+    let mut jobs = Vec::new();
+    let mut plan = Vec::new();
+    for &law in &args.laws {
+        let (law_text, _) = variant(
+            &text,
+            origin,
+            law,
+            &reference,
+            &reference_text,
+            args.matching,
+        )?;
+        for &v in &args.speeds_m_per_s {
+            let duration = args.strain * height / v;
+            let set = |key: &str, value: String| Setting {
+                key: key.split('.').map(str::to_string).collect(),
+                values: vec![value],
+            };
+            let settings = [
+                set(
+                    &format!("wall[{top}].velocity_m_per_s"),
+                    format!("[{v:?}, 0.0]"),
+                ),
+                set("duration_s", format!("{duration:?}")),
+                set(
+                    "output.snapshot_every_s",
+                    format!("{:?}", duration / args.snapshots as f64),
+                ),
+                set(
+                    "output.observables_every_s",
+                    format!("{:?}", duration / 500.0),
+                ),
+                set(
+                    "output.checkpoint_every_s",
+                    format!("{:?}", duration / 10.0),
+                ),
+            ];
+            let variant_text = apply(&law_text, origin, &settings, &[0; 5])?;
+            let name = format!("{}_v{v}", law.name());
+            let file = args.out_dir.join(format!("{name}.toml"));
+            Scenario::from_text_with(&variant_text, &file, &args.registry)?
+                .with_max_steps(args.step_limit)
+                .build()?;
+            jobs.push((file, args.out_dir.join(format!("{name}.h5"))));
+            plan.push((law.name().to_string(), v, variant_text));
+        }
+    }
+    let report_path = args.out_dir.join("report.md");
+    let mut targets = vec![report_path.clone(), args.out_dir.join("results.csv")];
+    targets.extend(jobs.iter().flat_map(|(t, h)| [t.clone(), h.clone()]));
+    refuse_overwriting_input(
+        &args.scenario,
+        "scenario file",
+        targets.iter().map(PathBuf::as_path),
+    )?;
+    if !args.force {
+        if let Some(existing) = targets.iter().find(|p| p.exists()) {
+            return Err(Error::WouldOverwrite(existing.clone()));
+        }
+    }
+    std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
+    for ((file, _), (_, _, variant_text)) in jobs.iter().zip(&plan) {
+        std::fs::write(file, variant_text).map_err(|e| Error::io(file, e))?;
+    }
+    let failed = run_side_by_side(
+        &jobs,
+        budget,
+        &RunArgs {
+            scenario: None,
+            output: PathBuf::new(),
+            threads: None,
+            force: args.force,
+            resume: false,
+            max_steps: None,
+            step_limit: args.step_limit,
+            provenance: args.provenance.clone(),
+            laws: args.registry.clone(),
+        },
+        "rheology",
+        hooks,
+    );
+    if !failed.is_empty() {
+        return Err(Error::Usage(format!(
+            "rheology: {} of {} runs failed ({}); nothing was measured",
+            failed.len(),
+            jobs.len(),
+            failed.join(", ")
+        )));
+    }
+    let mut runs = Vec::with_capacity(jobs.len());
+    for ((_, output), (law, v, _)) in jobs.iter().zip(&plan) {
+        let samples = cell_samples(output)?;
+        runs.push(CellRun {
+            law: law.clone(),
+            speed_m_per_s: *v,
+            steady: steady(&samples, args.transient_fraction)?,
+        });
+    }
+    let mut fits = Vec::new();
+    for law in &args.laws {
+        let (i, mu): (Vec<f64>, Vec<f64>) = runs
+            .iter()
+            .filter(|r| r.law == law.name())
+            .map(|r| (r.steady.inertial_number, r.steady.mu.value))
+            .unzip();
+        fits.push((law.name().to_string(), fit_mu_of_i(&i, &mu).ok()));
+    }
+    report::write(&args.out_dir, &args.scenario, args, &runs, &fits)?;
+    Ok(report_path)
+}
+
+fn check_args(args: &RheologyArgs) -> Result<(), Error> {
+    let usage = |flag: &str, value: f64, accepted: &str| {
+        Err(Error::Usage(format!("{flag} {value}: {accepted}")))
+    };
+    if args.speeds_m_per_s.is_empty() {
+        return Err(Error::Usage("--speeds: give at least one speed".into()));
+    }
+    if let Some(&v) = args
+        .speeds_m_per_s
+        .iter()
+        .find(|v| !(v.is_finite() && **v >= 1e-6 && **v <= 100.0))
+    {
+        return usage("--speeds", v, "speeds from 1e-6 to 100 m/s");
+    }
+    let mut sorted = args.speeds_m_per_s.clone();
+    sorted.sort_by(f64::total_cmp);
+    if sorted.windows(2).any(|w| w[0] == w[1]) {
+        return Err(Error::Usage("--speeds: a speed is given twice".into()));
+    }
+    if !(args.strain.is_finite() && args.strain > 0.0 && args.strain <= 1e3) {
+        return usage("--strain", args.strain, "a shear strain in (0, 1000]");
+    }
+    if !(2..=100_000).contains(&args.snapshots) {
+        return usage(
+            "--snapshots",
+            args.snapshots as f64,
+            "2 to 100000 snapshots",
+        );
+    }
+    if !(0.0..0.95).contains(&args.transient_fraction) {
+        return usage(
+            "--transient",
+            args.transient_fraction,
+            "a fraction of the run in [0, 0.95)",
+        );
+    }
+    Ok(())
+}

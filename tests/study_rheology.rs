@@ -1,0 +1,116 @@
+//! `floe rheology` on the shipped shear cell (`scenarios/shear_cell.toml`):
+//! the stress the ice puts on the walls and the stress inside the layer
+//! from the Love-Weber sum of the contacts (plus the momentum flux of the
+//! floes' fluctuations) are two independent measures of the same stress
+//! and agree; the layer's friction is the contacts' Amontons coefficient or above, and a
+//! `mu(I)` fit goes through the points.
+
+use std::path::Path;
+
+use floe_friction::LawRegistry;
+use floe_scenario::law_variants::{LawChoice, Matching};
+use floe_study::rheology::{rheology, RheologyArgs};
+use floe_study::run_file::{Provenance, Quiet};
+
+fn args(out: &Path, laws: Vec<LawChoice>, speeds: Vec<f64>) -> RheologyArgs {
+    RheologyArgs {
+        scenario: Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/shear_cell.toml"),
+        laws,
+        speeds_m_per_s: speeds,
+        strain: 3.0,
+        snapshots: 150,
+        transient_fraction: 1.0 / 3.0,
+        out_dir: out.to_path_buf(),
+        threads: Some(2),
+        force: false,
+        matching: Matching {
+            reference_slip_m_per_s: 1e-2,
+            amontons_mu: Some(0.4),
+        },
+        provenance: Provenance::of_this_process("test"),
+        registry: LawRegistry::builtin(),
+        step_limit: floe_scenario::MAX_RUN_STEPS,
+    }
+}
+
+/// `results.csv` as rows of (column -> value).
+fn results(dir: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let mut r = csv::Reader::from_path(dir.join("results.csv")).unwrap();
+    let header: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
+    r.records()
+        .map(|rec| {
+            header
+                .iter()
+                .cloned()
+                .zip(rec.unwrap().iter().map(str::to_string))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn wall_and_contact_stresses_agree() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = rheology(
+        &args(dir.path(), vec![LawChoice::Amontons], vec![0.5, 1.0, 2.0]),
+        &Quiet,
+    )
+    .unwrap();
+    assert!(report.exists());
+    assert!(dir.path().join("rheology.png").exists());
+    let rows = results(dir.path());
+    assert_eq!(rows.len(), 3);
+    let mut inertial = Vec::new();
+    for row in &rows {
+        let get = |k: &str| row[k].parse::<f64>().unwrap();
+        let (pw, pb) = (
+            get("wall_normal_stress_n_per_m"),
+            get("bulk_normal_stress_n_per_m"),
+        );
+        let (tw, tb) = (
+            get("wall_shear_stress_n_per_m"),
+            get("bulk_shear_stress_n_per_m"),
+        );
+        let (mu, mu_err) = (get("mu"), get("mu_error"));
+        eprintln!(
+            "v = {} m/s: I = {:.3e}, P wall {pw:.0} bulk {pb:.0} (+- {:.0}), tau wall {tw:.0} bulk {tb:.0}, mu {mu:.3} +- {mu_err:.3}, solid fraction {:.3}",
+            row["speed_m_per_s"],
+            get("inertial_number"),
+            get("wall_normal_stress_error"),
+            get("solid_fraction"),
+        );
+        // Two measures of one stress.
+        assert!((pw - pb).abs() < 0.03 * pw, "P: wall {pw}, bulk {pb}");
+        assert!((tw - tb).abs() < 0.06 * tw, "tau: wall {tw}, bulk {tb}");
+        // A layer of Amontons contacts cannot slide with less friction
+        // than its contacts (mu = 0.4): interlocking only adds.
+        assert!(mu > 0.4 - 2.0 * mu_err, "mu = {mu} +- {mu_err}");
+        assert!(get("solid_fraction") < 1.0 && get("solid_fraction") > 0.5);
+        inertial.push(get("inertial_number"));
+    }
+    // I grows with the wall speed.
+    assert!(inertial.windows(2).all(|w| w[1] > w[0]), "{inertial:?}");
+    let md = std::fs::read_to_string(report).unwrap();
+    assert!(md.contains("| amontons | "), "{md}");
+}
+
+#[test]
+fn a_scenario_that_is_not_a_shear_cell_is_refused_before_anything_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = args(dir.path(), vec![LawChoice::Amontons], vec![0.5]);
+    a.scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/free_drift.toml");
+    let e = rheology(&a, &Quiet).unwrap_err().to_string();
+    assert!(e.contains("not a shear cell"), "{e}");
+    let mut a = args(dir.path(), vec![LawChoice::Amontons], vec![0.5, -1.0]);
+    let e = rheology(&a, &Quiet).unwrap_err().to_string();
+    assert!(e.contains("--speeds -1"), "{e}");
+    a.speeds_m_per_s = vec![0.5];
+    a.strain = 0.0;
+    let e = rheology(&a, &Quiet).unwrap_err().to_string();
+    assert!(e.contains("--strain"), "{e}");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "nothing written"
+    );
+}
