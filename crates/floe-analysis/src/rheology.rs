@@ -19,6 +19,10 @@
 
 use crate::AnalysisError;
 
+/// The error of [`cell_sample`] for a snapshot in which the free floes
+/// touch only one wall or none (the layer has no height then).
+pub const NOT_TOUCHING: &str = "the free floes do not touch both walls";
+
 /// One snapshot of a shear cell, as arrays over floes and contacts (the
 /// layout of a run file's snapshot).
 #[derive(Debug, Clone, Copy)]
@@ -192,9 +196,7 @@ pub fn cell_sample(s: &CellSnapshot) -> Result<CellSample, AnalysisError> {
         }
     }
     if height[0].1 == 0 || height[1].1 == 0 {
-        return Err(AnalysisError::NotEnoughData(
-            "the free floes do not touch both walls",
-        ));
+        return Err(AnalysisError::NotEnoughData(NOT_TOUCHING));
     }
     let (y_bottom, y_top) = (
         height[0].0 / height[0].1 as f64,

@@ -3,14 +3,18 @@
 
 use std::path::Path;
 
-use floe_analysis::rheology::{cell_sample, inertial_number, CellSample, CellSnapshot};
-use floe_io::RunFile;
+use floe_analysis::rheology::{
+    cell_sample, inertial_number, CellSample, CellSnapshot, NOT_TOUCHING,
+};
+use floe_analysis::AnalysisError;
+use floe_io::{RunFile, Series};
 
 use crate::error::Error;
 
 /// The cell's samples at every snapshot after the first (which has no
-/// contacts yet), with their times.
-pub fn cell_samples(path: &Path) -> Result<Vec<(f64, CellSample)>, Error> {
+/// contacts yet), with their times; `None` where the free floes touched
+/// only one wall or none (the layer lost its confinement for a moment).
+pub fn cell_samples(path: &Path) -> Result<Vec<(f64, Option<CellSample>)>, Error> {
     let run = RunFile::open(path)?;
     let meta = run.metadata()?;
     if !meta.domain.periodic[0] || meta.domain.periodic[1] {
@@ -41,7 +45,12 @@ pub fn cell_samples(path: &Path) -> Result<Vec<(f64, CellSample)>, Error> {
             normal_force_n: &contacts.normal_force_n,
             tangential_force_n: &contacts.tangential_force_n,
         };
-        out.push((snap.time_s, cell_sample(&cell)?));
+        let sample = match cell_sample(&cell) {
+            Ok(sample) => Some(sample),
+            Err(AnalysisError::NotEnoughData(NOT_TOUCHING)) => None,
+            Err(e) => return Err(e.into()),
+        };
+        out.push((snap.time_s, sample));
     }
     Ok(out)
 }
@@ -81,6 +90,9 @@ fn ratio(num: Mean, den: Mean) -> Mean {
 pub struct SteadyCell {
     /// Samples averaged.
     pub samples: usize,
+    /// Snapshots of the steady part left out because the free floes did
+    /// not touch both walls.
+    pub unconfined: usize,
     /// Normal stress on the walls, N/m.
     pub wall_normal_stress_n_per_m: Mean,
     /// Shear stress on the walls, N/m.
@@ -103,21 +115,35 @@ pub struct SteadyCell {
     pub inertial_number: f64,
     /// Layer height, m.
     pub height_m: Mean,
+    /// The contacts' own friction, `sum |F_t| / sum F_n` over all contacts
+    /// (the `mean_mu` observable), averaged over the same part of the run.
+    pub contact_mu: f64,
 }
 
-/// Means over the samples from `from_fraction` (in [0, 1)) of the list on.
-pub fn steady(samples: &[(f64, CellSample)], from_fraction: f64) -> Result<SteadyCell, Error> {
+/// Means over the samples from `from_fraction` (in [0, 1)) of the list on;
+/// `contact_mu` is the run's `mean_mu` observable.
+pub fn steady(
+    samples: &[(f64, Option<CellSample>)],
+    contact_mu: &Series,
+    from_fraction: f64,
+) -> Result<SteadyCell, Error> {
     let start = ((samples.len() as f64) * from_fraction).floor() as usize;
-    let used: Vec<&CellSample> = samples[start.min(samples.len())..]
-        .iter()
-        .map(|(_, s)| s)
-        .collect();
+    let part = &samples[start.min(samples.len())..];
+    let used: Vec<&CellSample> = part.iter().filter_map(|(_, s)| s.as_ref()).collect();
     if used.len() < 2 {
         return Err(Error::Usage(format!(
-            "the cell's steady part has {} snapshots; at least 2 are needed (more snapshots: output.snapshot_every_s)",
+            "the cell's steady part has {} snapshots in which the floes touch both walls; at least 2 are needed (more snapshots: --snapshots)",
             used.len()
         )));
     }
+    let from_s = part.first().map_or(f64::INFINITY, |(t, _)| *t);
+    let late: Vec<f64> = contact_mu
+        .time_s
+        .iter()
+        .zip(&contact_mu.value)
+        .filter(|(t, _)| **t >= from_s)
+        .map(|(_, v)| *v)
+        .collect();
     let pick = |f: fn(&CellSample) -> f64| mean(used.iter().map(move |s| f(s)));
     let p = pick(|s| s.wall_normal_stress_n_per_m);
     let shear = pick(|s| s.wall_shear_stress_n_per_m);
@@ -125,6 +151,7 @@ pub fn steady(samples: &[(f64, CellSample)], from_fraction: f64) -> Result<Stead
     let first = used[0];
     Ok(SteadyCell {
         samples: used.len(),
+        unconfined: part.len() - used.len(),
         wall_normal_stress_n_per_m: p,
         wall_shear_stress_n_per_m: shear,
         bulk_normal_stress_n_per_m: pick(|s| s.bulk_normal_stress_n_per_m()),
@@ -140,5 +167,6 @@ pub fn steady(samples: &[(f64, CellSample)], from_fraction: f64) -> Result<Stead
             p.value,
         ),
         height_m: pick(|s| s.height_m),
+        contact_mu: late.iter().sum::<f64>() / late.len().max(1) as f64,
     })
 }

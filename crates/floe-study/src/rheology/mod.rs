@@ -190,10 +190,11 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
     let mut runs = Vec::with_capacity(jobs.len());
     for ((_, output), (law, v, _)) in jobs.iter().zip(&plan) {
         let samples = cell_samples(output)?;
+        let contact_mu = floe_io::RunFile::open(output)?.observable("mean_mu")?;
         runs.push(CellRun {
             law: law.clone(),
             speed_m_per_s: *v,
-            steady: steady(&samples, args.transient_fraction)?,
+            steady: steady(&samples, &contact_mu, args.transient_fraction)?,
         });
     }
     let mut fits = Vec::new();

@@ -29,13 +29,13 @@ fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
         "law,speed_m_per_s,samples,inertial_number,mu,mu_error,wall_normal_stress_n_per_m,\
          wall_normal_stress_error,bulk_normal_stress_n_per_m,wall_shear_stress_n_per_m,\
          bulk_shear_stress_n_per_m,solid_fraction,solid_fraction_error,shear_rate_per_s,\
-         wall_shear_rate_per_s,height_m\n",
+         wall_shear_rate_per_s,height_m,unconfined_snapshots,contact_mu\n",
     );
     for r in runs {
         let s = &r.steady;
         let _ = writeln!(
             text,
-            "{},{},{},{:e},{},{},{},{},{},{},{},{},{},{:e},{:e},{}",
+            "{},{},{},{:e},{},{},{},{},{},{},{},{},{},{:e},{:e},{},{},{}",
             r.law,
             r.speed_m_per_s,
             s.samples,
@@ -52,6 +52,8 @@ fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
             s.shear_rate_per_s.value,
             s.wall_shear_rate_per_s.value,
             s.height_m.value,
+            s.unconfined,
+            s.contact_mu,
         );
     }
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
@@ -124,26 +126,28 @@ fn markdown(
          walls (mean shear stress over mean normal stress); the bulk stresses are the Love-Weber sum of the contacts \
          plus the momentum flux of the fluctuations over the layer, an independent \
          measure of the same stresses. `I = shear rate x floe size x sqrt(areal density / P)`, \
-         the shear rate from a linear fit of the floes' velocity across the layer.\n\n",
+         the shear rate from a linear fit of the floes' velocity across the layer. \
+         The contacts' mu is `sum |F_t| / sum F_n` over all contacts (observable `mean_mu`).\n\n",
         scenario.display(),
         args.strain,
         args.transient_fraction,
         args.snapshots,
     );
     md.push_str(
-        "| law | wall speed (m/s) | I | mu (wall) | P wall / bulk (N/m) | tau wall / bulk (N/m) | solid fraction | shear rate fit / walls (1/s) |\n\
-         |---|---|---|---|---|---|---|---|\n",
+        "| law | wall speed (m/s) | I | mu (wall) | contacts' mu | P wall / bulk (N/m) | tau wall / bulk (N/m) | solid fraction | shear rate fit / walls (1/s) |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
     );
     for r in runs {
         let s = &r.steady;
         let _ = writeln!(
             md,
-            "| {} | {} | {:.3e} | {:.3} +- {:.3} | {:.0} / {:.0} | {:.0} / {:.0} | {:.3} +- {:.3} | {:.2e} / {:.2e} |",
+            "| {} | {} | {:.3e} | {:.3} +- {:.3} | {:.3} | {:.0} / {:.0} | {:.0} / {:.0} | {:.3} +- {:.3} | {:.2e} / {:.2e} |",
             r.law,
             r.speed_m_per_s,
             s.inertial_number,
             s.mu.value,
             s.mu.error,
+            s.contact_mu,
             s.wall_normal_stress_n_per_m.value,
             s.bulk_normal_stress_n_per_m.value,
             s.wall_shear_stress_n_per_m.value,
@@ -152,6 +156,13 @@ fn markdown(
             s.solid_fraction.error,
             s.shear_rate_per_s.value,
             s.wall_shear_rate_per_s.value,
+        );
+    }
+    for r in runs.iter().filter(|r| r.steady.unconfined > 0) {
+        let _ = writeln!(
+            md,
+            "\n{} at {} m/s: in {} of the steady part's snapshots the floes touched one wall or none (the layer lost its confinement); they are left out.",
+            r.law, r.speed_m_per_s, r.steady.unconfined
         );
     }
     md.push_str(
