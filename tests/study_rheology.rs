@@ -9,7 +9,7 @@ use std::path::Path;
 
 use floe_friction::LawRegistry;
 use floe_scenario::law_variants::{LawChoice, Matching};
-use floe_study::rheology::{rheology, RheologyArgs};
+use floe_study::rheology::{rheology, Mode, RheologyArgs};
 use floe_study::run_file::{Provenance, Quiet};
 
 fn args(out: &Path, laws: Vec<LawChoice>, speeds: Vec<f64>) -> RheologyArgs {
@@ -23,6 +23,7 @@ fn args(out: &Path, laws: Vec<LawChoice>, speeds: Vec<f64>) -> RheologyArgs {
         out_dir: out.to_path_buf(),
         threads: Some(2),
         force: false,
+        mode: Mode::Run,
         matching: Matching {
             reference_slip_m_per_s: 1e-2,
             amontons_mu: Some(0.4),
@@ -90,8 +91,51 @@ fn wall_and_contact_stresses_agree() {
     }
     // I grows with the wall speed.
     assert!(inertial.windows(2).all(|w| w[1] > w[0]), "{inertial:?}");
-    let md = std::fs::read_to_string(report).unwrap();
+    let md = std::fs::read_to_string(&report).unwrap();
     assert!(md.contains("| amontons | "), "{md}");
+
+    // Measuring the same runs again (--gather) gives the same table.
+    let before = std::fs::read_to_string(dir.path().join("results.csv")).unwrap();
+    let mut gather = args(dir.path(), vec![LawChoice::Amontons], vec![0.5, 1.0, 2.0]);
+    gather.mode = Mode::Gather;
+    rheology(&gather, &Quiet).unwrap();
+    let after = std::fs::read_to_string(dir.path().join("results.csv")).unwrap();
+    assert_eq!(before, after);
+    // A speed that was not run is not there to gather.
+    gather.speeds_m_per_s = vec![0.5, 0.7];
+    let e = rheology(&gather, &Quiet).unwrap_err().to_string();
+    assert!(e.contains("amontons_v0.7.h5: not there to gather"), "{e}");
+}
+
+#[test]
+fn emit_writes_the_scenario_files_and_runs_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = args(
+        dir.path(),
+        vec![LawChoice::Amontons, LawChoice::RateState],
+        vec![0.1, 1.0],
+    );
+    a.mode = Mode::Emit;
+    rheology(&a, &Quiet).unwrap();
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "amontons_v0.1.toml",
+            "amontons_v1.toml",
+            "rate-state_v0.1.toml",
+            "rate-state_v1.toml"
+        ]
+    );
+    // Each file shears at its speed for the set strain (3 x 5000 m / v).
+    let text = std::fs::read_to_string(dir.path().join("rate-state_v0.1.toml")).unwrap();
+    let s = floe_scenario::Scenario::from_text(&text, Path::new("x.toml")).unwrap();
+    assert_eq!(s.duration_s(), 3.0 * 5000.0 / 0.1);
+    assert!(text.contains("velocity_m_per_s = [0.1, 0.0]"), "{text}");
 }
 
 #[test]

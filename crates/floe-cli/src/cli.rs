@@ -177,6 +177,12 @@ pub enum Command {
         /// Replace existing outputs.
         #[arg(long)]
         force: bool,
+        /// Only write the runs' scenario files (LAW_vSPEED.toml), for a job array.
+        #[arg(long)]
+        emit: bool,
+        /// Only measure the runs already in the output directory (same flags as the run).
+        #[arg(long, conflicts_with = "emit")]
+        gather: bool,
         /// Most time steps each run may take (default 1e9).
         #[arg(long, value_name = "N", default_value_t = floe_scenario::MAX_RUN_STEPS, value_parser = step_count)]
         step_limit: f64,
@@ -581,8 +587,15 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             amontons_mu,
             threads,
             force,
+            emit,
+            gather,
             step_limit,
         } => {
+            let mode = match (emit, gather) {
+                (true, _) => rheology::Mode::Emit,
+                (_, true) => rheology::Mode::Gather,
+                _ => rheology::Mode::Run,
+            };
             let args = RheologyArgs {
                 scenario,
                 laws: LawChoice::parse_list(&laws, &LawRegistry::builtin())?,
@@ -593,6 +606,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 out_dir: output,
                 threads,
                 force,
+                mode,
                 matching: Matching {
                     reference_slip_m_per_s: reference_slip_speed,
                     amontons_mu,
@@ -601,8 +615,14 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 registry: LawRegistry::builtin(),
                 step_limit,
             };
-            let report = rheology::rheology(&args, &TerminalHooks { progress: false })?;
-            Ok(format!("report: {}", report.display()))
+            let path = rheology::rheology(&args, &TerminalHooks { progress: false })?;
+            Ok(match mode {
+                rheology::Mode::Emit => format!(
+                    "scenario files written to {}; run each LAW_vSPEED.toml with `floe run ... -o LAW_vSPEED.h5`, then the same command with --gather",
+                    path.display()
+                ),
+                _ => format!("report: {}", path.display()),
+            })
         }
         Command::Render {
             file,

@@ -19,6 +19,9 @@ pub struct Line {
     pub points: Vec<(f64, f64)>,
     /// Draw markers at the points instead of joining them.
     pub markers: bool,
+    /// Palette entry (default: the line's position on the chart), so that
+    /// a fit can share its data's colour.
+    pub colour: Option<usize>,
 }
 
 impl Line {
@@ -28,7 +31,14 @@ impl Line {
             label: label.into(),
             points,
             markers: false,
+            colour: None,
         }
+    }
+
+    /// The same line drawn in palette entry `k`.
+    pub fn coloured(mut self, k: usize) -> Self {
+        self.colour = Some(k);
+        self
     }
 
     /// Points drawn as markers.
@@ -37,6 +47,7 @@ impl Line {
             label: label.into(),
             points,
             markers: true,
+            colour: None,
         }
     }
 }
@@ -125,7 +136,7 @@ fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
         .draw()
         .map_err(|e| e.to_string())?;
     for (i, line) in lines.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
+        let color = PALETTE[line.colour.unwrap_or(i) % PALETTE.len()];
         let pts = line
             .points
             .iter()

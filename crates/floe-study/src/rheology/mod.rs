@@ -3,12 +3,13 @@
 //! slides along x) run at several wall speeds under several friction laws,
 //! each run measured ([`measure`]) and each law's `mu(I)` fitted. Writes
 //! `DIR/<law>_v<speed>.{toml,h5}`, `DIR/results.csv`, `DIR/report.md` and
-//! `DIR/rheology.png`.
+//! `DIR/rheology.png`; [`Mode::Emit`] and [`Mode::Gather`] split the runs
+//! from the measuring, for a job array.
 
 pub mod measure;
 mod report;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use floe_analysis::rheology::fit_mu_of_i;
 use floe_friction::LawRegistry;
@@ -43,6 +44,9 @@ pub struct RheologyArgs {
     pub threads: Option<usize>,
     /// Replace existing outputs.
     pub force: bool,
+    /// Run the cells, only write their scenario files, or only measure runs
+    /// already in the directory.
+    pub mode: Mode,
     /// How Amontons and the rate law are matched to rate-and-state.
     pub matching: Matching,
     /// Who runs it (recorded in each run file).
@@ -51,6 +55,18 @@ pub struct RheologyArgs {
     pub registry: LawRegistry,
     /// Most time steps a run may take.
     pub step_limit: f64,
+}
+
+/// What `floe rheology` does with the cells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// Write, run and measure them.
+    Run,
+    /// Only write their scenario files (for a job array: run each with
+    /// `floe run LAW_vSPEED.toml -o LAW_vSPEED.h5`, then gather).
+    Emit,
+    /// Only measure the runs already in the directory and write the report.
+    Gather,
 }
 
 /// One run's steady state.
@@ -64,7 +80,8 @@ pub struct CellRun {
     pub steady: SteadyCell,
 }
 
-/// Runs the cells, writes the results; returns the report's path.
+/// Runs the cells, writes the results; returns the report's path (the
+/// directory with [`Mode::Emit`]).
 pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     let budget = thread_count(args.threads)?;
     check_args(args)?;
@@ -153,6 +170,15 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
         "scenario file",
         targets.iter().map(PathBuf::as_path),
     )?;
+    if args.mode == Mode::Gather {
+        if let Some((_, missing)) = jobs.iter().find(|(_, h)| !h.exists()) {
+            return Err(Error::Usage(format!(
+                "{}: not there to gather (run its .toml with `floe run` first, or drop --gather)",
+                missing.display()
+            )));
+        }
+        return measure_and_report(args, &jobs, &plan, &report_path);
+    }
     if !args.force {
         if let Some(existing) = targets.iter().find(|p| p.exists()) {
             return Err(Error::WouldOverwrite(existing.clone()));
@@ -161,6 +187,9 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
     std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
     for ((file, _), (_, _, variant_text)) in jobs.iter().zip(&plan) {
         std::fs::write(file, variant_text).map_err(|e| Error::io(file, e))?;
+    }
+    if args.mode == Mode::Emit {
+        return Ok(args.out_dir.clone());
     }
     let failed = run_side_by_side(
         &jobs,
@@ -187,8 +216,18 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
             failed.join(", ")
         )));
     }
+    measure_and_report(args, &jobs, &plan, &report_path)
+}
+
+/// Measures each run of `jobs`, fits each law and writes the report.
+fn measure_and_report(
+    args: &RheologyArgs,
+    jobs: &[(PathBuf, PathBuf)],
+    plan: &[(String, f64, String)],
+    report_path: &Path,
+) -> Result<PathBuf, Error> {
     let mut runs = Vec::with_capacity(jobs.len());
-    for ((_, output), (law, v, _)) in jobs.iter().zip(&plan) {
+    for ((_, output), (law, v, _)) in jobs.iter().zip(plan) {
         let samples = cell_samples(output)?;
         let contact_mu = floe_io::RunFile::open(output)?.observable("mean_mu")?;
         runs.push(CellRun {
@@ -207,7 +246,7 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
         fits.push((law.name().to_string(), fit_mu_of_i(&i, &mu).ok()));
     }
     report::write(&args.out_dir, &args.scenario, args, &runs, &fits)?;
-    Ok(report_path)
+    Ok(report_path.to_path_buf())
 }
 
 fn check_args(args: &RheologyArgs) -> Result<(), Error> {

@@ -62,18 +62,17 @@ fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
 fn draw(path: &Path, runs: &[CellRun], fits: &[(String, Option<MuOfI>)]) -> Result<(), Error> {
     let mut mu_lines = Vec::new();
     let mut phi_lines = Vec::new();
-    for (law, fit) in fits {
+    for (k, (law, fit)) in fits.iter().enumerate() {
         let mine: Vec<&CellRun> = runs.iter().filter(|r| &r.law == law).collect();
         let point = |f: &dyn Fn(&CellRun) -> f64| -> Vec<(f64, f64)> {
             mine.iter()
                 .map(|r| (r.steady.inertial_number.log10(), f(r)))
                 .collect()
         };
-        mu_lines.push(Line::markers(law.clone(), point(&|r| r.steady.mu.value)));
-        phi_lines.push(Line::markers(
-            law.clone(),
-            point(&|r| r.steady.solid_fraction.value),
-        ));
+        mu_lines.push(Line::markers(law.clone(), point(&|r| r.steady.mu.value)).coloured(k));
+        phi_lines.push(
+            Line::markers(law.clone(), point(&|r| r.steady.solid_fraction.value)).coloured(k),
+        );
         if let Some(fit) = fit {
             let (lo, hi) = mine
                 .iter()
@@ -87,7 +86,7 @@ fn draw(path: &Path, runs: &[CellRun], fits: &[(String, Option<MuOfI>)]) -> Resu
                     (x, fit.mu(10f64.powf(x)))
                 })
                 .collect();
-            mu_lines.push(Line::new(format!("{law} fit"), curve));
+            mu_lines.push(Line::new(format!("{law} fit"), curve).coloured(k));
         }
     }
     panels(
