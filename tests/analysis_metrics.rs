@@ -437,3 +437,84 @@ fn mu_of_i_fit_recovers_the_curve_it_was_sampled_from() {
     assert!(fit_mu_of_i(&[0.1, -0.2, 0.3], &[0.3, 0.4, 0.5]).is_err());
     assert!(fit_mu_of_i(&[0.1, 0.2], &[0.3, 0.4]).is_err());
 }
+
+/// A pack that speeds up over 10 min, then stops: kinetic energy decaying
+/// as exp(-t/tau) after its peak, dissipation saturating.
+#[test]
+fn a_decaying_pack_is_jammed_and_a_steady_one_is_not() {
+    use floe_analysis::jam::{jam_state, JamRule};
+    let (tau, peak_t, end) = (600.0, 600.0, 21_600.0);
+    let time: Vec<f64> = (0..=720).map(|k| k as f64 * 30.0).collect();
+    assert_eq!(*time.last().unwrap(), end);
+    let ke: Vec<f64> = time
+        .iter()
+        .map(|&t| {
+            if t <= peak_t {
+                1e9 * t / peak_t
+            } else {
+                1e9 * (-(t - peak_t) / tau).exp()
+            }
+        })
+        .collect();
+    // Dissipation rate proportional to the energy: cumulative, exact.
+    let diss: Vec<f64> = time
+        .iter()
+        .map(|&t| {
+            if t <= peak_t {
+                0.5 * t * t / peak_t
+            } else {
+                0.5 * peak_t + tau * (1.0 - (-(t - peak_t) / tau).exp())
+            }
+        })
+        .collect();
+    let rule = JamRule::default();
+    let s = jam_state(&time, &ke, &diss, 1e-5, 0.16, &rule).unwrap();
+    assert!(s.jammed, "{s:?}");
+    assert_eq!(s.peak_kinetic_j, 1e9);
+    assert!(s.kinetic_ratio < 1e-10, "{s:?}");
+    // exp(-(t - 600)/600) < 0.01 from t = 600 + 600 ln 100 = 3363 s: the
+    // first sample after, 3390 s.
+    assert_eq!(s.below_since_s, Some(3390.0));
+    assert!(s.dissipation_rate_ratio < 1e-10, "{s:?}");
+    // Moving floes at the end: not jammed, whatever the energy says.
+    let moving = jam_state(&time, &ke, &diss, 0.01, 0.16, &rule).unwrap();
+    assert!(!moving.jammed);
+    assert!((moving.speed_ratio - 0.0625).abs() < 1e-12);
+
+    // Steady flow after the ramp: energy at its peak, dissipation linear.
+    let ke: Vec<f64> = time.iter().map(|&t| 1e9 * (t / peak_t).min(1.0)).collect();
+    let diss: Vec<f64> = time.iter().map(|&t| 2.0 * t).collect();
+    let s = jam_state(&time, &ke, &diss, 0.1, 0.16, &rule).unwrap();
+    assert!(!s.jammed);
+    assert_eq!(s.kinetic_ratio, 1.0);
+    assert_eq!(s.below_since_s, None);
+    assert!((s.dissipation_rate_ratio - 1.0).abs() < 1e-12, "{s:?}");
+}
+
+#[test]
+fn jam_state_refuses_bad_input() {
+    use floe_analysis::jam::{jam_state, JamRule};
+    use floe_analysis::AnalysisError;
+    let t = [0.0, 1.0, 2.0];
+    let rule = JamRule::default();
+    assert!(matches!(
+        jam_state(&t, &[1.0, 2.0], &[0.0; 3], 0.0, 1.0, &rule),
+        Err(AnalysisError::LengthMismatch { .. })
+    ));
+    assert!(matches!(
+        jam_state(&t, &[1.0; 3], &[0.0; 3], 0.0, 0.0, &rule),
+        Err(AnalysisError::InvalidParameter { .. })
+    ));
+    let wide = JamRule {
+        final_fraction: 1.5,
+        ..rule
+    };
+    assert!(matches!(
+        jam_state(&t, &[1.0; 3], &[0.0; 3], 0.0, 1.0, &wide),
+        Err(AnalysisError::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        jam_state(&t, &[0.0; 3], &[0.0; 3], 0.0, 1.0, &rule),
+        Err(AnalysisError::NotEnoughData(_))
+    ));
+}

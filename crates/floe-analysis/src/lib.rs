@@ -3,12 +3,13 @@
 //! The metrics `floe compare` reports, as pure functions on arrays read from
 //! a run's output: velocity profiles and shear-band width across a channel
 //! ([`profile`]), slip events on contacts ([`slip_events`]), the stress
-//! history of the assembly ([`stress`]), and the rheology of a shear cell
-//! ([`rheology`]). No I/O and no engine types, so each
+//! history of the assembly ([`stress`]), the rheology of a shear cell
+//! ([`rheology`]), and whether a driven pack has jammed ([`jam`]). No I/O and no engine types, so each
 //! metric can be checked on a constructed case with a known answer.
 #![deny(missing_docs)]
 
 pub mod error;
+pub mod jam;
 pub mod profile;
 pub mod rheology;
 pub mod slip_events;
