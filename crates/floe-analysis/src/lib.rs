@@ -2,8 +2,9 @@
 //!
 //! The metrics `floe compare` reports, as pure functions on arrays read from
 //! a run's output: velocity profiles and shear-band width across a channel
-//! ([`profile`]), slip events on contacts ([`slip_events`]), and the stress
-//! history of the assembly ([`stress`]). No I/O and no engine types, so each
+//! ([`profile`]), slip events on contacts ([`slip_events`]), the stress
+//! history of the assembly ([`stress`]), and means over time of series
+//! sampled unevenly ([`time_mean`]). No I/O and no engine types, so each
 //! metric can be checked on a constructed case with a known answer.
 #![deny(missing_docs)]
 
@@ -11,5 +12,6 @@ pub mod error;
 pub mod profile;
 pub mod slip_events;
 pub mod stress;
+pub mod time_mean;
 
 pub use error::AnalysisError;
