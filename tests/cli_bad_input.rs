@@ -274,3 +274,93 @@ fn rheology_flags_and_scenarios_that_are_not_cells_get_one_message() {
     assert!(err.contains("not a shear cell"), "{err}");
     assert!(!dir.path().join("out").exists(), "nothing written");
 }
+
+/// Four floes on a grid, 21 steps at the automatic time step.
+const GRID: &str = "duration_s = 100.0\n\n[domain]\nsize_m = [4000.0, 4000.0]\n\n\
+                    [tessellation]\nkind = \"grid\"\ncolumns = 2\nrows = 2\ngap_m = 100.0\n";
+
+/// Runs `floe run` on scenario `text` (with `extra` flags) and checks the
+/// one-line error, exit 2, that nothing was written, and that it starts
+/// with `bad.toml:LINE:COL` of `needle`'s first occurrence plus `offset`.
+fn run_refused(text: &str, extra: &[&str], (needle, offset): (&str, usize), expect: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bad.toml");
+    std::fs::write(&path, text).unwrap();
+    let out = dir.path().join("out.h5");
+    let mut args = vec![
+        "run".to_string(),
+        path.to_string_lossy().into_owned(),
+        "-o".into(),
+        out.to_string_lossy().into_owned(),
+        "-q".into(),
+    ];
+    args.extend(extra.iter().map(|s| s.to_string()));
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, err) = floe(&args);
+    assert_one_clear_error(code, &err, 2);
+    let start = text.find(needle).unwrap_or_else(|| panic!("{needle}")) + offset;
+    let line = text[..start].matches('\n').count() + 1;
+    let column = start - text[..start].rfind('\n').map_or(0, |i| i + 1) + 1;
+    let place = format!("error: {}:{line}:{column}: ", path.display());
+    assert!(err.starts_with(&place), "expected {place}: {err}");
+    for e in expect {
+        assert!(err.contains(e), "expected `{e}` in: {err}");
+    }
+    assert!(!out.exists(), "nothing is written for bad input");
+}
+
+#[test]
+fn a_run_refuses_a_bad_dt_fraction_at_its_key() {
+    let with = |line: &str| {
+        GRID.replacen(
+            "duration_s = 100.0\n",
+            &format!("duration_s = 100.0\n{line}\n"),
+            1,
+        )
+    };
+    for bad in ["0.0", "1.25", "-1.0"] {
+        let line = format!("dt_fraction = {bad}");
+        run_refused(&with(&line), &[], (&line, 14), &["`dt_fraction`", "(0, 1]"]);
+    }
+    run_refused(
+        &with("dt_s = 1.0\ndt_fraction = 0.5"),
+        &[],
+        ("dt_fraction = 0.5", 14),
+        &["`dt_fraction`", "not both"],
+    );
+}
+
+#[test]
+fn a_run_refuses_bad_output_windows_at_their_keys() {
+    let with = |window: &str| format!("{GRID}\n[[output.window]]\n{window}\n");
+    run_refused(
+        &with("from_s = 50.0\nto_s = 40.0\nobservables_every_s = 0.1"),
+        &[],
+        ("to_s = 40.0", 7),
+        &["`output.window[0].to_s`", "after from_s = 50 s"],
+    );
+    run_refused(
+        &with("from_s = 50.0\nto_s = 140.0\nobservables_every_s = 0.1"),
+        &[],
+        ("to_s = 140.0", 7),
+        &["`output.window[0].to_s`", "[0, 100] s"],
+    );
+    run_refused(
+        &with("from_s = 50.0\nto_s = 60.0"),
+        &[],
+        ("[[output.window]]", 0),
+        &[
+            "`output.window[0]`",
+            "snapshot_every_s",
+            "observables_every_s",
+        ],
+    );
+    // Every step of the run, twice: more outputs than the step limit allows.
+    let every_step = "[[output.window]]\nfrom_s = 0.0\nto_s = 100.0\nsnapshot_every_s = 1e-9\n\n";
+    run_refused(
+        &format!("{GRID}\n{}", every_step.repeat(2)),
+        &["--step-limit", "30"],
+        ("[[output.window]]", every_step.len()),
+        &["`output.window[1]`", "44 snapshots", "--step-limit"],
+    );
+}

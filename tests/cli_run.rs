@@ -554,3 +554,101 @@ fn floe_info_reads_a_file_while_a_run_writes_it() {
     assert!(child.wait().unwrap().success());
     assert!(calls >= 30, "only {calls} reads while the run wrote");
 }
+
+/// `run_small.toml` (dt = 0.5 s, 400 steps; snapshots every 25 s,
+/// observables every 3.5 s) with a window from 61 s to 131.2 s of snapshots
+/// every 2.5 s and observables every 1 s.
+const WINDOW: &str = "\n[[output.window]]\nfrom_s = 61.0\nto_s = 131.2\n\
+                      snapshot_every_s = 2.5\nobservables_every_s = 1.0\n";
+
+/// The times `t = n dt` (n = 0..=400, dt = 0.5 s) that are multiples of
+/// `base_s`, or of `window_s` within [61, 131.2] s, or the first or last.
+fn expected_times(base_s: f64, window_s: f64) -> Vec<f64> {
+    let multiple = |t: f64, every: f64| (t / every).fract() == 0.0;
+    (0..=400)
+        .map(|n| 0.5 * f64::from(n))
+        .filter(|&t| {
+            t == 0.0
+                || t == 200.0
+                || multiple(t, base_s)
+                || ((61.0..=131.2).contains(&t) && multiple(t, window_s))
+        })
+        .collect()
+}
+
+#[test]
+fn a_window_adds_its_cadence_inside_it_and_leaves_the_base_cadence_outside() {
+    let case = Case::new(&format!("{SMALL}{WINDOW}"));
+    case.run_ok("window.h5", &["--threads", "1"]);
+    let plain = Case::new(SMALL);
+    plain.run_ok("plain.h5", &["--threads", "1"]);
+    let f = RunFile::open(Path::new(&case.path("window.h5"))).unwrap();
+    let snapshots = f.snapshot_times().unwrap();
+    assert_eq!(snapshots, expected_times(25.0, 2.5));
+    assert_eq!(
+        snapshots.len(),
+        9 + 28 - 3,
+        "base and window, 75, 100 and 125 s in both"
+    );
+    let samples = f.observable("kinetic_translational").unwrap();
+    assert_eq!(samples.time_s, expected_times(3.5, 1.0));
+    // Writing more does not change the run: the samples outside the
+    // window are those of the run without it, bitwise.
+    let p = RunFile::open(Path::new(&plain.path("plain.h5"))).unwrap();
+    let base = p.observable("kinetic_translational").unwrap();
+    assert_eq!(base.time_s, expected_times(3.5, 3.5));
+    for (t, v) in base.time_s.iter().zip(&base.value) {
+        let k = samples.time_s.iter().position(|s| s == t).unwrap();
+        assert_eq!(samples.value[k].to_bits(), v.to_bits(), "t = {t}");
+    }
+    assert_eq!(
+        f.checkpoint_state(|| None).unwrap(),
+        p.checkpoint_state(|| None).unwrap()
+    );
+}
+
+#[test]
+fn a_run_paused_inside_a_window_resumes_bitwise() {
+    // Pauses at steps 137 (68.5 s) and 238 (119 s), both in the window and
+    // off its snapshot cadence (5 steps); 137 is off its observable cadence
+    // (2 steps), so the extras written there must be dropped on resume.
+    let case = Case::new(&format!("{SMALL}{WINDOW}"));
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    let paused = RunFile::open(Path::new(&case.path("parts.h5"))).unwrap();
+    assert_eq!(paused.snapshot_times().unwrap().last(), Some(&68.5));
+    drop(paused);
+    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+}
+
+#[test]
+fn ctrl_c_inside_a_window_then_resume_is_bitwise() {
+    // The long channel with a window over all but its first minute: the
+    // interrupt, after the first checkpoint past step 0 (60 s), lands in it.
+    let windowed = format!(
+        "{LONG}\n[[output.window]]\nfrom_s = 60.0\nto_s = 5400.0\n\
+         snapshot_every_s = 40.0\nobservables_every_s = 4.0\n"
+    );
+    let case = Case::new(&windowed);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn("parts.h5", &["--threads", "2"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}

@@ -704,3 +704,175 @@ thickness_m = 0.25
         &["grid"],
     );
 }
+
+#[test]
+fn a_dt_fraction_outside_zero_to_one_or_beside_dt_s_is_refused() {
+    for bad in ["0.0", "-0.25", "1.5", "nan", "inf"] {
+        let t = edit(
+            "duration_s = 100.0",
+            &format!("duration_s = 100.0\ndt_fraction = {bad}"),
+        );
+        check(
+            &t,
+            &format!("{bad}\n\n[domain]"),
+            0,
+            "dt_fraction",
+            &["(0, 1]", "fraction of the stable time step"],
+        );
+    }
+    // Both ends of (0, 1] that are allowed build.
+    for ok in ["1.0", "1e-3"] {
+        let t = edit(
+            "duration_s = 100.0",
+            &format!("duration_s = 100.0\ndt_fraction = {ok}"),
+        );
+        Scenario::from_text(&t, Path::new("ok.toml"))
+            .unwrap()
+            .build()
+            .unwrap();
+    }
+    let both = edit(
+        "duration_s = 100.0",
+        "duration_s = 100.0\ndt_s = 0.1\ndt_fraction = 0.5",
+    );
+    check(&both, "0.5\n", 0, "dt_fraction", &["dt_s", "not both"]);
+    // A fraction so small that the run is too long is blamed on it.
+    let tiny = edit(
+        "duration_s = 100.0",
+        "duration_s = 100.0\ndt_fraction = 1e-12",
+    );
+    check(
+        &tiny,
+        "1e-12",
+        0,
+        "dt_fraction",
+        &["above the limit", "raise dt_fraction", "--step-limit"],
+    );
+}
+
+/// `BASE` with one `[[output.window]]` of `body`, after a window that is fine.
+fn with_window(body: &str) -> String {
+    format!(
+        "{BASE}\n[output]\nobservables_every_s = 1.0\n\n[[output.window]]\nfrom_s = 0.0\n\
+         to_s = 100.0\nsnapshot_every_s = 5.0\n\n[[output.window]]\n{body}\n"
+    )
+}
+
+#[test]
+fn output_windows_outside_the_run_backwards_or_without_a_cadence_are_refused() {
+    let ok = with_window("from_s = 10.0\nto_s = 20.0\nobservables_every_s = 0.1");
+    let s = Scenario::from_text(&ok, Path::new("ok.toml")).unwrap();
+    assert_eq!(s.output().windows.len(), 2);
+    s.build().unwrap();
+    let second = "[[output.window]]\nfrom_s = 10";
+    let cases: [(&str, &str, &str, &[&str]); 8] = [
+        (
+            "from_s = -1.0\nto_s = 20.0\nobservables_every_s = 0.1",
+            "-1.0",
+            "output.window[1].from_s",
+            &["[0, 100] s"],
+        ),
+        (
+            "from_s = 10.0\nto_s = 100.5\nobservables_every_s = 0.1",
+            "100.5",
+            "output.window[1].to_s",
+            &["[0, 100] s"],
+        ),
+        (
+            "from_s = 10.0\nto_s = 10.0\nobservables_every_s = 0.1",
+            "10.0\nobservables",
+            "output.window[1].to_s",
+            &["after from_s = 10 s"],
+        ),
+        (
+            "from_s = 10.0\nto_s = 20.0",
+            second,
+            "output.window[1]",
+            &["snapshot_every_s", "observables_every_s"],
+        ),
+        (
+            "from_s = 10.0\nto_s = 20.0\nsnapshot_every_s = 0.0",
+            "0.0\n",
+            "output.window[1].snapshot_every_s",
+            &["> 0"],
+        ),
+        (
+            "from_s = 10.0\nto_s = 20.0\nobservables_every_s = nan",
+            "nan",
+            "output.window[1].observables_every_s",
+            &["> 0"],
+        ),
+        (
+            "to_s = 20.0\nsnapshot_every_s = 1.0",
+            "[[output.window]]\nto_s",
+            "output.window[1].from_s",
+            &["missing"],
+        ),
+        (
+            "from_s = 10.0\nto_s = 20.0\nevery_s = 1.0",
+            "every_s = 1.0",
+            "every_s",
+            &["unknown field"],
+        ),
+    ];
+    for (body, needle, key, reasons) in cases {
+        let t = with_window(body);
+        // The needle's last occurrence: the second window's.
+        let offset = t.rfind(needle).unwrap() - t.find(needle).unwrap();
+        check(&t, needle, offset, key, reasons);
+    }
+}
+
+#[test]
+fn more_than_a_thousand_windows_or_more_outputs_than_steps_are_refused() {
+    let window = "[[output.window]]\nfrom_s = 0.0\nto_s = 1.0\nsnapshot_every_s = 1.0\n\n";
+    let many = format!("{BASE}\n{}", window.repeat(1001));
+    let first = many.find("[[output.window]]").unwrap();
+    let last = many.rfind("[[output.window]]").unwrap();
+    check(
+        &many,
+        "[[output.window]]",
+        last - first,
+        "output.window[1000]",
+        &["1000 windows"],
+    );
+    // 1000 are fine.
+    let thousand = format!("{BASE}\n{}", window.repeat(1000));
+    Scenario::from_text(&thousand, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+
+    // Two windows over the whole run at every step of 0.01 s: 10,001
+    // snapshots each, 20,002 outputs, above a step limit of 15,000 that
+    // the 10,000 steps themselves are within.
+    let every_step = "[[output.window]]\nfrom_s = 0.0\nto_s = 100.0\nsnapshot_every_s = 0.01\n\n";
+    let text = format!(
+        "{}\n{}",
+        edit("duration_s = 100.0", "duration_s = 100.0\ndt_s = 0.01"),
+        every_step.repeat(2)
+    );
+    let s = Scenario::from_text(&text, Path::new("bad.toml")).unwrap();
+    let msg = s
+        .clone()
+        .with_max_steps(15_000.0)
+        .build()
+        .err()
+        .expect("refused")
+        .to_string();
+    let place = at(&text, "[[output.window]]", every_step.len());
+    assert!(msg.starts_with(&place), "expected {place}: {msg}");
+    for part in ["`output.window[1]`", "20,002 snapshots", "--step-limit"] {
+        assert!(msg.contains(part), "`{part}` in {msg}");
+    }
+    // At the limit they are accepted, and the report counts their outputs.
+    let setup = s.with_max_steps(20_002.0).build().unwrap();
+    assert!(
+        setup
+            .report
+            .iter()
+            .any(|l| l.contains("2 windows") && l.contains("20,002 snapshots")),
+        "{:?}",
+        setup.report
+    );
+}

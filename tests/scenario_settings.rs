@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use floe_scenario::settings::{apply, cartesian, label, parse_setting};
+use floe_scenario::{Scenario, AUTO_DT_FRACTION};
 
 #[test]
 fn set_values_split_at_top_level_commas_only() {
@@ -64,4 +65,54 @@ fn apply_replaces_only_the_swept_keys() {
     let not_a_table = parse_setting("seed.x=1").unwrap();
     let e = apply(text, Path::new("x.toml"), &[not_a_table], &[0]).unwrap_err();
     assert!(e.to_string().contains("seed.x"), "{e}");
+}
+
+/// `dt_fraction` sets the time step as a fraction of the stable limit; a
+/// sweep over it (`--set dt_fraction=...`) edits the file like any key.
+#[test]
+fn dt_fraction_scales_the_stable_step_and_a_quarter_is_half_the_automatic_step() {
+    let text = "duration_s = 100.0\n\n[domain]\nsize_m = [4000.0, 4000.0]\n\n\
+                [tessellation]\nkind = \"grid\"\ncolumns = 2\nrows = 2\ngap_m = 100.0\n";
+    let build = |text: &str| {
+        Scenario::from_text(text, Path::new("s.toml"))
+            .unwrap()
+            .build()
+            .unwrap()
+    };
+    let auto = build(text);
+    let sweep = [parse_setting("dt_fraction=0.25,0.5,1.0").unwrap()];
+    let with = |k: usize| build(&apply(text, Path::new("s.toml"), &sweep, &[k]).unwrap());
+    let (quarter, half, whole) = (with(0), with(1), with(2));
+    // The limit does not depend on the fraction.
+    for s in [&quarter, &half, &whole] {
+        assert_eq!(s.stable_limit_s, auto.stable_limit_s);
+    }
+    assert_eq!(quarter.dt_s, half.dt_s / 2.0);
+    assert_eq!(AUTO_DT_FRACTION, 0.5);
+    assert_eq!(
+        quarter.dt_s,
+        auto.dt_s / 2.0,
+        "omitting dt is dt_fraction 0.5"
+    );
+    assert_eq!(half.dt_s, auto.dt_s);
+    assert_eq!(whole.dt_s, auto.stable_limit_s);
+    assert_eq!(quarter.world.dt_s(), quarter.dt_s);
+    // The report names the fraction used.
+    let dt_line = |s: &floe_scenario::Setup| {
+        s.report
+            .iter()
+            .find(|l| l.starts_with("dt: "))
+            .cloned()
+            .unwrap()
+    };
+    assert!(
+        dt_line(&quarter).contains("(dt_fraction 0.25 x the stable limit"),
+        "{}",
+        dt_line(&quarter)
+    );
+    assert!(
+        dt_line(&auto).contains("(auto: 0.5 x the stable limit"),
+        "{}",
+        dt_line(&auto)
+    );
 }

@@ -9,7 +9,7 @@
 use std::path::Path;
 
 use floe_scenario::Scenario;
-use floe_study::double_shear_protocol::{run_protocol, ProtocolEvent};
+use floe_study::double_shear_protocol::{event_windows, run_protocol, ProtocolEvent};
 
 #[path = "pool_support/mod.rs"]
 mod pool_support;
@@ -93,10 +93,52 @@ fn the_lab_protocol_through_the_dem_matches_the_spring_slider() {
     let long_hold = "[[tessellation.segment]]     # hold\nduration_s = 1000.0\n\n\
                      [[tessellation.segment]]\nduration_s = 10.0\nvelocity_m_per_s = [0.0001, 0.0]\n\n";
     assert!(full.contains(long_hold));
+    // Its output windows end with the run, the step's at 162 s.
+    let last_window =
+        "[[output.window]]            # the reslide after the 1000 s hold, the step\n\
+                       from_s = 1161.0\nto_s = 1172.0\nobservables_every_s = 0.01\n";
+    assert!(full.contains(last_window));
     let text = full
         .replace(long_hold, "")
+        .replace(last_window, "")
+        .replace("to_s = 161.0", "to_s = 162.0")
         .replace("duration_s = 1172.0", "duration_s = 162.0");
+    assert_dense_where_measured("lab without the 1000 s hold", &text, 0.01, 4);
     let all = events("lab", &text);
     assert_eq!(all.len(), 4, "three holds and a step");
     assert_within_3_percent("lab", &all);
+}
+
+/// The run file of scenario `text` shows what the comparison measures:
+/// observables every `dense_s` or more often over the steady and the peak
+/// window of each of its `events`, at least 20 times sparser elsewhere, and the
+/// dense windows a small part of the run.
+fn assert_dense_where_measured(name: &str, text: &str, dense_s: f64, events: usize) {
+    let s = Scenario::from_text(text, Path::new(name)).unwrap();
+    let out = s.output();
+    assert!(out.observables_every_s >= 20.0 * dense_s, "{name}: {out:?}");
+    let measured = event_windows(&s).unwrap();
+    assert_eq!(measured.len(), events, "{name}");
+    for e in &measured {
+        for (from, to) in [e.steady_window_s, e.peak_window_s] {
+            let covered = out.windows.iter().any(|w| {
+                w.observables_every_s.is_some_and(|every| every <= dense_s)
+                    && w.from_s <= from
+                    && to <= w.to_s
+            });
+            assert!(
+                covered,
+                "{name}: {} ({from} to {to} s) is not in a dense window: {:?}",
+                e.what, out.windows
+            );
+        }
+    }
+    let dense: f64 = out.windows.iter().map(|w| w.to_s - w.from_s).sum();
+    assert!(dense < 0.35 * s.duration_s(), "{name}: {dense} s dense");
+}
+
+#[test]
+fn the_shipped_protocols_write_dense_observables_only_where_events_are_measured() {
+    assert_dense_where_measured("tank", &shipped("tank_double_shear_protocol.toml"), 0.05, 5);
+    assert_dense_where_measured("lab", &shipped("lab_double_shear_protocol.toml"), 0.01, 5);
 }

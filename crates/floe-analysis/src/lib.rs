@@ -4,7 +4,8 @@
 //! a run's output: velocity profiles and shear-band width across a channel
 //! ([`profile`]), slip events on contacts ([`slip_events`]), the stress
 //! history of the assembly ([`stress`]), the rheology of a shear cell
-//! ([`rheology`]), and whether a driven pack has jammed ([`jam`]). No I/O and no engine types, so each
+//! ([`rheology`]), whether a driven pack has jammed ([`jam`]), and means
+//! over time of series sampled unevenly ([`time_mean`]). No I/O and no engine types, so each
 //! metric can be checked on a constructed case with a known answer.
 #![deny(missing_docs)]
 
@@ -14,5 +15,6 @@ pub mod profile;
 pub mod rheology;
 pub mod slip_events;
 pub mod stress;
+pub mod time_mean;
 
 pub use error::AnalysisError;

@@ -6,6 +6,7 @@
 //! is reported positive, as sea-ice rheology does: pressure
 //! `p = -(σxx + σyy)/2`, channel-normal stress `-σyy`.
 
+use crate::time_mean::time_mean;
 use crate::AnalysisError;
 
 /// Stress in the frame of a channel along x, walls across y.
@@ -53,15 +54,16 @@ pub struct PeakToSteady {
     pub peak: f64,
     /// When it occurred, s.
     pub peak_at_s: f64,
-    /// Mean over the steady window (the last `steady_fraction` of the span).
+    /// Mean over the steady window (the last `steady_fraction` of the
+    /// span), each sample weighted by the time it stands for.
     pub steady: f64,
     /// `peak / steady`.
     pub ratio: f64,
 }
 
-/// Peak-to-steady ratio of `value(time_s)`. The steady level is the mean of
-/// the samples in the last `steady_fraction` of the time span (0 < f <= 1),
-/// which must not be empty or average to zero.
+/// Peak-to-steady ratio of `value(time_s)`. The steady level is the mean
+/// over time ([`time_mean`]) of the samples in the last `steady_fraction`
+/// of the time span (0 < f <= 1), which must not be empty or average to zero.
 pub fn peak_to_steady(
     time_s: &[f64],
     value: &[f64],
@@ -86,14 +88,7 @@ pub fn peak_to_steady(
     }
     let (t0, t1) = (time_s[0], time_s[time_s.len() - 1]);
     let from = t1 - steady_fraction * (t1 - t0);
-    let (mut sum, mut n) = (0.0, 0usize);
-    for (&t, &v) in time_s.iter().zip(value) {
-        if t >= from {
-            sum += v;
-            n += 1;
-        }
-    }
-    let steady = sum / n as f64;
+    let steady = time_mean(time_s, value, (from, f64::INFINITY)).unwrap_or(f64::NAN);
     if steady == 0.0 || !steady.is_finite() {
         return Err(AnalysisError::NotEnoughData(
             "the steady level is zero: no peak-to-steady ratio",
@@ -113,7 +108,7 @@ pub fn peak_to_steady(
 /// How a loading curve answers a restart of the forcing after a pause.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RestartResponse {
-    /// Mean |value| over the window before the pause began.
+    /// Mean |value| over the window before the pause began ([`time_mean`]).
     pub before: f64,
     /// Largest |value| within the window after the restart.
     pub peak: f64,
@@ -147,28 +142,23 @@ pub fn restart_response(
             reason: "needs a positive window and a restart after the pause",
         });
     }
-    let (mut sum, mut n) = (0.0, 0usize);
-    let mut peak: Option<(f64, f64)> = None;
-    for (&t, &v) in time_s.iter().zip(value) {
-        if t >= pause_s - window_s && t < pause_s {
-            sum += v.abs();
-            n += 1;
-        }
-        if t >= restart_s && t <= restart_s + window_s && peak.is_none_or(|(_, p)| v.abs() > p) {
-            peak = Some((t, v.abs()));
-        }
-    }
-    if n == 0 {
+    let magnitude: Vec<f64> = value.iter().map(|v| v.abs()).collect();
+    let Some(before) = time_mean(time_s, &magnitude, (pause_s - window_s, pause_s)) else {
         return Err(AnalysisError::NotEnoughData(
             "no samples in the window before the pause",
         ));
+    };
+    let mut peak: Option<(f64, f64)> = None;
+    for (&t, &v) in time_s.iter().zip(&magnitude) {
+        if t >= restart_s && t <= restart_s + window_s && peak.is_none_or(|(_, p)| v > p) {
+            peak = Some((t, v));
+        }
     }
     let Some((peak_at, peak)) = peak else {
         return Err(AnalysisError::NotEnoughData(
             "no samples in the window after the restart",
         ));
     };
-    let before = sum / n as f64;
     Ok(RestartResponse {
         before,
         peak,

@@ -327,6 +327,13 @@ impl RunFile {
         Ok(n)
     }
 
+    /// The times of the complete snapshots, s, without reading them (a run
+    /// with `[[output.window]]` writes them unevenly spaced).
+    pub fn snapshot_times(&self) -> Result<Vec<f64>, IoError> {
+        let n = self.snapshot_count()?;
+        self.read_range(&format!("{}/position/time", layout::FLOES), 0..n)
+    }
+
     fn check_snapshot(&self, k: usize) -> Result<(), IoError> {
         let n = self.snapshot_count()?;
         if k >= n {

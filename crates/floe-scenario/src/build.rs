@@ -764,25 +764,45 @@ pub(crate) fn time_step(
         )
     };
     match &r.dt {
-        DtChoice::Auto => {
-            let dt = AUTO_DT_FRACTION * limit;
+        DtChoice::Auto | DtChoice::Fraction(..) => {
+            let (fraction, given) = match &r.dt {
+                DtChoice::Fraction(x, span) => (*x, Some(span)),
+                _ => (AUTO_DT_FRACTION, None),
+            };
+            let dt = fraction * limit;
+            // How dt was chosen, `auto` introducing the automatic fraction.
+            let how = |auto: &str| match given {
+                Some(_) => format!("dt_fraction {} x", short(fraction)),
+                None => format!("{auto}{AUTO_DT_FRACTION} x"),
+            };
             if too_many(dt) {
+                // Blamed on dt_fraction when given, as dt_s would be.
+                let (span, key, fix) = match given {
+                    Some(span) => (
+                        span.clone(),
+                        "dt_fraction",
+                        "raise dt_fraction, shorten duration_s",
+                    ),
+                    None => (r.duration_span.clone(), "duration_s", "shorten duration_s"),
+                };
+                let how = how("dt is automatic: ");
                 return Err(f.error(
-                    r.duration_span.clone(),
-                    "duration_s",
+                    span,
+                    key,
                     format!(
-                        "{} (dt is automatic: {AUTO_DT_FRACTION} x the stable limit, set by {culprit_name} \
-                         with {stiffness}); shorten duration_s, {soften}, \
+                        "{} ({how} the stable limit, set by {culprit_name} \
+                         with {stiffness}); {fix}, {soften}, \
                          or raise the limit with --step-limit N",
                         above(dt),
                     ),
                 ));
             }
+            let how = how("auto: ");
             Ok((
                 dt,
                 limit,
                 format!(
-                    "dt: {} s (auto: {AUTO_DT_FRACTION} x the stable limit {} s, set by {culprit_name}); {} steps for {} s",
+                    "dt: {} s ({how} the stable limit {} s, set by {culprit_name}); {} steps for {} s",
                     sig(dt),
                     sig(limit),
                     thousands(steps(dt) as usize),
@@ -827,6 +847,58 @@ pub(crate) fn time_step(
             ))
         }
     }
+}
+
+/// Refuses `[[output.window]]` tables that ask for more outputs, summed
+/// over the windows (where they overlap, counted in each), than the run may
+/// take steps: the bound of the base cadence too, which writes at most once
+/// a step. Returns the report's line when there are windows.
+pub(crate) fn output_windows(
+    f: &SourceFile,
+    r: &Resolved,
+    dt_s: f64,
+    max_steps: f64,
+) -> Result<Option<String>, ScenarioError> {
+    if r.output.windows.is_empty() {
+        return Ok(None);
+    }
+    let cadence = r.output.in_steps(dt_s);
+    let (mut snapshots, mut samples) = (0u64, 0u64);
+    for (i, (w, span)) in cadence.windows.iter().zip(&r.window_spans).enumerate() {
+        // Multiples of `every` from `from_step` to `to_step`.
+        let count = |every: Option<u64>| {
+            every.map_or(0, |e| {
+                (w.to_step / e + 1).saturating_sub(w.from_step.div_ceil(e))
+            })
+        };
+        snapshots = snapshots.saturating_add(count(w.snapshot));
+        samples = samples.saturating_add(count(w.observables));
+        let total = snapshots.saturating_add(samples) as f64;
+        if (total <= max_steps).not() {
+            return Err(f.error(
+                span.clone(),
+                format!("output.window[{i}]"),
+                format!(
+                    "the windows up to this one write {} snapshots and {} observable samples \
+                     at dt = {} s, {} outputs in all, above the limit of {} (the most steps \
+                     a run may take); use sparser cadences or fewer windows, or raise the \
+                     limit with --step-limit N",
+                    thousands(snapshots as usize),
+                    thousands(samples as usize),
+                    sig(dt_s),
+                    sig(total),
+                    sig(max_steps)
+                ),
+            ));
+        }
+    }
+    let n = cadence.windows.len();
+    Ok(Some(format!(
+        "output: {n} {} of denser output, in which {} snapshots and {} observable samples fall due",
+        if n == 1 { "window" } else { "windows" },
+        thousands(snapshots as usize),
+        thousands(samples as usize)
+    )))
 }
 
 /// A wall's schedule for the report: its segments' velocities in order.

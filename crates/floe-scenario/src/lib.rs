@@ -39,10 +39,10 @@ pub mod spec;
 
 pub use domain::Domain;
 pub use error::ScenarioError;
-pub use output_cadence::OutputCadence;
+pub use output_cadence::{OutputCadence, OutputWindow};
 pub use resolve::{
     AUTO_DT_FRACTION, DEFAULT_ICE_DENSITY_KG_PER_M3, DEFAULT_MIN_AREA_FRACTION,
-    DEFAULT_THICKNESS_M, MAX_LENGTH_M, MAX_RUN_STEPS, MAX_THICKNESS_M,
+    DEFAULT_THICKNESS_M, MAX_LENGTH_M, MAX_OUTPUT_WINDOWS, MAX_RUN_STEPS, MAX_THICKNESS_M,
 };
 pub use scenario::{EngineParts, Scenario, Setup};
 pub use source_file::SourceFile;

@@ -21,7 +21,7 @@ use crate::extent::{Extent, MAX_ANGULAR_VELOCITY_RAD_PER_S, MAX_TRAVEL_DOMAINS};
 use crate::law_table::{law_from_table, preset_applies, RawLawTable};
 use crate::motion_segments::resolve_schedule;
 use crate::numbers::{short, short_list, sig, thousands};
-use crate::output_cadence::OutputCadence;
+use crate::output_cadence::{OutputCadence, OutputWindow};
 use crate::source_file::SourceFile;
 use crate::spec::*;
 
@@ -43,9 +43,15 @@ pub const AUTO_DT_FRACTION: f64 = 0.5;
 pub(crate) enum DtChoice {
     /// [`AUTO_DT_FRACTION`] of the stable limit.
     Auto,
+    /// `dt_fraction` of the stable limit, at this location.
+    Fraction(f64, Range<usize>),
     /// Given in the file, at this location.
     Given(f64, Range<usize>),
 }
+
+/// Most `[[output.window]]` tables a file may give: each is looked at
+/// whenever an output falls due.
+pub const MAX_OUTPUT_WINDOWS: usize = 1000;
 
 /// Which side of the domain a wall closes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -194,6 +200,8 @@ pub(crate) struct Resolved {
     pub forcing: Forcing,
     pub walls: Vec<Wall>,
     pub output: OutputCadence,
+    /// Location of each `[[output.window]]`.
+    pub window_spans: Vec<Range<usize>>,
 }
 
 /// What a table allows, for refusing keys that do not apply.
@@ -479,9 +487,18 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         return Err(f.error_in_file("missing `duration_s`: how long to simulate, in seconds"));
     };
     let duration_s = f.positive(duration, "duration_s")?;
-    let dt = match &raw.dt_s {
-        Some(v) => DtChoice::Given(f.positive(v, "dt_s")?, v.span()),
-        None => DtChoice::Auto,
+    let dt = match (&raw.dt_s, &raw.dt_fraction) {
+        (Some(_), Some(fraction)) => {
+            return Err(f.error(
+                fraction.span(),
+                "dt_fraction",
+                "give either dt_s (the step in seconds) or dt_fraction (of the stable \
+                 limit), not both",
+            ))
+        }
+        (Some(v), None) => DtChoice::Given(f.positive(v, "dt_s")?, v.span()),
+        (None, Some(v)) => DtChoice::Fraction(dt_fraction(f, v)?, v.span()),
+        (None, None) => DtChoice::Auto,
     };
 
     let domain = resolve_domain(f, raw.domain.as_ref())?;
@@ -496,7 +513,7 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         raw.coriolis.as_ref(),
     )?;
     let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]), extent)?;
-    let output = resolve_output(f, raw.output.as_ref(), duration_s)?;
+    let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
     Ok(Resolved {
         title,
         seed,
@@ -515,7 +532,25 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         forcing,
         walls,
         output,
+        window_spans,
     })
+}
+
+/// `dt_fraction`: a number in (0, 1].
+fn dt_fraction(f: &SourceFile, v: &Spanned<f64>) -> Result<f64, ScenarioError> {
+    let x = *v.get_ref();
+    if x.is_finite() && x > 0.0 && x <= 1.0 {
+        return Ok(x);
+    }
+    Err(f.error(
+        v.span(),
+        "dt_fraction",
+        format!(
+            "must lie in (0, 1], a fraction of the stable time step (omit it for \
+             {AUTO_DT_FRACTION}), got {}",
+            short(x)
+        ),
+    ))
 }
 
 fn resolve_domain(
@@ -1661,11 +1696,11 @@ fn resolve_output(
     f: &SourceFile,
     raw: Option<&RawOutput>,
     duration_s: f64,
-) -> Result<OutputCadence, ScenarioError> {
+) -> Result<(OutputCadence, Vec<Range<usize>>), ScenarioError> {
     let get = |v: Option<&Spanned<f64>>, key: &str, default: f64| {
         v.map_or(Ok(default), |v| f.positive(v, key))
     };
-    Ok(OutputCadence {
+    let mut cadence = OutputCadence {
         snapshot_every_s: get(
             raw.and_then(|o| o.snapshot_every_s.as_ref()),
             "output.snapshot_every_s",
@@ -1681,5 +1716,66 @@ fn resolve_output(
             "output.checkpoint_every_s",
             duration_s / 10.0,
         )?,
+        windows: Vec::new(),
+    };
+    let raw_windows = raw.and_then(|o| o.window.as_deref()).unwrap_or(&[]);
+    for (i, w) in raw_windows.iter().enumerate() {
+        cadence.windows.push(resolve_window(f, w, i, duration_s)?);
+    }
+    Ok((cadence, raw_windows.iter().map(|w| w.span()).collect()))
+}
+
+/// `[[output.window]]` number `i`: `0 <= from_s < to_s <= duration_s`,
+/// and at least one cadence, each > 0.
+fn resolve_window(
+    f: &SourceFile,
+    w: &Spanned<RawOutputWindow>,
+    i: usize,
+    duration_s: f64,
+) -> Result<OutputWindow, ScenarioError> {
+    let key = |k: &str| format!("output.window[{i}].{k}");
+    if i >= MAX_OUTPUT_WINDOWS {
+        return Err(f.error(
+            w.span(),
+            format!("output.window[{i}]"),
+            format!(
+                "more than the {MAX_OUTPUT_WINDOWS} windows a scenario may have; \
+                 merge neighbouring windows"
+            ),
+        ));
+    }
+    let r = w.get_ref();
+    let missing = |k: &str, what: &str| f.error(w.span(), key(k), format!("missing: {what}"));
+    let from = (r.from_s.as_ref()).ok_or_else(|| missing("from_s", "when the window starts, s"))?;
+    let to = (r.to_s.as_ref()).ok_or_else(|| missing("to_s", "when the window ends, s"))?;
+    let duration = (0.0, duration_s);
+    let from_s = f.in_range(from, &key("from_s"), duration, "s (within the run)")?;
+    let to_s = f.in_range(to, &key("to_s"), duration, "s (within the run)")?;
+    if to_s <= from_s {
+        return Err(f.error(
+            to.span(),
+            key("to_s"),
+            format!(
+                "{} s does not come after from_s = {} s: a window ends after it starts",
+                short(to_s),
+                short(from_s)
+            ),
+        ));
+    }
+    let every = |v: &Num, k: &str| v.as_ref().map(|v| f.positive(v, &key(k))).transpose();
+    let snapshot_every_s = every(&r.snapshot_every_s, "snapshot_every_s")?;
+    let observables_every_s = every(&r.observables_every_s, "observables_every_s")?;
+    if snapshot_every_s.is_none() && observables_every_s.is_none() {
+        return Err(f.error(
+            w.span(),
+            format!("output.window[{i}]"),
+            "sets no cadence: give snapshot_every_s, observables_every_s or both",
+        ));
+    }
+    Ok(OutputWindow {
+        from_s,
+        to_s,
+        snapshot_every_s,
+        observables_every_s,
     })
 }

@@ -19,7 +19,7 @@ use crate::describe::{describe_contact, describe_forcing, describe_thickness};
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::numbers::{sig, thousands};
-pub use crate::output_cadence::OutputCadence;
+pub use crate::output_cadence::{OutputCadence, OutputWindow};
 use crate::resolve::MAX_RUN_STEPS;
 use crate::resolve::{self, FloeSource, Resolved};
 use crate::source_file::SourceFile;
@@ -131,8 +131,8 @@ impl Scenario {
     }
 
     /// The output cadence.
-    pub fn output(&self) -> OutputCadence {
-        self.resolved.output
+    pub fn output(&self) -> &OutputCadence {
+        &self.resolved.output
     }
 
     /// For a double-shear scenario, the normal load per face (N) and the
@@ -189,6 +189,7 @@ impl Scenario {
             describe_thickness(r)
         ));
         report.push(dt_line);
+        report.extend(build::output_windows(f, r, dt_s, self.max_steps)?);
         report.push(describe_contact(&r.model));
         report.push(describe_forcing(&r.forcing));
         let mut world = World::new(

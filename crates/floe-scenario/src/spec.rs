@@ -31,6 +31,7 @@ pub(crate) struct RawScenario {
     pub threads: Count,
     pub duration_s: Option<Spanned<f64>>,
     pub dt_s: Num,
+    pub dt_fraction: Num,
     pub domain: Option<Spanned<RawDomain>>,
     pub tessellation: Option<Spanned<RawTessellation>>,
     pub floe: Option<Vec<Spanned<RawFloe>>>,
@@ -224,4 +225,15 @@ pub(crate) struct RawOutput {
     pub snapshot_every_s: Num,
     pub observables_every_s: Num,
     pub checkpoint_every_s: Num,
+    pub window: Option<Vec<Spanned<RawOutputWindow>>>,
+}
+
+/// `[[output.window]]`: denser output over a stretch of the run.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawOutputWindow {
+    pub from_s: Num,
+    pub to_s: Num,
+    pub snapshot_every_s: Num,
+    pub observables_every_s: Num,
 }

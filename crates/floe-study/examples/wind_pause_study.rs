@@ -15,6 +15,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use floe_analysis::stress::restart_response;
+use floe_analysis::time_mean::time_mean;
 use floe_scenario::law_variants::{LawChoice, Matching};
 use floe_scenario::settings::{apply, find_table, parse_setting};
 use floe_study::compare::metrics::{measure, MetricOptions};
@@ -130,15 +131,10 @@ fn study() -> Result<(), CliError> {
                 restart,
                 WINDOW_S,
             )?;
-            // Mean |stress| over the last half of the calm (before the ramp up).
-            let calm: Vec<f64> = m
-                .time_s
-                .iter()
-                .zip(&m.shear_stress_n_per_m)
-                .filter(|(t, _)| **t >= restart - 0.5 * pause && **t < restart)
-                .map(|(_, s)| s.abs())
-                .collect();
-            let calm_mean = calm.iter().sum::<f64>() / calm.len().max(1) as f64;
+            // Mean |stress| over time in the last half of the calm (before the ramp up).
+            let magnitude: Vec<f64> = m.shear_stress_n_per_m.iter().map(|s| s.abs()).collect();
+            let calm_mean =
+                time_mean(&m.time_s, &magnitude, (restart - 0.5 * pause, restart)).unwrap_or(0.0);
             // Does the pack still flow when the wind drops? Mean kinetic
             // energy over the hour before, against its peak in the first blow.
             let blow: Vec<(f64, f64)> = m

@@ -2,8 +2,11 @@
 //! slide-hold-slide and velocity steps) run through the DEM and, beside
 //! it, as a spring-slider with the same law, normal load, series stiffness
 //! and protocol: friction in time for both, and per hold or step the steady
-//! friction before it, the peak after it and delta mu.
+//! friction before it, the peak after it and delta mu. [`event_windows`]
+//! says where those are measured without running anything, for the
+//! scenario's `[[output.window]]` tables to cover.
 
+use floe_dem::motion_schedule::ScheduledMotion;
 use floe_friction::protocol::{Protocol, Segment};
 use floe_friction::spring_slider::{Apparatus, SpringSlider};
 use floe_scenario::Scenario;
@@ -13,6 +16,19 @@ use crate::error::Error;
 /// Time step of the spring-slider, s (the paper's).
 pub const SLIDER_DT_S: f64 = 1e-3;
 
+/// A hold or a velocity step, and where it is measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EventWindows {
+    /// `hold 10 s`, `step to 0.08 m/s`.
+    pub what: String,
+    /// When the hold or the step starts, s.
+    pub start_s: f64,
+    /// The window of the steady friction before it (up to 2 s), s.
+    pub steady_window_s: (f64, f64),
+    /// The window searched for the peak, s.
+    pub peak_window_s: (f64, f64),
+}
+
 /// A hold or a velocity step, and what both models make of it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProtocolEvent {
@@ -20,9 +36,11 @@ pub struct ProtocolEvent {
     pub what: String,
     /// When the hold or the step starts, s.
     pub start_s: f64,
+    /// The window of the steady friction before it (up to 2 s), s.
+    pub steady_window_s: (f64, f64),
     /// The window searched for the peak, s.
     pub peak_window_s: (f64, f64),
-    /// Steady friction before the event (mean over up to 2 s): DEM, slider.
+    /// Steady friction before the event (mean over the steady window): DEM, slider.
     pub steady: (f64, f64),
     /// Peak friction after it: DEM, slider.
     pub peak: (f64, f64),
@@ -60,22 +78,10 @@ pub struct ProtocolRun {
 /// Runs `scenario` (a double shear with `[[tessellation.segment]]`) and its
 /// spring-slider. Call it on a rayon pool of the threads wanted.
 pub fn run_protocol(scenario: &Scenario) -> Result<ProtocolRun, Error> {
-    let not_protocol = || {
-        Error::Usage(
-            "a protocol comparison needs a double-shear scenario whose pusher follows \
-             [[tessellation.segment]] tables"
-                .into(),
-        )
-    };
     let (load, geometry) = scenario.double_shear().ok_or_else(not_protocol)?;
     let mut world = scenario.build()?.world;
     let scheduled = world.schedules().first().ok_or_else(not_protocol)?;
-    let segments: Vec<(f64, f64)> = scheduled
-        .schedule
-        .segments()
-        .iter()
-        .map(|g| (g.velocity_start.x, g.duration_s))
-        .collect();
+    let segments = segments_of(scheduled);
     // The slider's load point does what the pusher does, ramps included.
     let protocol = Protocol::new(
         scheduled
@@ -115,14 +121,38 @@ pub fn run_protocol(scenario: &Scenario) -> Result<ProtocolRun, Error> {
     })
 }
 
+fn not_protocol() -> Error {
+    Error::Usage(
+        "a protocol comparison needs a double-shear scenario whose pusher follows \
+         [[tessellation.segment]] tables"
+            .into(),
+    )
+}
+
+/// The pusher's segments: `(velocity along the block at the start, duration)`.
+fn segments_of(scheduled: &ScheduledMotion) -> Vec<(f64, f64)> {
+    scheduled
+        .schedule
+        .segments()
+        .iter()
+        .map(|g| (g.velocity_start.x, g.duration_s))
+        .collect()
+}
+
+/// Where the holds and steps of `scenario` (as [`run_protocol`] takes it)
+/// are measured, without running it: what its `[[output.window]]` tables
+/// must cover for the run file to show the same.
+pub fn event_windows(scenario: &Scenario) -> Result<Vec<EventWindows>, Error> {
+    scenario.double_shear().ok_or_else(not_protocol)?;
+    let world = scenario.build()?.world;
+    let scheduled = world.schedules().first().ok_or_else(not_protocol)?;
+    Ok(windows_of(&segments_of(scheduled)))
+}
+
 /// The holds (a stop after sliding) and steps up in velocity of
-/// `segments`, measured in both series. A hold's peak is in the slide after
-/// it; a step's in the step's own segment.
-fn events(
-    segments: &[(f64, f64)],
-    dem: &[(f64, f64)],
-    slider: &[(f64, f64)],
-) -> Vec<ProtocolEvent> {
+/// `segments`. A hold's peak is in the slide after it; a step's in the
+/// step's own segment. The steady level is taken over up to 2 s before.
+fn windows_of(segments: &[(f64, f64)]) -> Vec<EventWindows> {
     let mut out = Vec::new();
     let mut t = 0.0;
     for (k, &(v, d)) in segments.iter().enumerate() {
@@ -138,17 +168,39 @@ fn events(
         };
         if let Some((what, window)) = event {
             let settle = 2.0f64.min(0.1 * t);
-            out.push(ProtocolEvent {
+            out.push(EventWindows {
                 what,
                 start_s: t,
+                steady_window_s: (t - settle, t),
                 peak_window_s: window,
-                steady: (mean(dem, t - settle, t), mean(slider, t - settle, t)),
-                peak: (peak(dem, window), peak(slider, window)),
             });
         }
         t += d;
     }
     out
+}
+
+/// The events of `segments`, measured in both series.
+fn events(
+    segments: &[(f64, f64)],
+    dem: &[(f64, f64)],
+    slider: &[(f64, f64)],
+) -> Vec<ProtocolEvent> {
+    windows_of(segments)
+        .into_iter()
+        .map(|e| {
+            let (t0, t1) = e.steady_window_s;
+            let window = e.peak_window_s;
+            ProtocolEvent {
+                steady: (mean(dem, t0, t1), mean(slider, t0, t1)),
+                peak: (peak(dem, window), peak(slider, window)),
+                what: e.what,
+                start_s: e.start_s,
+                steady_window_s: e.steady_window_s,
+                peak_window_s: window,
+            }
+        })
+        .collect()
 }
 
 /// Mean of `series` over `[t0, t1)`.

@@ -10,7 +10,7 @@ use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use floe_dem::forcing::Forcing;
-use floe_dem::run::{self, format_sim_time, Cadence, Ending, Progress, Silent};
+use floe_dem::run::{self, format_sim_time, Ending, Progress, Silent};
 use floe_dem::world::World;
 use floe_friction::{FrictionLaw, LawRegistry};
 use floe_io::{DomainBox, OutputOptions, RunFile, RunMetadata, RunWriter};
@@ -269,13 +269,7 @@ fn advance(
 ) -> Result<RunSummary, Error> {
     let dt = world.dt_s();
     let total_steps = ((scenario.duration_s() / dt).round() as u64).max(1);
-    let out = scenario.output();
-    let cadence = Cadence::from_seconds(
-        out.snapshot_every_s,
-        out.observables_every_s,
-        out.checkpoint_every_s,
-        dt,
-    );
+    let cadence = scenario.output().in_steps(dt);
     let first_step = world.steps();
     let pause_at = args.max_steps.map(|n| first_step.saturating_add(n));
     let mut progress = hooks.progress(first_step, total_steps, total_steps as f64 * dt);
@@ -284,7 +278,7 @@ fn advance(
         world,
         total_steps,
         pause_at,
-        cadence,
+        &cadence,
         scenario.domain().area_m2(),
         writer,
         hooks.interrupt(),

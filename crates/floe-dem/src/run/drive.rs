@@ -2,8 +2,8 @@
 //! observables and checkpoints to an observer at their cadences, stops
 //! cleanly on an interrupt or a numerical blow-up.
 //!
-//! Cadences are counted in absolute steps (`steps % every == 0`), never from
-//! the start of this process, so a resumed run writes exactly where the
+//! Cadences ([`Cadence`]) are counted in absolute steps, never from the
+//! start of this process, so a resumed run writes exactly where the
 //! uninterrupted run would have.
 
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -15,6 +15,7 @@ use crate::world::World;
 
 use floe_friction::FrictionLaw;
 
+use super::cadence::{Cadence, Due, NextDue};
 use super::health::{check_health, BlowUp};
 
 /// What the loop reports to: the HDF5 run writer of floe-io is one, tests
@@ -30,29 +31,6 @@ pub trait RunObserver<F: ExternalForces> {
     /// friction state has `law_state_slots` slots of law state.
     fn checkpoint(&mut self, state: &WorldState, law_state_slots: usize)
         -> Result<(), Self::Error>;
-}
-
-/// When to write, in steps.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Cadence {
-    /// Steps between snapshots (>= 1).
-    pub snapshot: u64,
-    /// Steps between observable samples (>= 1).
-    pub observables: u64,
-    /// Steps between checkpoints (>= 1).
-    pub checkpoint: u64,
-}
-
-impl Cadence {
-    /// Cadences given in seconds, rounded to whole steps of `dt_s`, at least one step.
-    pub fn from_seconds(snapshot_s: f64, observables_s: f64, checkpoint_s: f64, dt_s: f64) -> Self {
-        let steps = |s: f64| ((s / dt_s).round() as u64).max(1);
-        Self {
-            snapshot: steps(snapshot_s),
-            observables: steps(observables_s),
-            checkpoint: steps(checkpoint_s),
-        }
-    }
 }
 
 /// How a call to [`drive`] ended.
@@ -93,23 +71,21 @@ impl Progress for Silent {
     fn finish(&mut self) {}
 }
 
-/// Writes what is due at the world's current step.
+/// Writes what `due` asks for at the world's current step.
 fn write_due<F: ExternalForces, O: RunObserver<F>>(
     world: &World<F>,
     observer: &mut O,
-    cadence: Cadence,
+    due: Due,
     domain_area_m2: f64,
-    force_all: bool,
 ) -> Result<(), O::Error> {
-    let step = world.steps();
-    if force_all || step.is_multiple_of(cadence.observables) {
-        observer.observables(step, &world.observables(domain_area_m2))?;
+    if due.observables {
+        observer.observables(world.steps(), &world.observables(domain_area_m2))?;
     }
-    if force_all || step.is_multiple_of(cadence.snapshot) {
+    if due.snapshot {
         observer.snapshot(world)?;
     }
     // The checkpoint comes last: whatever it records as written is written.
-    if force_all || step.is_multiple_of(cadence.checkpoint) {
+    if due.checkpoint {
         observer.checkpoint(world.state(), world.model().law.state_slots())?;
     }
     Ok(())
@@ -121,12 +97,7 @@ pub fn start<F: ExternalForces, O: RunObserver<F>>(
     observer: &mut O,
     domain_area_m2: f64,
 ) -> Result<(), O::Error> {
-    let all = Cadence {
-        snapshot: 1,
-        observables: 1,
-        checkpoint: 1,
-    };
-    write_due(world, observer, all, domain_area_m2, true)
+    write_due(world, observer, Due::ALL, domain_area_m2)
 }
 
 /// Steps `world` until `total_steps`, or until `pause_at` if that comes
@@ -137,12 +108,13 @@ pub fn drive<F: ExternalForces, O: RunObserver<F>>(
     world: &mut World<F>,
     total_steps: u64,
     pause_at: Option<u64>,
-    cadence: Cadence,
+    cadence: &Cadence,
     domain_area_m2: f64,
     observer: &mut O,
     interrupt: &AtomicBool,
     progress: &mut dyn Progress,
 ) -> Result<Ending, O::Error> {
+    let mut next = NextDue::after(cadence, world.steps());
     while world.steps() < total_steps {
         world.step();
         progress.update(world.steps(), total_steps, world.time_s());
@@ -155,16 +127,22 @@ pub fn drive<F: ExternalForces, O: RunObserver<F>>(
             return Ok(Ending::BlewUp(blow_up));
         }
         let last = world.steps() == total_steps;
-        write_due(world, observer, cadence, domain_area_m2, last)?;
+        let due = next.take(cadence, world.steps());
+        write_due(
+            world,
+            observer,
+            if last { Due::ALL } else { due },
+            domain_area_m2,
+        )?;
         if interrupt.load(Ordering::SeqCst) && !last {
-            finish_interrupted(world, observer, cadence, domain_area_m2)?;
+            finish_interrupted(world, observer, due, domain_area_m2)?;
             progress.finish();
             return Ok(Ending::Interrupted {
                 step: world.steps(),
             });
         }
         if pause_at == Some(world.steps()) && !last {
-            finish_interrupted(world, observer, cadence, domain_area_m2)?;
+            finish_interrupted(world, observer, due, domain_area_m2)?;
             progress.finish();
             return Ok(Ending::Paused {
                 step: world.steps(),
@@ -176,24 +154,22 @@ pub fn drive<F: ExternalForces, O: RunObserver<F>>(
 }
 
 /// After an interrupt: a checkpoint at this step, then the observables and
-/// snapshot the cadence did not already write. The checkpoint comes before
-/// those extras, so it does not count them and a resume drops them: the
-/// resumed file then holds exactly the uninterrupted run's output.
+/// snapshot the cadence did not already write (`written`). The checkpoint
+/// comes before those extras, so it does not count them and a resume drops
+/// them: the resumed file then holds exactly the uninterrupted run's output.
 fn finish_interrupted<F: ExternalForces, O: RunObserver<F>>(
     world: &World<F>,
     observer: &mut O,
-    cadence: Cadence,
+    written: Due,
     domain_area_m2: f64,
 ) -> Result<(), O::Error> {
-    let step = world.steps();
-    if !step.is_multiple_of(cadence.checkpoint) {
+    let extra = Due {
+        observables: !written.observables,
+        snapshot: !written.snapshot,
+        checkpoint: false,
+    };
+    if !written.checkpoint {
         observer.checkpoint(world.state(), world.model().law.state_slots())?;
     }
-    if !step.is_multiple_of(cadence.observables) {
-        observer.observables(step, &world.observables(domain_area_m2))?;
-    }
-    if !step.is_multiple_of(cadence.snapshot) {
-        observer.snapshot(world)?;
-    }
-    Ok(())
+    write_due(world, observer, extra, domain_area_m2)
 }

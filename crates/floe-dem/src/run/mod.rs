@@ -5,10 +5,12 @@
 //! reports, and an interrupt is a flag the caller raises (from a signal
 //! handler, a scheduler's warning, a test).
 
+pub mod cadence;
 pub mod drive;
 pub mod health;
 pub mod sim_time;
 
-pub use drive::{drive, start, Cadence, Ending, Progress, RunObserver, Silent};
+pub use cadence::{Cadence, CadenceWindow, Due};
+pub use drive::{drive, start, Ending, Progress, RunObserver, Silent};
 pub use health::{check_health, BlowUp, Fault, MAX_OVERLAP_FRACTION};
 pub use sim_time::format_sim_time;

@@ -11,6 +11,7 @@ use std::path::Path;
 use floe_analysis::profile::{shear_band, velocity_profile, ShearBand, VelocityProfile};
 use floe_analysis::slip_events::{SlipEvent, SlipEventDetector, SlipEventRule};
 use floe_analysis::stress::{channel_stress, peak_to_steady, PeakToSteady};
+use floe_analysis::time_mean::{time_mean, time_weights};
 use floe_io::RunFile;
 
 use crate::error::Error;
@@ -21,7 +22,8 @@ pub struct MetricOptions {
     /// Bins across the channel for the velocity profile.
     pub profile_bins: usize,
     /// The profile pools the snapshots in the last `late_fraction` of the
-    /// run (0 < f <= 1), when the flow has settled.
+    /// run's time (0 < f <= 1), when the flow has settled, each weighted by
+    /// the time it stands for.
     pub late_fraction: f64,
     /// The slip-event rule.
     pub slip: SlipEventRule,
@@ -68,9 +70,15 @@ pub struct RunMetrics {
 }
 
 impl RunMetrics {
-    /// The sliding fraction averaged over the observable samples.
+    /// The sliding fraction averaged over time (samples weighted by the
+    /// time each stands for: they need not be evenly spaced); 0 without samples.
     pub fn mean_sliding_fraction(&self) -> f64 {
-        self.sliding_fraction.iter().sum::<f64>() / self.sliding_fraction.len().max(1) as f64
+        time_mean(
+            &self.time_s,
+            &self.sliding_fraction,
+            (f64::NEG_INFINITY, f64::INFINITY),
+        )
+        .unwrap_or(0.0)
     }
 }
 
@@ -109,9 +117,12 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
             path.display()
         )));
     }
-    // At least the last snapshot.
-    let late_from =
-        (((1.0 - options.late_fraction) * snapshots as f64).floor() as usize).min(snapshots - 1);
+    // Snapshots need not be evenly spaced: the late ones are chosen by time
+    // (the last is always in) and each weighs the time it stands for.
+    let times = run.snapshot_times()?;
+    let (first, last) = (times[0], times[snapshots - 1]);
+    let late_from = times.partition_point(|&t| t < last - options.late_fraction * (last - first));
+    let late_weights = time_weights(&times[late_from..]);
     let (mut y, mut u, mut w) = (Vec::new(), Vec::new(), Vec::new());
     let mut detector = SlipEventDetector::new(options.slip)?;
     for k in 0..snapshots {
@@ -123,7 +134,7 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
                 if !floes.prescribed[i] {
                     y.push(snap.position[i][1]);
                     u.push(snap.velocity[i][0]);
-                    w.push(floes.area_m2[i]);
+                    w.push(floes.area_m2[i] * late_weights[k - late_from]);
                 }
             }
         }

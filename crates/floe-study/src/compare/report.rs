@@ -238,8 +238,8 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
         s,
         "## Definitions\n\n\
          * Stresses are the assembly's mean stress (Love-Weber, vertically integrated), compression positive; shear is `(σxy + σyx)/2`.\n\
-         * Peak / steady: the largest |shear stress| over the mean over the last quarter of the run.\n\
-         * Shear band: from the area-weighted profile of along-channel velocity in bins across the channel, pooled over the second half of the snapshots. Equivalent width = velocity jump / peak shear rate (a uniform shear gives the channel width less one bin); 10-90 width = distance over which the velocity goes from 10 % to 90 % of its jump.\n\
+         * Peak / steady: the largest |shear stress| over its mean over time in the last quarter of the run (samples weighted by the time each stands for).\n\
+         * Shear band: from the area-weighted profile of along-channel velocity in bins across the channel, pooled over the snapshots of the second half of the run. Equivalent width = velocity jump / peak shear rate (a uniform shear gives the channel width less one bin); 10-90 width = distance over which the velocity goes from 10 % to 90 % of its jump.\n\
          * Slip event: a contact whose slip rate jumps tenfold between snapshots to at least 1 mm/s; it lasts while it slips at 1 mm/s or more; its size is the slip in that time. Only as fine as the snapshot cadence.\n"
     );
     s
