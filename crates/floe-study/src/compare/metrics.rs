@@ -139,8 +139,18 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
             }
         }
     }
+    // The domain across the channel, widened to every free floe: a wall
+    // that holds a stress may have moved out of the domain as the ice dilated.
     let (y0, height) = (meta.domain.min_m[1], meta.domain.size_m[1]);
-    let profile = velocity_profile(&y, &u, &w, y0, y0 + height, options.profile_bins)?;
+    let (lo, hi) = y
+        .iter()
+        .fold((y0, y0 + height), |(a, b), &v| (a.min(v), b.max(v)));
+    let hi = if hi > y0 + height {
+        hi + 1e-9 * (hi - lo)
+    } else {
+        hi
+    };
+    let profile = velocity_profile(&y, &u, &w, lo, hi, options.profile_bins)?;
     let band = shear_band(&profile).ok();
     let magnitude: Vec<f64> = shear.iter().map(|s: &f64| s.abs()).collect();
     let peak_to_steady = peak_to_steady(&time_s, &magnitude, options.steady_fraction).ok();
