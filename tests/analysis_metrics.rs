@@ -518,3 +518,263 @@ fn jam_state_refuses_bad_input() {
         Err(AnalysisError::NotEnoughData(_))
     ));
 }
+
+/// Squares of side `side` on a lattice turned by `angle` (they tile the
+/// plane), centred at `offset + m e1 + n e2`, covering `[-margin, extent + margin]^2`.
+fn tiled_squares(side: f64, angle: f64, offset: [f64; 2], extent: f64) -> Vec<Vec<[f64; 2]>> {
+    let (s, c) = angle.sin_cos();
+    let (e1, e2) = ([side * c, side * s], [-side * s, side * c]);
+    let reach = (2.0 * extent / side) as i64 + 4;
+    let mut out = Vec::new();
+    for m in -reach..=reach {
+        for n in -reach..=reach {
+            let x = [
+                offset[0] + m as f64 * e1[0] + n as f64 * e2[0],
+                offset[1] + m as f64 * e1[1] + n as f64 * e2[1],
+            ];
+            if x[0] < -2.0 * side
+                || x[1] < -2.0 * side
+                || x[0] > extent + 2.0 * side
+                || x[1] > extent + 2.0 * side
+            {
+                continue;
+            }
+            let corner = |a: f64, b: f64| {
+                [
+                    x[0] + 0.5 * (a * e1[0] + b * e2[0]),
+                    x[1] + 0.5 * (a * e1[1] + b * e2[1]),
+                ]
+            };
+            out.push(vec![
+                corner(-1.0, -1.0),
+                corner(1.0, -1.0),
+                corner(1.0, 1.0),
+                corner(-1.0, 1.0),
+            ]);
+        }
+    }
+    out
+}
+
+fn centroid(poly: &[[f64; 2]]) -> [f64; 2] {
+    let n = poly.len() as f64;
+    [
+        poly.iter().map(|p| p[0]).sum::<f64>() / n,
+        poly.iter().map(|p| p[1]).sum::<f64>() / n,
+    ]
+}
+
+/// Grid fields of `polys` with velocities from `field(centroid)` and spin `spin`.
+fn fields_of(
+    grid: &floe_analysis::grid_fields::Grid,
+    polys: &[Vec<[f64; 2]>],
+    field: impl Fn([f64; 2]) -> [f64; 2],
+    spin: f64,
+) -> floe_analysis::grid_fields::GridFields {
+    use floe_analysis::grid_fields::{grid_fields, FloeSnapshot};
+    let position: Vec<[f64; 2]> = polys.iter().map(|p| centroid(p)).collect();
+    let velocity: Vec<[f64; 2]> = position.iter().map(|&x| field(x)).collect();
+    let spin = vec![spin; polys.len()];
+    let thickness = vec![1.5; polys.len()];
+    grid_fields(
+        grid,
+        &FloeSnapshot {
+            vertices: polys,
+            position: &position,
+            velocity: &velocity,
+            angular_velocity: &spin,
+            thickness_m: &thickness,
+            stress_moment_n_m: None,
+        },
+    )
+    .unwrap()
+}
+
+#[test]
+fn gridded_concentration_integrates_to_the_ice_area_and_stress_is_conserved() {
+    use floe_analysis::grid_fields::{grid_fields, FloeSnapshot, Grid};
+    // Pentagons of several sizes and turns at scattered places inside a
+    // 10 km grid of 1 km cells (overlaps do not matter to the identity).
+    let grid = Grid {
+        origin_m: [0.0, 0.0],
+        cell_m: [1000.0, 1250.0],
+        shape: [10, 8],
+    };
+    let mut seed = 12345u64;
+    let mut next = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut polys = Vec::new();
+    for _ in 0..60 {
+        let (r, turn) = (100.0 + 600.0 * next(), 6.3 * next());
+        let c = [
+            r + (10000.0 - 2.0 * r) * next(),
+            r + (10000.0 - 2.0 * r) * next(),
+        ];
+        polys.push(
+            (0..5)
+                .map(|k| {
+                    let a = turn + k as f64 * std::f64::consts::TAU / 5.0;
+                    [c[0] + r * a.cos(), c[1] + r * a.sin()]
+                })
+                .collect::<Vec<_>>(),
+        );
+    }
+    let shoelace = |p: &[[f64; 2]]| {
+        0.5 * (0..p.len())
+            .map(|k| {
+                let (a, b) = (p[k], p[(k + 1) % p.len()]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum::<f64>()
+            .abs()
+    };
+    let ice: f64 = polys.iter().map(|p| shoelace(p)).sum();
+    let position: Vec<[f64; 2]> = polys.iter().map(|p| centroid(p)).collect();
+    let zeros2 = vec![[0.0; 2]; polys.len()];
+    let moments: Vec<[f64; 4]> = (0..polys.len())
+        .map(|k| [-1e9 * (k + 1) as f64, 2e8, 2e8, -3e9])
+        .collect();
+    let f = grid_fields(
+        &grid,
+        &FloeSnapshot {
+            vertices: &polys,
+            position: &position,
+            velocity: &zeros2,
+            angular_velocity: &vec![0.0; polys.len()],
+            thickness_m: &vec![2.0; polys.len()],
+            stress_moment_n_m: Some(&moments),
+        },
+    )
+    .unwrap();
+    let cell = 1000.0 * 1250.0;
+    let integral: f64 = f.concentration.iter().sum::<f64>() * cell;
+    assert!(
+        (integral - ice).abs() < 1e-9 * ice,
+        "{integral} against {ice}"
+    );
+    for k in 0..4 {
+        let total: f64 = f.stress_n_per_m.iter().map(|s| s[k]).sum::<f64>() * cell;
+        let expected: f64 = moments.iter().map(|m| m[k]).sum();
+        assert!(
+            (total - expected).abs() < 1e-9 * expected.abs(),
+            "{k}: {total} {expected}"
+        );
+    }
+    // Ice of one thickness has that thickness wherever there is ice.
+    for (c, h) in f.concentration.iter().zip(&f.thickness_m) {
+        assert!(if *c > 0.0 {
+            (h - 2.0).abs() < 1e-12
+        } else {
+            h.is_nan()
+        });
+    }
+    // Floes partly outside the grid: only the part inside counts.
+    let half_out = vec![vec![
+        [-500.0, 0.0],
+        [500.0, 0.0],
+        [500.0, 1000.0],
+        [-500.0, 1000.0],
+    ]];
+    let f = fields_of(&grid, &half_out, |_| [0.0, 0.0], 0.0);
+    assert!((f.concentration.iter().sum::<f64>() * cell - 5e5).abs() < 1e-6);
+}
+
+#[test]
+fn a_uniform_expansion_has_its_divergence_and_a_rigid_rotation_no_deformation() {
+    use floe_analysis::grid_fields::Grid;
+    let grid = Grid {
+        origin_m: [0.0, 0.0],
+        cell_m: [1000.0, 1000.0],
+        shape: [8, 8],
+    };
+    let a = 1e-6; // 1/s: v = a x, divergence 2a, no shear
+                  // Square floes one per cell, and shifted by half a cell.
+    for offset in [[500.0, 500.0], [0.0, 0.0]] {
+        let polys = tiled_squares(1000.0, 0.0, offset, 8000.0);
+        let f = fields_of(&grid, &polys, |x| [a * x[0], a * x[1]], 0.0);
+        for k in 0..grid.len() {
+            assert!((f.concentration[k] - 1.0).abs() < 1e-12);
+            assert!(
+                (f.divergence_per_s[k] - 2.0 * a).abs() < 1e-12 * a,
+                "{k}: {}",
+                f.divergence_per_s[k]
+            );
+            assert!(f.shear_per_s[k] < 1e-9 * a, "{k}: {}", f.shear_per_s[k]);
+        }
+    }
+    // A pack turning as one body (each floe with the body's spin), on a
+    // lattice turned 30 degrees against the grid: no deformation anywhere.
+    let w = 2e-6;
+    let polys = tiled_squares(700.0, 0.52, [123.0, -45.0], 8000.0);
+    let centre = [4000.0, 4000.0];
+    let f = fields_of(
+        &grid,
+        &polys,
+        |x| [-w * (x[1] - centre[1]), w * (x[0] - centre[0])],
+        w,
+    );
+    for k in 0..grid.len() {
+        assert!((f.concentration[k] - 1.0).abs() < 1e-9);
+        assert!(
+            f.total_deformation_per_s[k] < 1e-9 * w,
+            "{k}: {}",
+            f.total_deformation_per_s[k]
+        );
+    }
+    // The same floes in pure shear v = (g y, 0): divergence 0, shear g.
+    let g = 3e-6;
+    let f = fields_of(
+        &grid,
+        &tiled_squares(1000.0, 0.0, [500.0, 500.0], 8000.0),
+        |x| [g * x[1], 0.0],
+        0.0,
+    );
+    for k in 0..grid.len() {
+        assert!(f.divergence_per_s[k].abs() < 1e-12 * g);
+        assert!((f.shear_per_s[k] - g).abs() < 1e-12 * g);
+    }
+    // Cells without ice have no velocity.
+    let one = vec![vec![[0.0, 0.0], [900.0, 0.0], [900.0, 900.0], [0.0, 900.0]]];
+    let f = fields_of(&grid, &one, |_| [0.1, 0.0], 0.0);
+    assert_eq!(f.velocity[0], [0.1, 0.0]);
+    assert!(f.velocity[1][0].is_nan() && f.divergence_per_s[0].is_nan());
+}
+
+#[test]
+fn grid_fields_refuse_bad_input() {
+    use floe_analysis::grid_fields::{grid_fields, FloeSnapshot, Grid};
+    let poly = vec![vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]];
+    let snap = FloeSnapshot {
+        vertices: &poly,
+        position: &[[0.3, 0.3]],
+        velocity: &[],
+        angular_velocity: &[0.0],
+        thickness_m: &[1.0],
+        stress_moment_n_m: None,
+    };
+    let grid = Grid {
+        origin_m: [0.0, 0.0],
+        cell_m: [1.0, 1.0],
+        shape: [2, 2],
+    };
+    assert!(grid_fields(&grid, &snap).is_err());
+    let snap = FloeSnapshot {
+        velocity: &[[0.0, 0.0]],
+        ..snap
+    };
+    assert!(grid_fields(&grid, &snap).is_ok());
+    let bad = Grid {
+        cell_m: [0.0, 1.0],
+        ..grid
+    };
+    assert!(grid_fields(&bad, &snap).is_err());
+    let empty = Grid {
+        shape: [0, 3],
+        ..grid
+    };
+    assert!(grid_fields(&empty, &snap).is_err());
+}

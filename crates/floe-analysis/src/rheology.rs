@@ -17,6 +17,7 @@
 //! two agree; in a flowing layer they agree on average, once the momentum
 //! flux `sum m v' (x) v'` of the fluctuations is added.
 
+use crate::polygon::{clip, polygon_area};
 use crate::AnalysisError;
 
 /// The error of [`cell_sample`] for a snapshot in which the free floes
@@ -296,33 +297,6 @@ fn clip_to_band(poly: &[[f64; 2]], lo: f64, hi: f64) -> Vec<[f64; 2]> {
     let keep_below = |p: &[f64; 2]| hi - p[1];
     let below = clip(poly, keep_above);
     clip(&below, keep_below)
-}
-
-/// Keeps the part of `poly` where `inside(p) >= 0` (a half-plane).
-fn clip(poly: &[[f64; 2]], inside: impl Fn(&[f64; 2]) -> f64) -> Vec<[f64; 2]> {
-    let mut out = Vec::with_capacity(poly.len() + 2);
-    for k in 0..poly.len() {
-        let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
-        let (dp, dq) = (inside(&p), inside(&q));
-        if dp >= 0.0 {
-            out.push(p);
-        }
-        if (dp >= 0.0) != (dq >= 0.0) {
-            let t = dp / (dp - dq);
-            out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-        }
-    }
-    out
-}
-
-/// Unsigned area of a simple polygon (shoelace), m².
-fn polygon_area(poly: &[[f64; 2]]) -> f64 {
-    let mut twice = 0.0;
-    for k in 0..poly.len() {
-        let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
-        twice += p[0] * q[1] - q[0] * p[1];
-    }
-    0.5 * twice.abs()
 }
 
 /// A fit of `mu(I) = mu_s + (mu_2 - mu_s) / (I_0 / I + 1)`.
