@@ -364,3 +364,37 @@ fn a_run_refuses_bad_output_windows_at_their_keys() {
         &["`output.window[1]`", "44 snapshots", "--step-limit"],
     );
 }
+
+#[test]
+fn grid_info_and_render_refuse_missing_or_foreign_files_and_grid_a_bad_cell_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("f.nc");
+    let out = out.to_string_lossy();
+    let (code, err) = floe(&[
+        "grid",
+        "/nonexistent/run.h5",
+        "-o",
+        &out,
+        "--cell-m",
+        "1000",
+    ]);
+    assert_one_clear_error(code, &err, 2);
+    assert!(err.contains("/nonexistent/run.h5"), "{err}");
+    for bad in ["0", "-5", "nan"] {
+        let (code, err) = floe(&["grid", "/nonexistent/run.h5", "-o", &out, "--cell-m", bad]);
+        assert_one_clear_error(code, &err, 2);
+        assert!(err.contains("--cell-m"), "{err}");
+    }
+    assert!(!dir.path().join("f.nc").exists());
+    // The other readers of run files say the same: a missing file, or one
+    // that is not a floe run file, is bad input.
+    let text = dir.path().join("notes.txt");
+    std::fs::write(&text, "not a run").unwrap();
+    for file in ["/nonexistent/run.h5", &text.to_string_lossy()] {
+        for args in [vec!["info", file], vec!["render", file, "-o", &out]] {
+            let (code, err) = floe(&args);
+            assert_one_clear_error(code, &err, 2);
+            assert!(err.contains(file), "{err}");
+        }
+    }
+}

@@ -10,6 +10,7 @@ use floe_friction::LawRegistry;
 use floe_scenario::law_variants::{LawChoice, Matching};
 use floe_scenario::settings::parse_setting;
 use floe_study::compare::{self, CompareArgs};
+use floe_study::grid_output::{self, GridArgs};
 use floe_study::render::{self, ColourBy, Snapshots};
 use floe_study::rheology::{self, RheologyArgs};
 use floe_study::run_file::{self as run, RunArgs};
@@ -186,6 +187,22 @@ pub enum Command {
         /// Most time steps each run may take (default 1e9).
         #[arg(long, value_name = "N", default_value_t = floe_scenario::MAX_RUN_STEPS, value_parser = step_count)]
         step_limit: f64,
+    },
+    /// Coarse-grain a run's snapshots onto a regular grid (concentration,
+    /// thickness, velocity, stress, strain rates) and write CF NetCDF.
+    #[command(allow_negative_numbers = true)]
+    Grid {
+        /// The run's HDF5 file.
+        file: PathBuf,
+        /// Output NetCDF file.
+        #[arg(long, short)]
+        output: PathBuf,
+        /// Largest cell size, m: the domain is split into whole cells of at most this.
+        #[arg(long, value_name = "M")]
+        cell_m: f64,
+        /// Replace an existing output.
+        #[arg(long)]
+        force: bool,
     },
     /// Draw PNG maps of the floes and plots of the observables.
     #[command(allow_negative_numbers = true)]
@@ -623,6 +640,20 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 ),
                 _ => format!("report: {}", path.display()),
             })
+        }
+        Command::Grid {
+            file,
+            output,
+            cell_m,
+            force,
+        } => {
+            let path = grid_output::write_grid(&GridArgs {
+                run: file,
+                output,
+                cell_m,
+                force,
+            })?;
+            Ok(format!("gridded fields: {}", path.display()))
         }
         Command::Render {
             file,

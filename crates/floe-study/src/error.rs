@@ -84,6 +84,13 @@ impl Error {
         match self {
             Error::Scenario(e) if e.is_input() => 2,
             Error::Usage(_) | Error::WouldOverwrite(_) => 2,
+            // A run file that is not there, or not a floe run file: bad input.
+            Error::Output(
+                floe_io::IoError::NotFound { .. }
+                | floe_io::IoError::NotHdf5 { .. }
+                | floe_io::IoError::NotFloeFile { .. }
+                | floe_io::IoError::AlreadyExists { .. },
+            ) => 2,
             // 128 + SIGINT, as a shell reports a process stopped by Ctrl-C.
             Error::Interrupted { .. } => 130,
             _ => 1,

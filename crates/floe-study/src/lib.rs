@@ -12,6 +12,7 @@
 pub mod compare;
 pub mod double_shear_protocol;
 pub mod error;
+pub mod grid_output;
 pub mod plot;
 pub mod render;
 pub mod rheology;

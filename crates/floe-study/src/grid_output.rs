@@ -1,0 +1,353 @@
+//! `floe grid`: a run's snapshots coarse-grained onto a regular grid
+//! (`floe_analysis::grid_fields`) and written as CF NetCDF (NetCDF-3, 64-bit
+//! offset, through the pure-Rust `netcdf3` crate: the `netcdf` crate's C
+//! library would link a second HDF5 beside hdf5-metno's, which Cargo refuses).
+//! One record per snapshot along the unlimited `time` dimension; variables
+//! on `(time, y, x)` with CF standard names and units where CF has them;
+//! cells without ice hold the fill value (`_FillValue`, NetCDF's default
+//! 9.97e36: a NaN attribute would not compare equal to itself in `netcdf3`).
+
+use std::path::{Path, PathBuf};
+
+use floe_analysis::grid_fields::{grid_fields, FloeSnapshot, Grid};
+use floe_io::RunFile;
+use netcdf3::{DataSet, FileWriter, Version, NC_FILL_F64};
+
+use crate::error::Error;
+use crate::same_file::refuse_overwriting_input;
+
+/// What `floe grid` was asked to do.
+#[derive(Debug, Clone)]
+pub struct GridArgs {
+    /// The run file.
+    pub run: PathBuf,
+    /// The NetCDF file to write.
+    pub output: PathBuf,
+    /// Largest cell size, m (the domain is split into whole cells of at most this).
+    pub cell_m: f64,
+    /// Replace an existing output.
+    pub force: bool,
+}
+
+/// Most cells along one axis, and in all.
+const MAX_CELLS_PER_AXIS: usize = 4096;
+const MAX_CELLS: usize = 4_000_000;
+
+/// The fields written, with their CF standard name (empty: none), units and description.
+const FIELDS: [(&str, &str, &str, &str); 11] = [
+    (
+        "concentration",
+        "sea_ice_area_fraction",
+        "1",
+        "ice area over cell area",
+    ),
+    (
+        "thickness",
+        "sea_ice_thickness",
+        "m",
+        "mean thickness of the ice in the cell",
+    ),
+    (
+        "u",
+        "sea_ice_x_velocity",
+        "m s-1",
+        "area-mean ice velocity along x",
+    ),
+    (
+        "v",
+        "sea_ice_y_velocity",
+        "m s-1",
+        "area-mean ice velocity along y",
+    ),
+    (
+        "stress_xx",
+        "",
+        "N m-1",
+        "vertically integrated Love-Weber stress, xx (tension positive)",
+    ),
+    (
+        "stress_xy",
+        "",
+        "N m-1",
+        "vertically integrated Love-Weber stress, force x times arm y",
+    ),
+    (
+        "stress_yx",
+        "",
+        "N m-1",
+        "vertically integrated Love-Weber stress, force y times arm x",
+    ),
+    (
+        "stress_yy",
+        "",
+        "N m-1",
+        "vertically integrated Love-Weber stress, yy (tension positive)",
+    ),
+    (
+        "divergence",
+        "divergence_of_sea_ice_velocity",
+        "s-1",
+        "u_x + v_y",
+    ),
+    (
+        "shear",
+        "",
+        "s-1",
+        "maximum shear rate sqrt((u_x - v_y)^2 + (u_y + v_x)^2)",
+    ),
+    (
+        "total_deformation",
+        "",
+        "s-1",
+        "sqrt(divergence^2 + shear^2)",
+    ),
+];
+
+/// Writes the gridded fields of every snapshot of `args.run`; returns the
+/// output's path.
+pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
+    if !(args.cell_m.is_finite() && args.cell_m > 0.0) {
+        return Err(Error::Usage(format!(
+            "--cell-m {}: a cell size in m, > 0",
+            args.cell_m
+        )));
+    }
+    refuse_overwriting_input(&args.run, "run file", [args.output.as_path()])?;
+    if args.output.exists() && !args.force {
+        return Err(Error::WouldOverwrite(args.output.clone()));
+    }
+    let run = RunFile::open(&args.run)?;
+    let meta = run.metadata()?;
+    let floes = run.static_floes()?;
+    let (min, size) = (meta.domain.min_m, meta.domain.size_m);
+    let shape = [0, 1].map(|a| (size[a] / args.cell_m).ceil().max(1.0));
+    if shape.iter().any(|&n| n > MAX_CELLS_PER_AXIS as f64)
+        || shape[0] * shape[1] > MAX_CELLS as f64
+    {
+        return Err(Error::Usage(format!(
+            "--cell-m {}: {} x {} cells for the {} m x {} m domain; at most {MAX_CELLS_PER_AXIS} per axis and {MAX_CELLS} in all",
+            args.cell_m, shape[0], shape[1], size[0], size[1]
+        )));
+    }
+    let shape = shape.map(|n| n as usize);
+    let grid = Grid {
+        origin_m: min,
+        cell_m: [size[0] / shape[0] as f64, size[1] / shape[1] as f64],
+        shape,
+    };
+    let snapshots = run.snapshot_count()?;
+    let times: Vec<f64> = (0..snapshots)
+        .map(|k| run.snapshot(k).map(|s| s.time_s))
+        .collect::<Result<_, _>>()?;
+
+    let mut data = DataSet::new();
+    let nc = |e: netcdf3::InvalidDataSet| Error::Usage(format!("{}: {e:?}", args.output.display()));
+    data.set_unlimited_dim("time", snapshots).map_err(nc)?;
+    data.add_fixed_dim("y", shape[1]).map_err(nc)?;
+    data.add_fixed_dim("x", shape[0]).map_err(nc)?;
+    for (name, text) in [
+        ("Conventions", "CF-1.8".to_string()),
+        ("title", format!("floe run {} on a grid", args.run.display())),
+        ("source", format!("floe {} (floe grid)", env!("CARGO_PKG_VERSION"))),
+        ("comment", "floes coarse-grained onto the grid: each floe clipped exactly to the cells; prescribed floes (walls, blocks, glued rows) left out".to_string()),
+    ] {
+        data.add_global_attr_string(name, text).map_err(nc)?;
+    }
+    data.add_var_f64("time", &["time"]).map_err(nc)?;
+    data.add_var_attr_string("time", "units", "s").map_err(nc)?;
+    data.add_var_attr_string("time", "long_name", "time since the start of the run")
+        .map_err(nc)?;
+    for (axis, dim) in [("X", "x"), ("Y", "y")] {
+        data.add_var_f64(dim, &[dim]).map_err(nc)?;
+        data.add_var_attr_string(dim, "units", "m").map_err(nc)?;
+        data.add_var_attr_string(dim, "axis", axis).map_err(nc)?;
+        data.add_var_attr_string(dim, "standard_name", format!("projection_{dim}_coordinate"))
+            .map_err(nc)?;
+        data.add_var_attr_string(dim, "long_name", format!("cell centre, {dim}"))
+            .map_err(nc)?;
+    }
+    for (name, standard, units, long) in FIELDS {
+        data.add_var_f64(name, &["time", "y", "x"]).map_err(nc)?;
+        data.add_var_attr_string(name, "units", units).map_err(nc)?;
+        data.add_var_attr_string(name, "long_name", long)
+            .map_err(nc)?;
+        if !standard.is_empty() {
+            data.add_var_attr_string(name, "standard_name", standard)
+                .map_err(nc)?;
+        }
+        data.add_var_attr_f64(name, "_FillValue", vec![NC_FILL_F64])
+            .map_err(nc)?;
+    }
+
+    // Written beside the target and renamed at the end: a failure leaves
+    // no half file under the output's name.
+    let partial = partial_path(&args.output);
+    let _ = std::fs::remove_file(&partial);
+    let write_err =
+        |e: netcdf3::WriteError| Error::Usage(format!("{}: {e:?}", args.output.display()));
+    let mut writer = FileWriter::create_new(&partial).map_err(write_err)?;
+    writer
+        .set_def(&data, Version::Offset64Bit, 0)
+        .map_err(write_err)?;
+    writer
+        .write_var_f64(
+            "x",
+            &(0..shape[0])
+                .map(|i| grid.centre(i, 0)[0])
+                .collect::<Vec<_>>(),
+        )
+        .map_err(write_err)?;
+    writer
+        .write_var_f64(
+            "y",
+            &(0..shape[1])
+                .map(|j| grid.centre(0, j)[1])
+                .collect::<Vec<_>>(),
+        )
+        .map_err(write_err)?;
+    for (k, &t) in times.iter().enumerate() {
+        writer
+            .write_record_f64("time", k, &[t])
+            .map_err(write_err)?;
+        let records = snapshot_fields(&run, &floes, &grid, meta.domain.periodic, size, k)?;
+        for ((name, ..), mut values) in FIELDS.iter().zip(records) {
+            // Cells without ice (NaN) get the CF fill value.
+            for v in values.iter_mut().filter(|v| v.is_nan()) {
+                *v = NC_FILL_F64;
+            }
+            writer
+                .write_record_f64(name, k, &values)
+                .map_err(write_err)?;
+        }
+    }
+    writer.close().map_err(write_err)?;
+    std::fs::rename(&partial, &args.output).map_err(|e| Error::io(&args.output, e))?;
+    Ok(args.output.clone())
+}
+
+fn partial_path(output: &Path) -> PathBuf {
+    let mut name = output
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_default();
+    name.push(".partial");
+    output.with_file_name(name)
+}
+
+/// The fields of snapshot `k`, in the order of [`FIELDS`].
+fn snapshot_fields(
+    run: &RunFile,
+    floes: &floe_io::StaticFloes,
+    grid: &Grid,
+    periodic: [bool; 2],
+    period: [f64; 2],
+    k: usize,
+) -> Result<Vec<Vec<f64>>, Error> {
+    let snap = run.snapshot(k)?;
+    let contacts = run.contacts(k)?;
+    let n = floes.len();
+    // Each free floe's Love-Weber moment sum f (x) (x_c - x).
+    let mut moment = vec![[0.0; 4]; n];
+    let wrap = |d: f64, axis: usize| {
+        if periodic[axis] {
+            d - period[axis] * (d / period[axis]).round()
+        } else {
+            d
+        }
+    };
+    for c in 0..contacts.pair.len() {
+        let [a, b] = contacts.pair[c].map(|i| i as usize);
+        let [nx, ny] = contacts.normal[c];
+        let (fnorm, ft) = (contacts.normal_force_n[c], contacts.tangential_force_n[c]);
+        let on_b = [nx * fnorm - ny * ft, ny * fnorm + nx * ft];
+        for (i, f) in [(a, [-on_b[0], -on_b[1]]), (b, on_b)] {
+            let arm = [
+                wrap(contacts.point[c][0] - snap.position[i][0], 0),
+                wrap(contacts.point[c][1] - snap.position[i][1], 1),
+            ];
+            moment[i][0] += f[0] * arm[0];
+            moment[i][1] += f[0] * arm[1];
+            moment[i][2] += f[1] * arm[0];
+            moment[i][3] += f[1] * arm[1];
+        }
+    }
+    // Free floes, with their periodic images where they cross an edge.
+    let (mut vertices, mut position, mut velocity, mut spin, mut thickness, mut moments) = (
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+        Vec::new(),
+    );
+    let lo = grid.origin_m;
+    for i in (0..n).filter(|&i| !floes.prescribed[i]) {
+        let poly = snap.world_vertices(floes, i);
+        let shifts = |axis: usize| -> Vec<f64> {
+            if !periodic[axis] {
+                return vec![0.0];
+            }
+            let (min, max) = poly
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p[axis]), b.max(p[axis]))
+                });
+            let mut s = vec![0.0];
+            if min < lo[axis] {
+                s.push(period[axis]);
+            }
+            if max > lo[axis] + period[axis] {
+                s.push(-period[axis]);
+            }
+            s
+        };
+        for dx in shifts(0) {
+            for &dy in &shifts(1) {
+                vertices.push(
+                    poly.iter()
+                        .map(|p| [p[0] + dx, p[1] + dy])
+                        .collect::<Vec<_>>(),
+                );
+                let [px, py] = snap.position[i];
+                position.push([px + dx, py + dy]);
+                velocity.push(snap.velocity[i]);
+                spin.push(snap.angular_velocity[i]);
+                thickness.push(floes.thickness_m[i]);
+                // The moment goes with the image's share of the area, so
+                // the whole floe's moment is counted once over its images.
+                moments.push(moment[i]);
+            }
+        }
+    }
+    let fields = grid_fields(
+        grid,
+        &FloeSnapshot {
+            vertices: &vertices,
+            position: &position,
+            velocity: &velocity,
+            angular_velocity: &spin,
+            thickness_m: &thickness,
+            stress_moment_n_m: Some(&moments),
+        },
+    )?;
+    let component = |k: usize| {
+        fields
+            .stress_n_per_m
+            .iter()
+            .map(|s| s[k])
+            .collect::<Vec<_>>()
+    };
+    Ok(vec![
+        fields.concentration,
+        fields.thickness_m,
+        fields.velocity.iter().map(|v| v[0]).collect(),
+        fields.velocity.iter().map(|v| v[1]).collect(),
+        component(0),
+        component(1),
+        component(2),
+        component(3),
+        fields.divergence_per_s,
+        fields.shear_per_s,
+        fields.total_deformation_per_s,
+    ])
+}
