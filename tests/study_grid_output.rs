@@ -156,5 +156,22 @@ fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
         });
     }
     assert!(crossed, "some floe lay across a periodic edge");
+
+    // `floe render` draws the fields: one map per field and record.
+    use floe_study::render::{grid_map, Snapshots};
+    assert!(grid_map::is_netcdf(&nc) && !grid_map::is_netcdf(&h5));
+    let maps = dir.path().join("maps");
+    let written = grid_map::render_grid(&nc, Snapshots::Every(5), &maps, false).unwrap();
+    assert_eq!(
+        written.len(),
+        3 * 11,
+        "records 0, 5, 10, eleven fields each"
+    );
+    assert!(written.iter().all(|p| p.exists()));
+    assert!(maps.join("grid_divergence_0010.png").exists());
+    assert!(
+        grid_map::render_grid(&nc, Snapshots::One(5), &maps, false).is_err(),
+        "no overwrite"
+    );
     assert!(Path::new(&nc).exists());
 }

@@ -668,7 +668,11 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 (None, Some(k)) => Snapshots::Every(k),
                 (None, None) => Snapshots::One(-1),
             };
-            let written = render::render(&file, which, color.into(), &output, force)?;
+            let written = if render::grid_map::is_netcdf(&file) {
+                render::grid_map::render_grid(&file, which, &output, force)?
+            } else {
+                render::render(&file, which, color.into(), &output, force)?
+            };
             Ok(format!(
                 "{} pictures in {}",
                 written.len(),

@@ -34,7 +34,7 @@ const MAX_CELLS_PER_AXIS: usize = 4096;
 const MAX_CELLS: usize = 4_000_000;
 
 /// The fields written, with their CF standard name (empty: none), units and description.
-const FIELDS: [(&str, &str, &str, &str); 11] = [
+pub(crate) const FIELDS: [(&str, &str, &str, &str); 11] = [
     (
         "concentration",
         "sea_ice_area_fraction",

@@ -1,8 +1,10 @@
 //! `floe render`: PNG maps of the floes of a run (coloured by speed, theta
-//! or pressure) and PNG plots of its observables.
+//! or pressure) and PNG plots of its observables; maps of the gridded fields
+//! of `floe grid` ([`grid_map`]).
 
 pub mod colour;
 pub mod floe_map;
+pub mod grid_map;
 pub mod per_floe;
 
 use std::path::{Path, PathBuf};
