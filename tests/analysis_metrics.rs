@@ -329,6 +329,7 @@ fn square(x: f64, y: f64, s: f64) -> Vec<[f64; 2]> {
 
 #[test]
 fn a_floe_squeezed_and_sheared_between_two_walls() {
+    use floe_analysis::love_weber::ContactForces;
     use floe_analysis::rheology::{cell_sample, CellSnapshot};
     // One free 400 m square between a bottom wall (touching at y = 0) and a
     // top wall (at y = 400), in a cell 2 km long. The bottom wall pushes it
@@ -369,11 +370,13 @@ fn a_floe_squeezed_and_sheared_between_two_walls() {
         mass_kg: &mass,
         prescribed: &prescribed,
         vertices: &vertices,
-        pair: &pair,
-        point: &point,
-        normal: &normal,
-        normal_force_n: &normal_force,
-        tangential_force_n: &tangential_force,
+        contacts: ContactForces {
+            pair: &pair,
+            point: &point,
+            normal: &normal,
+            normal_force_n: &normal_force,
+            tangential_force_n: &tangential_force,
+        },
     })
     .unwrap();
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);

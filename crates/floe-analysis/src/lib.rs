@@ -3,7 +3,8 @@
 //! The metrics `floe compare` reports, as pure functions on arrays read from
 //! a run's output: velocity profiles and shear-band width across a channel
 //! ([`profile`]), slip events on contacts ([`slip_events`]), the stress
-//! history of the assembly ([`stress`]), floes coarse-grained onto a grid
+//! history of the assembly ([`stress`]) and of each floe ([`love_weber`]),
+//! floes coarse-grained onto a grid
 //! ([`grid_fields`]), the rheology of a shear cell
 //! ([`rheology`]), whether a driven pack has jammed ([`jam`]), and means
 //! over time of series sampled unevenly ([`time_mean`]). No I/O and no engine types, so each
@@ -13,6 +14,7 @@
 pub mod error;
 pub mod grid_fields;
 pub mod jam;
+pub mod love_weber;
 mod polygon;
 pub mod profile;
 pub mod rheology;

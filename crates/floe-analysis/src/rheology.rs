@@ -17,6 +17,7 @@
 //! two agree; in a flowing layer they agree on average, once the momentum
 //! flux `sum m v' (x) v'` of the fluctuations is added.
 
+use crate::love_weber::{stress_moments, ContactForces};
 use crate::polygon::{clip, polygon_area};
 use crate::AnalysisError;
 
@@ -42,16 +43,8 @@ pub struct CellSnapshot<'a> {
     pub prescribed: &'a [bool],
     /// Each floe's vertices in world coordinates, m.
     pub vertices: &'a [Vec<[f64; 2]>],
-    /// Floe indices of each contact.
-    pub pair: &'a [[u32; 2]],
-    /// Contact points (in the frame where the first floe is at its position), m.
-    pub point: &'a [[f64; 2]],
-    /// Unit normals from the first floe to the second.
-    pub normal: &'a [[f64; 2]],
-    /// Normal force on the second floe, N.
-    pub normal_force_n: &'a [f64],
-    /// Tangential force on the second floe along `perp(normal)`, N.
-    pub tangential_force_n: &'a [f64],
+    /// The contacts and their forces.
+    pub contacts: ContactForces<'a>,
 }
 
 /// What one snapshot says about the layer. Stresses are vertically
@@ -119,14 +112,15 @@ pub fn cell_sample(s: &CellSnapshot) -> Result<CellSample, AnalysisError> {
             });
         }
     }
-    let m = s.pair.len();
+    let c = &s.contacts;
+    let m = c.pair.len();
     for (what, len) in [
-        ("contact pairs and points", s.point.len()),
-        ("contact pairs and normals", s.normal.len()),
-        ("contact pairs and normal forces", s.normal_force_n.len()),
+        ("contact pairs and points", c.point.len()),
+        ("contact pairs and normals", c.normal.len()),
+        ("contact pairs and normal forces", c.normal_force_n.len()),
         (
             "contact pairs and tangential forces",
-            s.tangential_force_n.len(),
+            c.tangential_force_n.len(),
         ),
     ] {
         if len != m {
@@ -145,7 +139,7 @@ pub fn cell_sample(s: &CellSnapshot) -> Result<CellSample, AnalysisError> {
             reason: "a shear cell needs a positive period along x",
         });
     }
-    if s.pair.iter().flatten().any(|&i| i as usize >= n) {
+    if c.pair.iter().flatten().any(|&i| i as usize >= n) {
         return Err(AnalysisError::NotEnoughData(
             "a contact names a floe that is not in the snapshot",
         ));
@@ -165,24 +159,10 @@ pub fn cell_sample(s: &CellSnapshot) -> Result<CellSample, AnalysisError> {
     // Wall forces and the heights of the wall contacts.
     let mut force = [[0.0f64; 2]; 2]; // on [bottom, top] wall, by the ice
     let mut height = [(0.0f64, 0usize); 2];
-    let mut contact = [0.0f64; 4];
-    let wrap = |d: f64| d - length * (d / length).round();
     for k in 0..m {
-        let [a, b] = [s.pair[k][0] as usize, s.pair[k][1] as usize];
-        let [nx, ny] = s.normal[k];
-        let (fn_, ft) = (s.normal_force_n[k], s.tangential_force_n[k]);
-        let on_b = [nx * fn_ - ny * ft, ny * fn_ + nx * ft];
-        let pt = s.point[k];
-        for (i, f) in [(a, [-on_b[0], -on_b[1]]), (b, on_b)] {
-            if s.prescribed[i] {
-                continue;
-            }
-            let arm = [wrap(pt[0] - s.position[i][0]), pt[1] - s.position[i][1]];
-            contact[0] += f[0] * arm[0];
-            contact[1] += f[0] * arm[1];
-            contact[2] += f[1] * arm[0];
-            contact[3] += f[1] * arm[1];
-        }
+        let [a, b] = c.pair[k].map(|i| i as usize);
+        let on_b = c.force_on_b(k);
+        let pt = c.point[k];
         let wall = match (s.prescribed[a], s.prescribed[b]) {
             (true, false) => Some((a, [-on_b[0], -on_b[1]])),
             (false, true) => Some((b, on_b)),
@@ -210,8 +190,14 @@ pub fn cell_sample(s: &CellSnapshot) -> Result<CellSample, AnalysisError> {
         ));
     }
     let layer = length * h;
-    for c in &mut contact {
-        *c /= layer;
+    // The free floes' Love-Weber moments over the layer (a wall's side of
+    // a contact is not the ice's).
+    let moments = stress_moments(s.position, c, [Some(length), None]);
+    let mut contact = [0.0f64; 4];
+    for &i in &free {
+        for (sum, v) in contact.iter_mut().zip(moments[i]) {
+            *sum += v / layer;
+        }
     }
 
     // Velocity profile: area-weighted linear fit of v_x against y.

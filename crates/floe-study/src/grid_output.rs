@@ -10,6 +10,7 @@
 use std::path::{Path, PathBuf};
 
 use floe_analysis::grid_fields::{grid_fields, FloeSnapshot, Grid};
+use floe_analysis::love_weber::{stress_moments, ContactForces};
 use floe_io::RunFile;
 use netcdf3::{DataSet, FileWriter, Version, NC_FILL_F64};
 
@@ -135,14 +136,11 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
         cell_m: [size[0] / shape[0] as f64, size[1] / shape[1] as f64],
         shape,
     };
-    let snapshots = run.snapshot_count()?;
-    let times: Vec<f64> = (0..snapshots)
-        .map(|k| run.snapshot(k).map(|s| s.time_s))
-        .collect::<Result<_, _>>()?;
+    let times = run.snapshot_times()?;
 
     let mut data = DataSet::new();
     let nc = |e: netcdf3::InvalidDataSet| Error::Usage(format!("{}: {e:?}", args.output.display()));
-    data.set_unlimited_dim("time", snapshots).map_err(nc)?;
+    data.set_unlimited_dim("time", times.len()).map_err(nc)?;
     data.add_fixed_dim("y", shape[1]).map_err(nc)?;
     data.add_fixed_dim("x", shape[0]).map_err(nc)?;
     for (name, text) in [
@@ -246,31 +244,18 @@ fn snapshot_fields(
     let snap = run.snapshot(k)?;
     let contacts = run.contacts(k)?;
     let n = floes.len();
-    // Each free floe's Love-Weber moment sum f (x) (x_c - x).
-    let mut moment = vec![[0.0; 4]; n];
-    let wrap = |d: f64, axis: usize| {
-        if periodic[axis] {
-            d - period[axis] * (d / period[axis]).round()
-        } else {
-            d
-        }
-    };
-    for c in 0..contacts.pair.len() {
-        let [a, b] = contacts.pair[c].map(|i| i as usize);
-        let [nx, ny] = contacts.normal[c];
-        let (fnorm, ft) = (contacts.normal_force_n[c], contacts.tangential_force_n[c]);
-        let on_b = [nx * fnorm - ny * ft, ny * fnorm + nx * ft];
-        for (i, f) in [(a, [-on_b[0], -on_b[1]]), (b, on_b)] {
-            let arm = [
-                wrap(contacts.point[c][0] - snap.position[i][0], 0),
-                wrap(contacts.point[c][1] - snap.position[i][1], 1),
-            ];
-            moment[i][0] += f[0] * arm[0];
-            moment[i][1] += f[0] * arm[1];
-            moment[i][2] += f[1] * arm[0];
-            moment[i][3] += f[1] * arm[1];
-        }
-    }
+    // Each floe's Love-Weber moment sum f (x) (x_c - x).
+    let moment = stress_moments(
+        &snap.position,
+        &ContactForces {
+            pair: &contacts.pair,
+            point: &contacts.point,
+            normal: &contacts.normal,
+            normal_force_n: &contacts.normal_force_n,
+            tangential_force_n: &contacts.tangential_force_n,
+        },
+        [0, 1].map(|a| periodic[a].then_some(period[a])),
+    );
     // Free floes, with their periodic images where they cross an edge.
     let (mut vertices, mut position, mut velocity, mut spin, mut thickness, mut moments) = (
         Vec::new(),

@@ -8,7 +8,9 @@ use std::sync::Mutex;
 use floe_dem::run::{Progress, Silent};
 
 use crate::error::Error;
-use crate::run_file::{run, RunArgs, RunHooks};
+use floe_friction::LawRegistry;
+
+use crate::run_file::{run, Provenance, RunArgs, RunHooks};
 
 /// The caller's hooks without progress reports: runs go side by side.
 struct WithoutProgress<'a>(&'a dyn RunHooks);
@@ -25,14 +27,26 @@ impl RunHooks for WithoutProgress<'_> {
     }
 }
 
-/// Runs each `(scenario, output)` of `jobs` with the settings of `common`
-/// (its scenario, output and threads are replaced), `budget` threads in
-/// all; `tag` starts each line said. Returns the scenario file names of
-/// the runs that failed; an interrupt leaves the rest unstarted.
+/// What the runs of a batch share.
+pub(crate) struct Batch<'a> {
+    /// Replace existing outputs.
+    pub force: bool,
+    /// Most time steps a run may take.
+    pub step_limit: f64,
+    /// Who runs them.
+    pub provenance: &'a Provenance,
+    /// The friction laws the scenarios may name.
+    pub laws: &'a LawRegistry,
+}
+
+/// Runs each fresh `(scenario, output)` of `jobs` with the settings of
+/// `batch`, `budget` threads in all; `tag` starts each line said. Returns
+/// the scenario file names of the runs that failed; an interrupt leaves the
+/// rest unstarted.
 pub(crate) fn run_side_by_side(
     jobs: &[(PathBuf, PathBuf)],
     budget: usize,
-    common: &RunArgs,
+    batch: &Batch,
     tag: &str,
     hooks: &dyn RunHooks,
 ) -> Vec<String> {
@@ -55,7 +69,12 @@ pub(crate) fn run_side_by_side(
                         scenario: Some(scenario.clone()),
                         output: output.clone(),
                         threads: Some(per_job),
-                        ..common.clone()
+                        force: batch.force,
+                        resume: false,
+                        max_steps: None,
+                        step_limit: batch.step_limit,
+                        provenance: batch.provenance.clone(),
+                        laws: batch.laws.clone(),
                     },
                     &WithoutProgress(hooks),
                 );

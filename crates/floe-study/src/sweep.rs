@@ -19,8 +19,8 @@ use floe_friction::LawRegistry;
 use floe_scenario::settings::{apply, cartesian, label, Setting};
 use floe_scenario::Scenario;
 
-use crate::run_file::{thread_count, Provenance, RunArgs, RunHooks};
-use crate::side_by_side::run_side_by_side;
+use crate::run_file::{thread_count, Provenance, RunHooks};
+use crate::side_by_side::{run_side_by_side, Batch};
 
 /// What `floe sweep` was asked to do.
 #[derive(Debug, Clone)]
@@ -122,16 +122,11 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     let failed = run_side_by_side(
         &jobs,
         budget,
-        &RunArgs {
-            scenario: None,
-            output: PathBuf::new(),
-            threads: None,
+        &Batch {
             force: args.force,
-            resume: false,
-            max_steps: None,
             step_limit: args.step_limit,
-            provenance: args.provenance.clone(),
-            laws: args.laws.clone(),
+            provenance: &args.provenance,
+            laws: &args.laws,
         },
         "sweep",
         hooks,

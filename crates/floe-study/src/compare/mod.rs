@@ -45,6 +45,21 @@ pub struct CompareArgs {
     pub step_limit: f64,
 }
 
+/// The rate-and-state law the variants of `text` are matched to, and the
+/// scenario text that builds it ([`reference_law`], built with `registry`).
+pub(crate) fn reference_of(
+    text: &str,
+    origin: &std::path::Path,
+    registry: &LawRegistry,
+) -> Result<(floe_friction::Law, String), Error> {
+    Ok(reference_law(text, origin, |t| {
+        Ok(Scenario::from_text_with(t, origin, registry)?
+            .contact_model()
+            .law
+            .clone())
+    })?)
+}
+
 /// Runs the variants and writes the report; returns the report's path.
 /// `hooks` hear what each run says and may interrupt it.
 pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
@@ -62,12 +77,7 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
     Scenario::from_text_with(&text, origin, &args.registry)?
         .with_max_steps(args.step_limit)
         .build()?;
-    let (reference, reference_text) = reference_law(&text, origin, |t| {
-        Ok(Scenario::from_text_with(t, origin, &args.registry)?
-            .contact_model()
-            .law
-            .clone())
-    })?;
+    let (reference, reference_text) = reference_of(&text, origin, &args.registry)?;
     let report_path = args.out_dir.join("report.md");
     let mut targets = vec![report_path.clone()];
     for law in &args.laws {

@@ -1,5 +1,7 @@
 //! Per-floe fields for maps, from one snapshot's floes and contacts.
 
+use floe_analysis::love_weber::{stress_moments, ContactForces};
+
 /// One snapshot's contacts, as stored in the output file.
 #[derive(Debug, Clone, Copy)]
 pub struct ContactView<'a> {
@@ -43,33 +45,23 @@ pub fn pressure(
     contacts: &ContactView,
     period: [Option<f64>; 2],
 ) -> Vec<Option<f64>> {
-    let n = position.len();
-    let mut trace = vec![(0.0, false); n];
-    let nearest = |mut d: f64, axis: usize| {
-        if let Some(p) = period[axis] {
-            d -= p * (d / p).round();
-        }
-        d
+    let forces = ContactForces {
+        pair: contacts.pair,
+        point: contacts.point,
+        normal: contacts.normal,
+        normal_force_n: contacts.normal_force_n,
+        tangential_force_n: contacts.tangential_force_n,
     };
-    for k in 0..contacts.pair.len() {
-        let [a, b] = contacts.pair[k];
-        let nrm = contacts.normal[k];
-        let (fn_, ft) = (contacts.normal_force_n[k], contacts.tangential_force_n[k]);
-        // Force on b: normal along n, tangential along perp(n) = (-n_y, n_x).
-        let f_b = [nrm[0] * fn_ - nrm[1] * ft, nrm[1] * fn_ + nrm[0] * ft];
-        for (i, sign) in [(a as usize, -1.0), (b as usize, 1.0)] {
-            let r = [
-                nearest(contacts.point[k][0] - position[i][0], 0),
-                nearest(contacts.point[k][1] - position[i][1], 1),
-            ];
-            trace[i].0 += sign * (r[0] * f_b[0] + r[1] * f_b[1]);
-            trace[i].1 = true;
-        }
+    let moments = stress_moments(position, &forces, period);
+    let mut touched = vec![false; position.len()];
+    for &i in contacts.pair.iter().flatten() {
+        touched[i as usize] = true;
     }
-    trace
-        .into_iter()
+    moments
+        .iter()
         .zip(area_m2)
-        .map(|((t, touched), &area)| touched.then(|| -0.5 * t / area))
+        .zip(touched)
+        .map(|((m, &area), touched)| touched.then(|| -0.5 * (m[0] + m[3]) / area))
         .collect()
 }
 

@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use floe_analysis::love_weber::ContactForces;
 use floe_analysis::rheology::{
     cell_sample, inertial_number, CellSample, CellSnapshot, NOT_TOUCHING,
 };
@@ -39,11 +40,13 @@ pub fn cell_samples(path: &Path) -> Result<Vec<(f64, Option<CellSample>)>, Error
             mass_kg: &floes.mass_kg,
             prescribed: &floes.prescribed,
             vertices: &vertices,
-            pair: &contacts.pair,
-            point: &contacts.point,
-            normal: &contacts.normal,
-            normal_force_n: &contacts.normal_force_n,
-            tangential_force_n: &contacts.tangential_force_n,
+            contacts: ContactForces {
+                pair: &contacts.pair,
+                point: &contacts.point,
+                normal: &contacts.normal,
+                normal_force_n: &contacts.normal_force_n,
+                tangential_force_n: &contacts.tangential_force_n,
+            },
         };
         let sample = match cell_sample(&cell) {
             Ok(sample) => Some(sample),

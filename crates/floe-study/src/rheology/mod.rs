@@ -13,14 +13,16 @@ use std::path::{Path, PathBuf};
 
 use floe_analysis::rheology::fit_mu_of_i;
 use floe_friction::LawRegistry;
-use floe_scenario::law_variants::{reference_law, variant, LawChoice, Matching};
+use floe_scenario::law_variants::{variant, LawChoice, Matching};
+
+use crate::compare::reference_of;
 use floe_scenario::settings::{apply, find_table, Setting};
 use floe_scenario::Scenario;
 
 use crate::error::Error;
-use crate::run_file::{thread_count, Provenance, RunArgs, RunHooks};
+use crate::run_file::{thread_count, Provenance, RunHooks};
 use crate::same_file::refuse_overwriting_input;
-use crate::side_by_side::run_side_by_side;
+use crate::side_by_side::{run_side_by_side, Batch};
 use measure::{cell_samples, steady, SteadyCell};
 
 /// What `floe rheology` was asked to do.
@@ -107,12 +109,7 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
             "no wall holds a normal stress (normal_stress_n_per_m)",
         ));
     }
-    let (reference, reference_text) = reference_law(&text, origin, |t| {
-        Ok(Scenario::from_text_with(t, origin, &args.registry)?
-            .contact_model()
-            .law
-            .clone())
-    })?;
+    let (reference, reference_text) = reference_of(&text, origin, &args.registry)?;
 
     // Every variant is made and built before anything is written.
     let height = domain.size_m.y;
@@ -194,16 +191,11 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
     let failed = run_side_by_side(
         &jobs,
         budget,
-        &RunArgs {
-            scenario: None,
-            output: PathBuf::new(),
-            threads: None,
+        &Batch {
             force: args.force,
-            resume: false,
-            max_steps: None,
             step_limit: args.step_limit,
-            provenance: args.provenance.clone(),
-            laws: args.registry.clone(),
+            provenance: &args.provenance,
+            laws: &args.registry,
         },
         "rheology",
         hooks,
