@@ -7,7 +7,7 @@ DEMO  := out/demo
 
 .PHONY: demo slider-demo test deps check-tools system-deps python-deps validation bench clean
 
-## Tools and system packages: Rust's tools, HDF5 and pkg-config (apt-installed
+## Tools and system packages: Rust's tools, HDF5, NetCDF-C and pkg-config (apt-installed
 ## when missing), and optionally h5py for the Python example of docs/output.md.
 deps: check-tools system-deps python-deps
 
@@ -30,8 +30,11 @@ system-deps:
 	     && ! pkg-config --exists hdf5-serial 2>/dev/null; then \
 	    missing="$$missing libhdf5-dev"; \
 	  fi; \
+	  if ! dpkg -s libnetcdf-dev >/dev/null 2>&1 && ! pkg-config --exists netcdf 2>/dev/null; then \
+	    missing="$$missing libnetcdf-dev"; \
+	  fi; \
 	  if [ -n "$$missing" ]; then \
-	    command -v apt-get >/dev/null 2>&1 || { echo "error: missing$$missing and no apt-get: install HDF5 >= 1.10.7 and pkg-config, or set HDF5_DIR (see README.md)" >&2; exit 1; }; \
+	    command -v apt-get >/dev/null 2>&1 || { echo "error: missing$$missing and no apt-get: install HDF5 >= 1.10.7, NetCDF-C >= 4.7 and pkg-config, or set HDF5_DIR and NETCDF_DIR (see README.md)" >&2; exit 1; }; \
 	    sudo=""; [ "$$(id -u)" = 0 ] || sudo="sudo"; \
 	    echo "installing$$missing"; \
 	    $$sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq $$missing; \

@@ -1,0 +1,14 @@
+//! # floe-basin
+//!
+//! What a run over a real basin needs beyond the engine: forcing read from
+//! gridded CF NetCDF files (wind, ocean current, sea-surface height),
+//! coastlines and islands from GeoJSON as fixed bodies, initial ice placed
+//! from concentration and thickness grids, and the map projection that
+//! puts longitude and latitude onto the model plane.
+#![deny(missing_docs)]
+
+pub mod error;
+pub mod projection;
+
+pub use error::BasinError;
+pub use projection::MapProjection;
