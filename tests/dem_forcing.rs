@@ -277,6 +277,7 @@ fn free_drift_general_case_matches_integration() {
         coriolis: Coriolis::ParameterPerS(1.4e-4),
         sea_surface_tilt: false,
         rotational_drag: true,
+        sea_surface_height: None,
     };
     let thickness = 1.5;
     let steady = forcing
@@ -866,6 +867,7 @@ fn everything() -> Forcing {
         coriolis: Coriolis::LatitudeDeg(75.0),
         sea_surface_tilt: false,
         rotational_drag: true,
+        sea_surface_height: None,
     }
 }
 

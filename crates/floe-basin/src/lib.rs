@@ -12,3 +12,9 @@ pub mod projection;
 
 pub use error::BasinError;
 pub use projection::MapProjection;
+pub mod cf_file;
+pub mod cf_time;
+pub mod checksum;
+pub mod netcdf_source;
+
+pub use netcdf_source::{FieldRequest, NetcdfSource};

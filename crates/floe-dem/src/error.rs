@@ -85,4 +85,8 @@ pub enum DemError {
         /// What is wrong.
         reason: String,
     },
+    /// The forcing cannot be evaluated (a gridded field's time, grid or
+    /// values; the message names the file).
+    #[error("{0}")]
+    Forcing(#[from] crate::forcing::ForcingFailure),
 }

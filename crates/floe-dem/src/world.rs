@@ -56,7 +56,7 @@ use crate::contacts::{BrokenContact, ContactRecord};
 use crate::energy_ledger::EnergyLedger;
 use crate::error::DemError;
 use crate::floes::{Floe, Floes, Motion};
-use crate::forcing::{ExternalForces, ForceRates};
+use crate::forcing::{ExternalForces, ForceRates, ForcingFailure};
 use crate::load_point::LoadPoint;
 use crate::motion_schedule::{MotionSchedule, ScheduledMotion};
 use crate::periodicity::Periodicity;
@@ -82,6 +82,8 @@ pub struct World<F: ExternalForces> {
     damping_ratio: f64,
     forcing: F,
     periodicity: Periodicity,
+    /// The first failure of the forcing's per-step preparation.
+    forcing_failure: Option<ForcingFailure>,
 }
 
 /// A record of the state keyed by a pair of floe handles `(a, b)`, `a < b`.
@@ -194,7 +196,10 @@ impl<F: ExternalForces> World<F> {
         world.pipeline.next = Stage::GatherForces;
         world.gather_forces();
         world.pipeline.next = Stage::Drift;
-        Ok(world)
+        match world.forcing_failure.take() {
+            Some(failure) => Err(failure.into()),
+            None => Ok(world),
+        }
     }
 
     /// A world continuing from a saved [`WorldState`]: the next step is
@@ -256,6 +261,7 @@ impl<F: ExternalForces> World<F> {
             model,
             forcing,
             periodicity,
+            forcing_failure: None,
         })
     }
 
@@ -308,6 +314,13 @@ impl<F: ExternalForces> World<F> {
     /// The external forcing.
     pub fn forcing(&self) -> &F {
         &self.forcing
+    }
+
+    /// Why the forcing could not be prepared for a step (a gridded field's
+    /// time or grid), if it failed since the world was made: the steps
+    /// since then used the slices it held and should be discarded.
+    pub fn forcing_failure(&self) -> Option<&ForcingFailure> {
+        self.forcing_failure.as_ref()
     }
 
     /// The external forcing, to change between stages (it holds no state
@@ -420,6 +433,10 @@ impl<F: ExternalForces> World<F> {
         let p = &mut self.pipeline;
         let (floes, contacts) = (&s.floes, &s.contacts);
         let accounting = &mut p.accounting;
+        if let Err(failure) = self.forcing.prepare(s.time_s, floes) {
+            // The step goes on with the slices held; the run loop stops on it.
+            self.forcing_failure.get_or_insert(failure);
+        }
         p.rates.resize(floes.len(), ForceRates::ZERO);
         let out = ForceBuffers {
             force: &mut s.force,

@@ -57,6 +57,7 @@ pub(crate) fn describe_forcing(fo: &Forcing) -> String {
         V::LinearShear { .. } => "linear shear".to_string(),
         V::Gyre { .. } => "gyre".to_string(),
         V::Scaled { .. } => "scaled by an envelope".to_string(),
+        V::Gridded(g) => format!("gridded ({}, {} times)", g.describe(), g.times_s().len()),
     };
     let f = fo.coriolis.parameter_per_s();
     format!(

@@ -63,6 +63,17 @@ pub enum Error {
         /// What happened, where, and the suggested time step.
         message: String,
     },
+    /// The gridded forcing does not fit the run (its times end, a floe
+    /// left its grid or reached missing values): an input problem.
+    #[error("{message}; the run stopped after step {step} of {}, whose checkpoint holds the last good state", output.display())]
+    Forcing {
+        /// The run's output file.
+        output: PathBuf,
+        /// The last step written.
+        step: u64,
+        /// What went wrong, naming the file.
+        message: String,
+    },
     /// Some variants of a sweep did not complete (each row says why).
     #[error("{failed} of {total} variants did not complete ({names}); their rows in {} say why", table.display())]
     VariantsFailed {
@@ -83,7 +94,7 @@ impl Error {
     pub fn exit_code(&self) -> u8 {
         match self {
             Error::Scenario(e) if e.is_input() => 2,
-            Error::Usage(_) | Error::WouldOverwrite(_) => 2,
+            Error::Usage(_) | Error::WouldOverwrite(_) | Error::Forcing { .. } => 2,
             // A run file that is not there, or not a floe run file: bad input.
             Error::Output(
                 floe_io::IoError::NotFound { .. }

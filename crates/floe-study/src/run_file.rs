@@ -311,6 +311,15 @@ fn advance(
             writer.flush()?;
             Ok(summary)
         }
+        Ending::ForcingFailed { step, message } => {
+            writer.set_status(&format!("stopped after step {step}: {message}"))?;
+            writer.flush()?;
+            Err(Error::Forcing {
+                output: args.output.clone(),
+                step,
+                message,
+            })
+        }
         Ending::BlewUp(blow_up) => {
             writer.set_status(&format!("stopped: {blow_up}"))?;
             writer.flush()?;

@@ -2,6 +2,7 @@
 //! floe at each step, from wind, ocean, Coriolis or anything else.
 
 use crate::floes::FloeColumns;
+use crate::forcing::gridded::ForcingFailure;
 use crate::forcing::{FloeDynamics, Forcing};
 use crate::Vec2;
 
@@ -28,6 +29,18 @@ impl ForceRates {
 /// Forces on floes from outside the floe assembly (wind, ocean, Coriolis).
 /// Called for every free floe once per step, from several threads.
 pub trait ExternalForces: Sync {
+    /// Called once before the forces of each step are gathered, at the
+    /// time they are evaluated, from one thread: a forcing read from files
+    /// loads the time slices it needs here and checks the floes are on its
+    /// grid. The default does nothing.
+    ///
+    /// # Errors
+    /// Why the forcing cannot be evaluated (the world records the first
+    /// failure; the run loop stops on it).
+    fn prepare(&mut self, _t_s: f64, _floes: &FloeColumns) -> Result<(), ForcingFailure> {
+        Ok(())
+    }
+
     /// Force (N) and torque (N m) on floe `i` at time `t_s`.
     fn force_and_torque(&self, t_s: f64, floes: &FloeColumns, i: usize) -> (Vec2, f64);
 
@@ -57,6 +70,10 @@ impl ExternalForces for NoForcing {
 }
 
 impl ExternalForces for Forcing {
+    fn prepare(&mut self, t_s: f64, floes: &FloeColumns) -> Result<(), ForcingFailure> {
+        Forcing::prepare(self, t_s, floes)
+    }
+
     fn force_and_torque(&self, t_s: f64, floes: &FloeColumns, i: usize) -> (Vec2, f64) {
         Forcing::force_and_torque(self, t_s, &dynamics(floes, i))
     }

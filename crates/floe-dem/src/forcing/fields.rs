@@ -8,6 +8,7 @@
 //! | [`LinearShear`](VelocityField::LinearShear) | `U_min + s (U_max − U_min)`, `s = clamp((y − y_min)/(y_max − y_min), 0, 1)` | `−(U_max,x − U_min,x)/(y_max − y_min)` inside the channel, 0 outside |
 //! | [`Gyre`](VelocityField::Gyre) | Rankine vortex: `V r/R` inside the core `r ≤ R`, `V R/r` outside, along `k × r̂` | `2V/R` inside, 0 outside |
 //! | [`Scaled`](VelocityField::Scaled) | `a(t) U_inner(x, t)`, `a(t)` a piecewise-linear [`Envelope`] | `a(t) ζ_inner` |
+//! | [`Gridded`](VelocityField::Gridded) | bilinear in space on a grid, linear in time between slices ([`GriddedField`]) | of the bilinear interpolant |
 //!
 //! The Rankine vortex rotates as a solid body (angular velocity `V/R`) inside
 //! its core and is irrotational outside, where the speed decays as `1/r`
@@ -23,6 +24,8 @@
 //! (an empty time series is zero, extra samples of the longer of `times_s`
 //! and `values` are ignored), but the values are then not meaningful.
 
+use crate::floes::FloeColumns;
+use crate::forcing::gridded::{ForcingFailure, GriddedField};
 use crate::{DemError, Vec2};
 
 /// A prescribed 2-D velocity field, m/s, of position (m) and time (s).
@@ -70,6 +73,9 @@ pub enum VelocityField {
         /// The dimensionless factor `a(t)`.
         envelope: Envelope,
     },
+    /// Given on a grid at a sequence of times (a NetCDF file): see
+    /// [`GriddedField`]. Needs [`VelocityField::prepare`] each step.
+    Gridded(GriddedField),
 }
 
 impl Default for VelocityField {
@@ -268,6 +274,20 @@ impl VelocityField {
             VelocityField::Scaled { field, envelope } => {
                 envelope.factor(t_s) * field.velocity(position_m, t_s)
             }
+            VelocityField::Gridded(g) => g.vector(position_m, t_s),
+        }
+    }
+
+    /// Makes a gridded field ready for `t_s` and checks the free floes lie
+    /// on its grid ([`GriddedField::prepare`]); nothing for the others.
+    ///
+    /// # Errors
+    /// As [`GriddedField::prepare`].
+    pub fn prepare(&mut self, t_s: f64, floes: &FloeColumns) -> Result<(), ForcingFailure> {
+        match self {
+            VelocityField::Gridded(g) => g.prepare(t_s, floes),
+            VelocityField::Scaled { field, .. } => field.prepare(t_s, floes),
+            _ => Ok(()),
         }
     }
 
@@ -308,6 +328,7 @@ impl VelocityField {
             VelocityField::Scaled { field, envelope } => {
                 envelope.factor(t_s) * field.vorticity(position_m, t_s)
             }
+            VelocityField::Gridded(g) => g.vorticity(position_m, t_s),
         }
     }
 
@@ -377,6 +398,8 @@ impl VelocityField {
                 envelope.validate()?;
                 field.validate()
             }
+            // Checked when built (GriddedField::new).
+            VelocityField::Gridded(_) => Ok(()),
         }
     }
 }

@@ -52,6 +52,7 @@ pub mod drag;
 pub mod external;
 pub mod fields;
 pub mod free_drift;
+pub mod gridded;
 
 pub use coriolis::{
     coriolis_force, sea_surface_tilt_force, Coriolis, EARTH_ROTATION_RATE_RAD_PER_S,
@@ -63,8 +64,13 @@ pub use drag::{
 pub use external::{ExternalForces, ForceRates, NoForcing};
 pub use fields::{Envelope, VelocityField};
 pub use free_drift::free_drift_velocity;
+pub use gridded::{ForcingFailure, GriddedField, PlaneGrid, SliceSource};
 
+use crate::floes::FloeColumns;
 use crate::{DemError, Vec2};
+
+/// Standard gravity, m/s², for the sea-surface tilt from a height field.
+pub const GRAVITY_M_PER_S2: f64 = 9.80665;
 
 /// Wind and ocean forcing of every floe. Scenario files describe it in
 /// their `[wind]`, `[ocean]` and `[coriolis]` tables (floe-scenario reads
@@ -87,6 +93,10 @@ pub struct Forcing {
     pub sea_surface_tilt: bool,
     /// Add the drag torque on floe rotation (media with drag relative to the ice).
     pub rotational_drag: bool,
+    /// Sea-surface height `η` (m) on a grid: when given, the tilt force is
+    /// `−m g ∇η` from it (with `sea_surface_tilt`), in place of the
+    /// geostrophic `m f k × U_w`.
+    pub sea_surface_height: Option<GriddedField>,
 }
 
 impl Default for Forcing {
@@ -102,6 +112,7 @@ impl Default for Forcing {
             coriolis: Coriolis::Off,
             sea_surface_tilt: true,
             rotational_drag: true,
+            sea_surface_height: None,
         }
     }
 }
@@ -159,9 +170,13 @@ impl Forcing {
             let mf = floe.mass_kg * f;
             rates.force_per_velocity[0][1] += mf;
             rates.force_per_velocity[1][0] -= mf;
-            if self.sea_surface_tilt {
+            if self.sea_surface_tilt && self.sea_surface_height.is_none() {
                 force += sea_surface_tilt_force(floe.mass_kg, f, current);
             }
+        }
+        if let (true, Some(eta)) = (self.sea_surface_tilt, &self.sea_surface_height) {
+            let (_, slope) = eta.value_and_gradient(0, floe.position, t_s);
+            force -= floe.mass_kg * GRAVITY_M_PER_S2 * slope;
         }
         let mut torque = 0.0;
         if self.rotational_drag {
@@ -199,6 +214,20 @@ impl Forcing {
             mass_per_area_kg_per_m2,
             self.sea_surface_tilt,
         )
+    }
+
+    /// Makes the gridded fields (wind, current, sea-surface height) ready
+    /// for `t_s` ([`GriddedField::prepare`]).
+    ///
+    /// # Errors
+    /// As [`GriddedField::prepare`].
+    pub fn prepare(&mut self, t_s: f64, floes: &FloeColumns) -> Result<(), ForcingFailure> {
+        self.wind.prepare(t_s, floes)?;
+        self.current.prepare(t_s, floes)?;
+        match &mut self.sea_surface_height {
+            Some(eta) => eta.prepare(t_s, floes),
+            None => Ok(()),
+        }
     }
 
     /// Checks every part: fields, drag parameters, Coriolis.

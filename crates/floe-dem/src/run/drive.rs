@@ -47,6 +47,15 @@ pub enum Ending {
     /// The state went bad; a last snapshot was written, the last checkpoint
     /// is the last good state.
     BlewUp(BlowUp),
+    /// The forcing could not be evaluated for the step after `step` (a
+    /// gridded field's time, grid or missing values): nothing of that step
+    /// was written; the last checkpoint is the last good state.
+    ForcingFailed {
+        /// The last step written.
+        step: u64,
+        /// What went wrong, naming the file.
+        message: String,
+    },
     /// The step budget of this invocation was used up before the end; a
     /// checkpoint (and a snapshot) was written as for an interrupt.
     Paused {
@@ -116,7 +125,15 @@ pub fn drive<F: ExternalForces, O: RunObserver<F>>(
 ) -> Result<Ending, O::Error> {
     let mut next = NextDue::after(cadence, world.steps());
     while world.steps() < total_steps {
+        let before = world.steps();
         world.step();
+        if let Some(failure) = world.forcing_failure() {
+            progress.finish();
+            return Ok(Ending::ForcingFailed {
+                step: before,
+                message: failure.to_string(),
+            });
+        }
         progress.update(world.steps(), total_steps, world.time_s());
         if let Some(blow_up) = check_health(world) {
             // The bad state is shown (it is what one needs to see), but the
