@@ -137,6 +137,9 @@ impl CfFile {
                 why: "no such file".to_string(),
             });
         }
+        // NetCDF-4 files are HDF5: the library's own failed probes (an
+        // attribute that is not there) must not print HDF5 diagnostics.
+        hdf5::silence_errors(true);
         let file = netcdf::open(path).map_err(|e| BasinError::File {
             path: path.to_path_buf(),
             why: format!("not a NetCDF file that can be read ({e})"),

@@ -11,7 +11,7 @@ use crate::checkpoint_blob::{self, OutputCounts};
 use crate::error::{invalid, Context, IoError};
 use crate::h5;
 use crate::layout;
-use crate::metadata::{CheckpointInfo, DomainBox, RunMetadata};
+use crate::metadata::{CheckpointInfo, DomainBox, InputRecord, RunMetadata};
 
 /// The floes' fixed properties (owned floes, in file order).
 #[derive(Debug, Clone, PartialEq)]
@@ -253,6 +253,7 @@ impl RunFile {
                     size_m: two("size")?,
                     periodic: [periodic[0] != 0, periodic[1] != 0],
                 },
+                inputs: read_inputs(&g)?,
             })
         })()
         .at(path, || "reading /parameters".into())
@@ -514,4 +515,26 @@ pub(crate) fn read_checkpoint(
         )));
     }
     Ok(Some((slot, state, counts)))
+}
+
+/// `/parameters` `input_roles`, `input_paths`, `input_sha256` (absent in
+/// runs without input files).
+fn read_inputs(g: &hdf5::Group) -> hdf5::Result<Vec<InputRecord>> {
+    if !g.attr_names()?.iter().any(|n| n == "input_paths") {
+        return Ok(Vec::new());
+    }
+    let (roles, paths, sums) = (
+        h5::read_strs(g, "input_roles")?,
+        h5::read_strs(g, "input_paths")?,
+        h5::read_strs(g, "input_sha256")?,
+    );
+    if roles.len() != paths.len() || sums.len() != paths.len() {
+        return Err("input_roles, input_paths and input_sha256 differ in length".into());
+    }
+    Ok(roles
+        .into_iter()
+        .zip(paths)
+        .zip(sums)
+        .map(|((role, path), sha256)| InputRecord { role, path, sha256 })
+        .collect())
 }

@@ -18,7 +18,7 @@ use crate::error::{invalid, Context, IoError};
 use crate::h5;
 use crate::headroom::Headroom;
 use crate::layout;
-use crate::metadata::{CheckpointInfo, OutputOptions, RunMetadata};
+use crate::metadata::{CheckpointInfo, InputRecord, OutputOptions, RunMetadata};
 use crate::reader;
 
 /// A time-dependent H5MD element: `step`, `time` and `value` grown together.
@@ -247,6 +247,13 @@ impl RunWriter {
             h5::write_scalar(&g, "threads", meta.threads as u64)?;
             h5::write_str(&g, "author", &meta.author)?;
             h5::write_str(&g, "status", "created")?;
+            if !meta.inputs.is_empty() {
+                let col =
+                    |f: fn(&InputRecord) -> &str| meta.inputs.iter().map(f).collect::<Vec<_>>();
+                h5::write_strs(&g, "input_roles", &col(|r| &r.role))?;
+                h5::write_strs(&g, "input_paths", &col(|r| &r.path))?;
+                h5::write_strs(&g, "input_sha256", &col(|r| &r.sha256))?;
+            }
             let d = g.create_group("domain")?;
             h5::write_array(&d, "min", &meta.domain.min_m)?;
             h5::write_array(&d, "size", &meta.domain.size_m)?;

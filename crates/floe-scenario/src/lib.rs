@@ -13,7 +13,8 @@
 //! * edits of scenario text that keep it a valid file: `--set` settings
 //!   ([`settings`]) and law variants for comparisons ([`law_variants`]).
 //!
-//! Depends on the engine and the friction laws only: no command-line,
+//! Depends on the engine, the friction laws and floe-basin (NetCDF and
+//! GeoJSON inputs) only: no command-line,
 //! plotting or terminal crates. Nothing here panics on input.
 #![deny(missing_docs)]
 
@@ -25,6 +26,8 @@ pub mod domain;
 pub mod error;
 pub mod exact;
 mod extent;
+pub mod gridded_inputs;
+pub mod input_paths;
 pub mod law_table;
 pub mod law_variants;
 mod motion_segments;
@@ -39,6 +42,7 @@ pub mod spec;
 
 pub use domain::Domain;
 pub use error::ScenarioError;
+pub use gridded_inputs::InputFile;
 pub use output_cadence::{OutputCadence, OutputWindow};
 pub use resolve::{
     AUTO_DT_FRACTION, DEFAULT_ICE_DENSITY_KG_PER_M3, DEFAULT_MIN_AREA_FRACTION,

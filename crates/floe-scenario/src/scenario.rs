@@ -10,6 +10,7 @@ use floe_dem::load_point::LoadPoint;
 use floe_dem::periodicity::Periodicity;
 use floe_dem::stress_control::StressControl;
 use floe_dem::world::World;
+use floe_dem::DemError;
 
 use floe_friction::LawRegistry;
 
@@ -18,6 +19,7 @@ use crate::checks;
 use crate::describe::{describe_contact, describe_forcing, describe_thickness};
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
+use crate::gridded_inputs::InputFile;
 use crate::numbers::{sig, thousands};
 pub use crate::output_cadence::{OutputCadence, OutputWindow};
 use crate::resolve::MAX_RUN_STEPS;
@@ -67,7 +69,7 @@ impl Scenario {
     /// outside floe-friction).
     pub fn load_with(path: &Path, registry: &LawRegistry) -> Result<Scenario, ScenarioError> {
         let source = SourceFile::read(path)?;
-        let resolved = resolve::resolve(&source, registry)?;
+        let resolved = resolve::resolve(&source, registry, &directory_of(path))?;
         Ok(Scenario {
             source,
             resolved,
@@ -75,7 +77,9 @@ impl Scenario {
         })
     }
 
-    /// Parses and checks scenario text; `origin` names it in error messages.
+    /// Parses and checks scenario text; `origin` names it in error messages,
+    /// and relative input files (forcing, coastlines) are found from its
+    /// directory.
     pub fn from_text(text: &str, origin: &Path) -> Result<Scenario, ScenarioError> {
         Self::from_text_with(text, origin, &LawRegistry::builtin())
     }
@@ -86,11 +90,23 @@ impl Scenario {
         origin: &Path,
         registry: &LawRegistry,
     ) -> Result<Scenario, ScenarioError> {
+        Self::from_text_in(text, origin, &directory_of(origin), registry)
+    }
+
+    /// [`Scenario::from_text_with`] with relative input files found from
+    /// `base_dir` (a scenario stored in a run file, whose `origin` is not a
+    /// path).
+    pub fn from_text_in(
+        text: &str,
+        origin: &Path,
+        base_dir: &Path,
+        registry: &LawRegistry,
+    ) -> Result<Scenario, ScenarioError> {
         let source = SourceFile {
             path: origin.to_path_buf(),
             text: text.to_string(),
         };
-        let resolved = resolve::resolve(&source, registry)?;
+        let resolved = resolve::resolve(&source, registry, base_dir)?;
         Ok(Scenario {
             source,
             resolved,
@@ -170,6 +186,22 @@ impl Scenario {
         &self.resolved.forcing
     }
 
+    /// The `[map] projection` (the model plane of longitude-latitude inputs).
+    pub fn projection(&self) -> Option<&floe_basin::MapProjection> {
+        self.resolved.projection.as_ref()
+    }
+
+    /// `start_time`: the date of model time 0, as written.
+    pub fn start_time(&self) -> Option<&str> {
+        self.resolved.start_time.as_deref()
+    }
+
+    /// The files the run reads besides the scenario (forcing, coastlines,
+    /// ice grids), for the run file's provenance.
+    pub fn input_files(&self) -> &[InputFile] {
+        &self.resolved.inputs
+    }
+
     /// Builds the world: floes, walls, contact model, forcing, time step.
     /// Refuses (located at the key) a time step above the stable limit, a
     /// run of more than [`Scenario::with_max_steps`] steps,
@@ -198,7 +230,12 @@ impl Scenario {
             r.forcing.clone(),
             r.domain.periodicity(),
             dt_s,
-        )?;
+        )
+        .map_err(|e| match e {
+            // A floe off a forcing grid: the files do not fit the ice.
+            DemError::Forcing(failure) => f.error_in_file(failure.to_string()),
+            e => e.into(),
+        })?;
         for (id, schedule) in built.schedules {
             world.set_schedule(id, schedule)?;
         }
@@ -261,6 +298,14 @@ impl Scenario {
         let r = &self.resolved;
         let built = build::build_floes(f, r)?;
         Ok(build::time_step(f, r, &built, f64::INFINITY)?.0)
+    }
+}
+
+/// The directory of a scenario file, where its relative input paths start.
+fn directory_of(path: &Path) -> std::path::PathBuf {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
     }
 }
 

@@ -27,6 +27,8 @@ pub(crate) type Count = Option<Spanned<i64>>;
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawScenario {
     pub title: Option<Spanned<String>>,
+    /// The date of model time 0, for forcing files with dates.
+    pub start_time: Option<Spanned<String>>,
     pub seed: Count,
     pub threads: Count,
     pub duration_s: Option<Spanned<f64>>,
@@ -43,6 +45,7 @@ pub(crate) struct RawScenario {
     pub wind: Option<Spanned<RawFluid>>,
     pub ocean: Option<Spanned<RawFluid>>,
     pub coriolis: Option<Spanned<RawCoriolis>>,
+    pub map: Option<Spanned<RawMap>>,
     pub wall: Option<Vec<Spanned<RawWall>>>,
     pub output: Option<RawOutput>,
 }
@@ -141,13 +144,34 @@ pub(crate) struct RawFluid {
     pub shear: Option<Spanned<RawShear>>,
     pub gyre: Option<Spanned<RawGyre>>,
     pub envelope: Option<Spanned<RawEnvelope>>,
+    /// A CF NetCDF file of the field, with `variables` (x/east, y/north).
+    pub file: Option<Spanned<String>>,
+    pub variables: Option<Spanned<Vec<String>>>,
+    pub plane_spacing_m: Num,
     pub density_kg_per_m3: Num,
     pub drag_coefficient: Num,
     pub turning_angle_deg: Num,
     pub relative_to_ice: Flag,
     // [ocean] only
+    pub sea_surface_height: Option<Spanned<RawGridVariable>>,
     pub sea_surface_tilt: Flag,
     pub rotational_drag: Flag,
+}
+
+/// `sea_surface_height = { variable = "zos", file = "ssh.nc" }` (the
+/// file defaults to the table's `file`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawGridVariable {
+    pub variable: String,
+    pub file: Option<String>,
+}
+
+/// `[map]`: the model plane.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMap {
+    pub projection: Option<Spanned<String>>,
 }
 
 /// `time_series = { times_s = [...], velocities_m_per_s = [[u, v], ...] }`

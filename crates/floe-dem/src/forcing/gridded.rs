@@ -20,14 +20,9 @@
 use std::fmt;
 use std::sync::Arc;
 
+pub use crate::error::ForcingFailure;
 use crate::floes::FloeColumns;
 use crate::{DemError, Vec2};
-
-/// Why a gridded forcing cannot go on: names the source (file and
-/// variables), the time or the floe.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{0}")]
-pub struct ForcingFailure(pub String);
 
 /// A regular grid of the model plane: node `(i, j)` at
 /// `origin + (i dx, j dy)`, `i < nx`, `j < ny`.
