@@ -140,7 +140,7 @@ pub(crate) fn resolve_gridded_velocity(
         &names,
         spacing,
     )?;
-    Ok(Some(VelocityField::Gridded(field)))
+    Ok(Some(VelocityField::Gridded(Box::new(field))))
 }
 
 /// `[ocean] sea_surface_height = { variable, file }`.
