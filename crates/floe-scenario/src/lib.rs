@@ -25,6 +25,8 @@ pub mod domain;
 pub mod error;
 pub mod exact;
 mod extent;
+mod land_build;
+mod land_spec;
 pub mod law_table;
 pub mod law_variants;
 mod motion_segments;

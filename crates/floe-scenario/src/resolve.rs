@@ -199,6 +199,10 @@ pub(crate) struct Resolved {
     pub model: ContactModel,
     pub forcing: Forcing,
     pub walls: Vec<Wall>,
+    /// `[map]`: the projection of longitude and latitude onto the plane.
+    pub map: Option<floe_basin::MapProjection>,
+    /// `[[land]]` tables (the files are read when the floes are built).
+    pub land: Vec<crate::land_spec::LandFile>,
     pub output: OutputCadence,
     /// Location of each `[[output.window]]`.
     pub window_spans: Vec<Range<usize>>,
@@ -513,6 +517,15 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         raw.coriolis.as_ref(),
     )?;
     let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]), extent)?;
+    let map = crate::land_spec::resolve_map(f, raw.map.as_ref())?;
+    let land = crate::land_spec::resolve_land(f, raw.land.as_deref().unwrap_or(&[]), map.as_ref())?;
+    if let (FloeSource::DoubleShear { .. }, Some(first)) = (&floes, land.first()) {
+        return Err(f.error(
+            first.span.clone(),
+            "land[0].file",
+            "land does not apply to the double-shear set-up",
+        ));
+    }
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
     Ok(Resolved {
         title,
@@ -531,6 +544,8 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         model,
         forcing,
         walls,
+        map,
+        land,
         output,
         window_spans,
     })

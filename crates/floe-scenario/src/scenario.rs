@@ -35,6 +35,10 @@ pub struct Setup {
     pub dt_s: f64,
     /// The stable limit of the time step, s.
     pub stable_limit_s: f64,
+    /// Ids of the floes that are land (`[[land]]`: fixed prescribed
+    /// pieces), increasing; a run file marks them so that pictures tell
+    /// land from walls.
+    pub land_floe_ids: Vec<u64>,
 }
 
 /// What [`World::resume`] needs besides the saved state.
@@ -160,6 +164,12 @@ impl Scenario {
         }
     }
 
+    /// The map projection of `[map]`: the model plane of everything given
+    /// in longitude and latitude.
+    pub fn map_projection(&self) -> Option<&floe_basin::MapProjection> {
+        self.resolved.map.as_ref()
+    }
+
     /// The contact model, friction law included.
     pub fn contact_model(&self) -> &ContactModel {
         &self.resolved.model
@@ -181,8 +191,9 @@ impl Scenario {
         let built = build::build_floes(f, r)?;
         let (dt_s, stable_limit_s, dt_line) = build::time_step(f, r, &built, self.max_steps)?;
         let mut report = built.report.clone();
+        let land_floe_ids = built.land_ids.clone();
         report.push(format!(
-            "  {} free floes, {} prescribed (walls, fixed blocks); ice density {} kg/m^3, thickness {}",
+            "  {} free floes, {} prescribed (walls, fixed blocks, land); ice density {} kg/m^3, thickness {}",
             thousands(built.free),
             thousands(built.floes.len() - built.free),
             r.density_kg_per_m3,
@@ -239,6 +250,7 @@ impl Scenario {
             report,
             dt_s,
             stable_limit_s,
+            land_floe_ids,
         })
     }
 

@@ -44,7 +44,24 @@ pub(crate) struct RawScenario {
     pub ocean: Option<Spanned<RawFluid>>,
     pub coriolis: Option<Spanned<RawCoriolis>>,
     pub wall: Option<Vec<Spanned<RawWall>>>,
+    pub map: Option<Spanned<RawMap>>,
+    pub land: Option<Vec<Spanned<RawLand>>>,
     pub output: Option<RawOutput>,
+}
+
+/// `[map]`: the model plane of everything given in longitude and latitude.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMap {
+    pub projection: Word,
+}
+
+/// `[[land]]`: coastlines and islands from one GeoJSON file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLand {
+    pub file: Word,
+    pub coordinates: Word,
 }
 
 /// `[domain]`
