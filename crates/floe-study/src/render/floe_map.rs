@@ -11,6 +11,8 @@ use crate::plot::register_font;
 /// Grey of floes that have no value (no contacts) and of walls.
 const NO_VALUE: RGBColor = RGBColor(200, 200, 200);
 const WALL: RGBColor = RGBColor(110, 110, 110);
+/// Grey-brown of land (`[[land]]` pieces), distinct from walls and ice.
+pub const LAND: RGBColor = RGBColor(158, 134, 100);
 
 /// What to draw.
 #[derive(Debug, Clone, Copy)]
@@ -23,6 +25,9 @@ pub struct FloeMap<'a> {
     pub values: &'a [Option<f64>],
     /// Walls and other prescribed floes (drawn dark grey).
     pub prescribed: &'a [bool],
+    /// Land pieces (prescribed too; drawn in [`LAND`], without outlines,
+    /// so that the pieces read as one coast).
+    pub land: &'a [bool],
     /// Value to colour.
     pub scale: ColourScale,
     /// Colour-bar title, with unit.
@@ -68,7 +73,9 @@ pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
         if !poly.iter().any(inside) && !map.prescribed[i] {
             return None;
         }
-        let colour = if map.prescribed[i] {
+        let colour = if map.land[i] {
+            LAND
+        } else if map.prescribed[i] {
             WALL
         } else {
             map.values[i].map_or(NO_VALUE, |v| map.scale.colour(v))
@@ -81,13 +88,15 @@ pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
     });
     chart.draw_series(fills).map_err(|e| err(e.to_string()))?;
     // Outlines only when floes are big enough on screen to show them.
-    let pixels_per_floe = (width as f64 - 220.0) / (map.polygons.len() as f64).sqrt().max(1.0);
+    let bodies = map.land.iter().filter(|&&l| !l).count();
+    let pixels_per_floe = (width as f64 - 220.0) / (bodies as f64).sqrt().max(1.0);
     if pixels_per_floe > 6.0 {
         let outlines = map
             .polygons
             .iter()
-            .filter(|p| p.iter().any(inside))
-            .map(|poly| {
+            .zip(map.land)
+            .filter(|(p, &land)| !land && p.iter().any(inside))
+            .map(|(poly, _)| {
                 let mut pts: Vec<(f64, f64)> = poly
                     .iter()
                     .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
