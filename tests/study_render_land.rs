@@ -65,8 +65,15 @@ fn render_draws_land_in_the_land_colour() {
         .zip(&floes.land)
         .filter(|(&p, &l)| p && !l)
         .count();
-    assert!(land > 10 && walls > 0, "{land} land pieces, {walls} wall pieces");
-    assert!(floes.land.iter().zip(&floes.prescribed).all(|(&l, &p)| !l || p));
+    assert!(
+        land > 10 && walls > 0,
+        "{land} land pieces, {walls} wall pieces"
+    );
+    assert!(floes
+        .land
+        .iter()
+        .zip(&floes.prescribed)
+        .all(|(&l, &p)| !l || p));
 
     let out = dir.path().join("pictures");
     let files = render(&h5, Snapshots::One(-1), ColourBy::Speed, &out, false).unwrap();
@@ -95,5 +102,9 @@ fn render_draws_land_in_the_land_colour() {
         .filter(|&(x, y)| pixel(x, y) == land_rgb)
         .count();
     // The land covers about a quarter of the plot.
-    assert!(land_pixels > w * h / 10, "{land_pixels} land pixels of {}", w * h);
+    assert!(
+        land_pixels > w * h / 10,
+        "{land_pixels} land pixels of {}",
+        w * h
+    );
 }

@@ -429,7 +429,9 @@ impl RunWriter {
                 .create(layout::LAND)?;
             Ok(())
         })()
-        .at(&self.path, || format!("writing /{}/{}", layout::FLOES, layout::LAND))?;
+        .at(&self.path, || {
+            format!("writing /{}/{}", layout::FLOES, layout::LAND)
+        })?;
         self.file.flush().at(&self.path, || "flushing".to_string())
     }
 
