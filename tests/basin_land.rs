@@ -191,7 +191,7 @@ fn longitude_latitude_land_is_where_the_projection_puts_it() {
     for &(lon, lat) in &corners {
         let want = map.forward(lon, lat).unwrap();
         assert!(
-            ring.iter().any(|&v| v == want),
+            ring.contains(&want),
             "({lon}, {lat}) should be at {want:?}, ring {ring:?}"
         );
     }

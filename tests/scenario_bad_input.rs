@@ -1076,9 +1076,7 @@ fn ice_on_land_is_dropped_and_explicit_floes_on_land_are_refused() {
         &["no free floes", "on land"],
     );
     // An explicit floe on land is an overlap, named.
-    let t = format!(
-        "duration_s = 10.0\n\n[domain]\nsize_m = [4000.0, 4000.0]\n\n[[floe]]\nbox_m = [100.0, 100.0, 900.0, 900.0]\n\n[[floe]]\nbox_m = [2500.0, 100.0, 3300.0, 900.0]\n"
-    );
+    let t = "duration_s = 10.0\n\n[domain]\nsize_m = [4000.0, 4000.0]\n\n[[floe]]\nbox_m = [100.0, 100.0, 900.0, 900.0]\n\n[[floe]]\nbox_m = [2500.0, 100.0, 3300.0, 900.0]\n";
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("coast.geojson");
     std::fs::write(&path, &right).unwrap();

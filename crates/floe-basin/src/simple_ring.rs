@@ -51,7 +51,8 @@ pub fn simple_ring(raw: &[Vec2]) -> Result<Vec<Vec2>, String> {
     let area = signed_area(&points);
     let (lo, hi) = bounds(&points);
     let extent = (hi - lo).max_element();
-    if !(area.abs() > 1e-12 * extent * extent) {
+    // (Finite: every vertex is.)
+    if area.abs() <= 1e-12 * extent * extent {
         return Err("has no area".to_string());
     }
     if area < 0.0 {

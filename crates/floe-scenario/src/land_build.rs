@@ -36,7 +36,7 @@ pub(crate) fn read_all(
         if let Some((p, v)) = polygons.iter().find_map(|p| {
             p.ring
                 .iter()
-                .find(|v| !(v.x.abs() <= MAX_LENGTH_M && v.y.abs() <= MAX_LENGTH_M))
+                .find(|v| v.x.abs().max(v.y.abs()) > MAX_LENGTH_M)
                 .map(|v| (p, v))
         }) {
             return Err(at(format!(
@@ -104,7 +104,7 @@ pub(crate) fn land_pieces(
         for piece in &l.land.pieces {
             let a = floe_basin::planar::signed_area(&piece.vertices);
             // Slivers a cut can leave carry no force worth a floe.
-            if !(a > 1e-12 * radius * radius) {
+            if a.partial_cmp(&(1e-12 * radius * radius)) != Some(std::cmp::Ordering::Greater) {
                 continue;
             }
             let feature = l.land.polygons[piece.polygon].feature;
