@@ -409,7 +409,7 @@ impl RunWriter {
 
     /// Marks the floes with ids in `land_ids` as land (fixed pieces of
     /// coastlines and islands, `[[land]]`) in `/particles/floes/land`
-    /// (uint8 [n], 1: land), so that pictures tell land from walls. Ids the
+    /// (uint8, one per floe, 1: land), so that pictures tell land from walls. Ids the
     /// file does not hold are ignored. A file without the dataset (older
     /// files, runs without land) has no land. Call once, after
     /// [`RunWriter::create`].
