@@ -398,3 +398,51 @@ fn grid_info_and_render_refuse_missing_or_foreign_files_and_grid_a_bad_cell_size
         }
     }
 }
+
+#[test]
+fn bad_land_files_stop_floe_run_with_one_located_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("coast.toml");
+    let base = "duration_s = 10.0\n\n[domain]\nsize_m = [4000.0, 4000.0]\n\n\
+                [tessellation]\nkind = \"grid\"\ncolumns = 2\nrows = 2\n\n\
+                [[land]]\nfile = \"coast.geojson\"\ncoordinates = \"xy\"\n";
+    std::fs::write(&scenario, base).unwrap();
+    let out = dir.path().join("run.h5");
+    let run = || {
+        floe(&[
+            "run",
+            &scenario.to_string_lossy(),
+            "-o",
+            &out.to_string_lossy(),
+            "--quiet",
+        ])
+    };
+    // Missing: relative to the scenario's directory, named.
+    let (code, err) = run();
+    assert_one_clear_error(code, &err, 2);
+    assert!(
+        err.contains("coast.toml:12:8")
+            && err.contains("land[0].file")
+            && err.contains("coast.geojson"),
+        "{err}"
+    );
+    // Bad geometry.
+    std::fs::write(
+        dir.path().join("coast.geojson"),
+        r#"{"type": "Polygon", "coordinates": [[[0, 0], [10, 10], [10, 0], [0, 10], [0, 0]]]}"#,
+    )
+    .unwrap();
+    let (code, err) = run();
+    assert_one_clear_error(code, &err, 2);
+    assert!(err.contains("not simple"), "{err}");
+    assert!(!out.exists(), "nothing is written for bad input");
+    // Good land runs, and the run file marks it.
+    std::fs::write(
+        dir.path().join("coast.geojson"),
+        r#"{"type": "Polygon", "coordinates": [[[3000, -500], [4500, -500], [4500, 4500], [3000, 4500], [3000, -500]]]}"#,
+    )
+    .unwrap();
+    let (code, err) = run();
+    assert_eq!(code, 0, "{err}");
+    assert!(out.exists());
+}

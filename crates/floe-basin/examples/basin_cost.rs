@@ -141,7 +141,9 @@ fn main() {
             plane_spacing_m: None,
         })
         .expect("source");
-        VelocityField::Gridded(Box::new(GriddedField::new(Arc::new(source)).expect("field")))
+        VelocityField::Gridded(Box::new(
+            GriddedField::new(Arc::new(source)).expect("field"),
+        ))
     };
     let uniform = Forcing {
         wind: VelocityField::Uniform(Vec2::from(WIND)),

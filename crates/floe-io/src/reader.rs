@@ -32,6 +32,10 @@ pub struct StaticFloes {
     pub inertia_kg_m2: Vec<f64>,
     /// Whether the floe moves at a prescribed velocity (a wall).
     pub prescribed: Vec<bool>,
+    /// Whether the floe is a piece of land (`[[land]]`; fixed and
+    /// prescribed). All false for files written without land, or before
+    /// floe marked land.
+    pub land: Vec<bool>,
 }
 
 impl StaticFloes {
@@ -275,7 +279,17 @@ impl RunFile {
         let n = id.len();
         let vertex_offsets: Vec<u32> = self.read_all(&p("vertex_offsets"))?;
         let vertices = pairs(&self.read_all::<f64>(&p("vertices"))?);
+        let land_path = p(layout::LAND);
+        let land = if self.file.link_exists(&land_path) {
+            self.read_all::<u8>(&land_path)?
+                .into_iter()
+                .map(|b| b != 0)
+                .collect()
+        } else {
+            vec![false; n]
+        };
         let floes = StaticFloes {
+            land,
             id,
             vertex_offsets,
             vertices,
@@ -296,6 +310,7 @@ impl RunFile {
             floes.area_m2.len(),
             floes.inertia_kg_m2.len(),
             floes.prescribed.len(),
+            floes.land.len(),
         ]
         .iter()
         .all(|&l| l == n)

@@ -414,6 +414,34 @@ impl RunWriter {
         })
     }
 
+    /// Marks the floes with ids in `land_ids` as land (fixed pieces of
+    /// coastlines and islands, `[[land]]`) in `/particles/floes/land`
+    /// (uint8, one per floe, 1: land), so that pictures tell land from walls. Ids the
+    /// file does not hold are ignored. A file without the dataset (older
+    /// files, runs without land) has no land. Call once, after
+    /// [`RunWriter::create`].
+    pub fn mark_land(&mut self, land_ids: &[u64]) -> Result<(), IoError> {
+        let mut sorted = land_ids.to_vec();
+        sorted.sort_unstable();
+        let flags: Vec<u8> = self
+            .ids
+            .iter()
+            .map(|id| u8::from(sorted.binary_search(id).is_ok()))
+            .collect();
+        (|| -> hdf5::Result<()> {
+            self.file
+                .group(layout::FLOES)?
+                .new_dataset_builder()
+                .with_data(&flags[..])
+                .create(layout::LAND)?;
+            Ok(())
+        })()
+        .at(&self.path, || {
+            format!("writing /{}/{}", layout::FLOES, layout::LAND)
+        })?;
+        self.file.flush().at(&self.path, || "flushing".to_string())
+    }
+
     /// The file written.
     pub fn path(&self) -> &Path {
         &self.path

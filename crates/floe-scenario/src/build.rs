@@ -3,7 +3,8 @@
 //!
 //! Floe order (and id): the free floes of the tessellation, or the
 //! `[[floe]]` tables in file order; then the prescribed blocks of a
-//! double-shear set-up; then the wall segments, wall by wall in file order.
+//! double-shear set-up; then the wall segments, wall by wall in file order;
+//! then the land pieces, `[[land]]` table by table.
 
 use std::ops::Not;
 use std::ops::Range;
@@ -20,6 +21,7 @@ use floe_friction::Law;
 use crate::built_floes::{BuiltFloes, StressWall};
 use crate::checks;
 use crate::error::ScenarioError;
+use crate::land_build;
 use crate::numbers::{short, sig, thousands};
 use crate::resolve::{
     dem_error, voronoi_work, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION,
@@ -491,13 +493,28 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         report.push(format!("scenario: {t}"));
     }
     let mut pieces = generate(f, r, region, &mut report)?;
+    // Land pieces no larger than the largest free floe (the broad phase's
+    // cells are as wide as the largest body).
+    let land = if r.land.is_empty() {
+        Vec::new()
+    } else {
+        land_build::read_all(f, r, free_radius(&pieces).max(f64::MIN_POSITIVE))?
+    };
+    if !matches!(r.floes, FloeSource::Explicit(_)) && !land.is_empty() {
+        let (dropped, area) = land_build::drop_ice_on_land(&mut pieces, &land);
+        report.push(format!(
+            "  {} floes on land dropped ({} m^2)",
+            thousands(dropped),
+            sig(area)
+        ));
+    }
     let glued = glue_to_walls(r, region, &mut pieces, &mut report);
     let free = pieces.iter().filter(|p| !p.prescribed).count();
     if free == 0 {
         return Err(f.error(
             r.floes_span.clone(),
             "tessellation",
-            "no free floes: the tessellation is empty (cells larger than the ice region?), every [[floe]] is prescribed, or every floe is glued to a wall (glue_depth_m)",
+            "no free floes: the tessellation is empty (cells larger than the ice region?), every [[floe]] is prescribed, every floe is glued to a wall (glue_depth_m), or every floe lies on land",
         ));
     }
     let r_max = pieces
@@ -576,6 +593,14 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
             });
         }
     }
+    let first_land = pieces.len();
+    pieces.extend(land_build::land_pieces(
+        &land,
+        mean_h,
+        r.map.as_ref(),
+        &mut report,
+    ));
+    let land_ids: Vec<u64> = (first_land..pieces.len()).map(|i| i as u64).collect();
     let periodicity = r.domain.periodicity();
     let mut floes = Floes::default();
     let mut schedules = Vec::new();
@@ -635,11 +660,27 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         labels,
         report,
         free,
+        land_ids,
     };
     if matches!(r.floes, FloeSource::Explicit(_)) {
         checks::no_initial_overlap(f, r, &built)?;
     }
     Ok(built)
+}
+
+/// The largest bounding radius (about the vertex mean) of the free pieces, m.
+fn free_radius(pieces: &[Piece]) -> f64 {
+    pieces
+        .iter()
+        .filter(|p| !p.prescribed)
+        .map(|p| {
+            let c = p.vertex_mean();
+            p.polygon
+                .iter()
+                .map(|&q| (q - c).length())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The outlines of a wall's segments: rectangles about one floe diameter

@@ -10,12 +10,11 @@ use std::sync::Arc;
 
 use floe_basin::{FieldRequest, MapProjection, NetcdfSource};
 use floe_dem::forcing::{GriddedField, VelocityField};
-use toml::Spanned;
 
 use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::source_file::SourceFile;
-use crate::spec::{RawFluid, RawMap};
+use crate::spec::RawFluid;
 
 /// A file the run reads besides the scenario: what it is for and where it is.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -35,24 +34,6 @@ pub(crate) struct GridContext {
     pub base_dir: PathBuf,
     /// The files opened so far.
     pub inputs: Vec<InputFile>,
-}
-
-/// `[map] projection`.
-pub(crate) fn resolve_map(
-    f: &SourceFile,
-    raw: Option<&Spanned<RawMap>>,
-) -> Result<Option<MapProjection>, ScenarioError> {
-    let Some(m) = raw else { return Ok(None) };
-    let Some(p) = &m.get_ref().projection else {
-        return Err(f.error(
-            m.span(),
-            "map",
-            "missing `projection` (e.g. projection = \"EPSG:3413\", NSIDC polar stereographic north)",
-        ));
-    };
-    MapProjection::parse(p.get_ref())
-        .map(Some)
-        .map_err(|e| f.error(p.span(), "map.projection", e.to_string()))
 }
 
 /// A path as written, relative to `base_dir` (the scenario's directory).

@@ -28,6 +28,8 @@ pub mod exact;
 mod extent;
 pub mod gridded_inputs;
 pub mod input_paths;
+mod land_build;
+mod land_spec;
 pub mod law_table;
 pub mod law_variants;
 mod motion_segments;

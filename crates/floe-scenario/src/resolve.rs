@@ -16,13 +16,11 @@ use floe_friction::experiments::Preset;
 use floe_friction::{Form, LawContext, LawRegistry};
 use toml::Spanned;
 
-use floe_basin::MapProjection;
-
 use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::extent::{Extent, MAX_ANGULAR_VELOCITY_RAD_PER_S, MAX_TRAVEL_DOMAINS};
 use crate::gridded_inputs::{
-    resolve_gridded_velocity, resolve_map, resolve_sea_surface_height, GridContext, InputFile,
+    resolve_gridded_velocity, resolve_sea_surface_height, GridContext, InputFile,
 };
 use crate::law_table::{law_from_table, preset_applies, RawLawTable};
 use crate::motion_segments::resolve_schedule;
@@ -205,11 +203,13 @@ pub(crate) struct Resolved {
     pub model: ContactModel,
     pub forcing: Forcing,
     pub walls: Vec<Wall>,
+    /// `[map]`: the projection of longitude and latitude onto the plane.
+    pub map: Option<floe_basin::MapProjection>,
+    /// `[[land]]` tables (the files are read when the floes are built).
+    pub land: Vec<crate::land_spec::LandFile>,
     pub output: OutputCadence,
     /// Location of each `[[output.window]]`.
     pub window_spans: Vec<Range<usize>>,
-    /// `[map] projection`.
-    pub projection: Option<MapProjection>,
     /// `start_time`.
     pub start_time: Option<String>,
     /// Files read besides the scenario.
@@ -523,8 +523,9 @@ pub(crate) fn resolve(
     let extent = Extent { duration_s, domain };
     let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw, extent)?;
     let model = resolve_contact(f, raw.contact.as_ref(), raw.friction.as_ref(), registry)?;
+    let map = crate::land_spec::resolve_map(f, raw.map.as_ref())?;
     let mut grids = GridContext {
-        projection: resolve_map(f, raw.map.as_ref())?,
+        projection: map.clone(),
         start_time: resolve_start_time(f, raw.start_time.as_ref())?,
         region: domain,
         base_dir: base_dir.to_path_buf(),
@@ -538,6 +539,25 @@ pub(crate) fn resolve(
         &mut grids,
     )?;
     let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]), extent)?;
+    let land = crate::land_spec::resolve_land(
+        f,
+        raw.land.as_deref().unwrap_or(&[]),
+        map.as_ref(),
+        base_dir,
+    )?;
+    for l in &land {
+        grids.inputs.push(InputFile {
+            role: format!("land[{}]", l.index),
+            path: l.path.clone(),
+        });
+    }
+    if let (FloeSource::DoubleShear { .. }, Some(first)) = (&floes, land.first()) {
+        return Err(f.error(
+            first.span.clone(),
+            "land[0].file",
+            "land does not apply to the double-shear set-up",
+        ));
+    }
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
     Ok(Resolved {
         title,
@@ -556,9 +576,10 @@ pub(crate) fn resolve(
         model,
         forcing,
         walls,
+        map,
+        land,
         output,
         window_spans,
-        projection: grids.projection,
         start_time: grids.start_time,
         inputs: grids.inputs,
     })

@@ -37,6 +37,10 @@ pub struct Setup {
     pub dt_s: f64,
     /// The stable limit of the time step, s.
     pub stable_limit_s: f64,
+    /// Ids of the floes that are land (`[[land]]`: fixed prescribed
+    /// pieces), increasing; a run file marks them so that pictures tell
+    /// land from walls.
+    pub land_floe_ids: Vec<u64>,
 }
 
 /// What [`World::resume`] needs besides the saved state.
@@ -176,6 +180,12 @@ impl Scenario {
         }
     }
 
+    /// The map projection of `[map]`: the model plane of everything given
+    /// in longitude and latitude.
+    pub fn map_projection(&self) -> Option<&floe_basin::MapProjection> {
+        self.resolved.map.as_ref()
+    }
+
     /// The contact model, friction law included.
     pub fn contact_model(&self) -> &ContactModel {
         &self.resolved.model
@@ -184,11 +194,6 @@ impl Scenario {
     /// The forcing (wind, ocean, Coriolis).
     pub fn forcing(&self) -> &Forcing {
         &self.resolved.forcing
-    }
-
-    /// The `[map] projection` (the model plane of longitude-latitude inputs).
-    pub fn projection(&self) -> Option<&floe_basin::MapProjection> {
-        self.resolved.projection.as_ref()
     }
 
     /// `start_time`: the date of model time 0, as written.
@@ -213,8 +218,9 @@ impl Scenario {
         let built = build::build_floes(f, r)?;
         let (dt_s, stable_limit_s, dt_line) = build::time_step(f, r, &built, self.max_steps)?;
         let mut report = built.report.clone();
+        let land_floe_ids = built.land_ids.clone();
         report.push(format!(
-            "  {} free floes, {} prescribed (walls, fixed blocks); ice density {} kg/m^3, thickness {}",
+            "  {} free floes, {} prescribed (walls, fixed blocks, land); ice density {} kg/m^3, thickness {}",
             thousands(built.free),
             thousands(built.floes.len() - built.free),
             r.density_kg_per_m3,
@@ -276,6 +282,7 @@ impl Scenario {
             report,
             dt_s,
             stable_limit_s,
+            land_floe_ids,
         })
     }
 

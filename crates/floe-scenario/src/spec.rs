@@ -45,9 +45,25 @@ pub(crate) struct RawScenario {
     pub wind: Option<Spanned<RawFluid>>,
     pub ocean: Option<Spanned<RawFluid>>,
     pub coriolis: Option<Spanned<RawCoriolis>>,
-    pub map: Option<Spanned<RawMap>>,
     pub wall: Option<Vec<Spanned<RawWall>>>,
+    pub map: Option<Spanned<RawMap>>,
+    pub land: Option<Vec<Spanned<RawLand>>>,
     pub output: Option<RawOutput>,
+}
+
+/// `[map]`: the model plane of everything given in longitude and latitude.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMap {
+    pub projection: Word,
+}
+
+/// `[[land]]`: coastlines and islands from one GeoJSON file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLand {
+    pub file: Word,
+    pub coordinates: Word,
 }
 
 /// `[domain]`
@@ -165,13 +181,6 @@ pub(crate) struct RawFluid {
 pub(crate) struct RawGridVariable {
     pub variable: String,
     pub file: Option<String>,
-}
-
-/// `[map]`: the model plane.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(crate) struct RawMap {
-    pub projection: Option<Spanned<String>>,
 }
 
 /// `time_series = { times_s = [...], velocities_m_per_s = [[u, v], ...] }`

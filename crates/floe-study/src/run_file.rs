@@ -211,6 +211,9 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
             setup.world.floes(),
             &OutputOptions::default(),
         )?;
+        if !setup.land_floe_ids.is_empty() {
+            writer.mark_land(&setup.land_floe_ids)?;
+        }
         writer.set_status(&floe_io::run_status::running())?;
         let mut world = setup.world;
         run::start(&world, &mut writer, domain.area_m2())?;

@@ -11,6 +11,8 @@ use crate::plot::register_font;
 /// Grey of floes that have no value (no contacts) and of walls.
 const NO_VALUE: RGBColor = RGBColor(200, 200, 200);
 const WALL: RGBColor = RGBColor(110, 110, 110);
+/// Grey-brown of land (`[[land]]` pieces), distinct from walls and ice.
+pub const LAND: RGBColor = RGBColor(158, 134, 100);
 
 /// What to draw.
 #[derive(Debug, Clone, Copy)]
@@ -23,6 +25,9 @@ pub struct FloeMap<'a> {
     pub values: &'a [Option<f64>],
     /// Walls and other prescribed floes (drawn dark grey).
     pub prescribed: &'a [bool],
+    /// Land pieces (prescribed too; drawn in [`LAND`], without outlines,
+    /// so that the pieces read as one coast).
+    pub land: &'a [bool],
     /// Value to colour.
     pub scale: ColourScale,
     /// Colour-bar title, with unit.
@@ -63,31 +68,51 @@ pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
         .map_err(|e| err(e.to_string()))?;
     let inside = |&(x, y): &(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
     let fills = map.polygons.iter().enumerate().filter_map(|(i, poly)| {
-        // plotters does not clip to the plot area: skip floes entirely
-        // outside it and clamp the rest (walls reach beyond the view).
-        if !poly.iter().any(inside) && !map.prescribed[i] {
+        // plotters does not clip to the plot area: clip every outline to
+        // it (walls and land reach beyond the view; clamping the vertices
+        // instead would distort a piece that crosses a corner).
+        let clipped = clip_to_view(poly, map.view);
+        if clipped.len() < 3 {
             return None;
         }
-        let colour = if map.prescribed[i] {
+        let colour = if map.land[i] {
+            LAND
+        } else if map.prescribed[i] {
             WALL
         } else {
             map.values[i].map_or(NO_VALUE, |v| map.scale.colour(v))
         };
-        let pts: Vec<(f64, f64)> = poly
-            .iter()
-            .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
-            .collect();
+        let pts: Vec<(f64, f64)> = clipped.iter().map(|&(x, y)| (x * km, y * km)).collect();
         Some(Polygon::new(pts, colour.filled()))
     });
     chart.draw_series(fills).map_err(|e| err(e.to_string()))?;
+    // Land pieces' edges in the land colour: the fills alone leave
+    // hairline seams between pieces that share an edge.
+    let seams = map
+        .polygons
+        .iter()
+        .zip(map.land)
+        .filter(|(_, &land)| land)
+        .filter_map(|(poly, _)| {
+            let mut pts: Vec<(f64, f64)> = clip_to_view(poly, map.view)
+                .iter()
+                .map(|&(x, y)| (x * km, y * km))
+                .collect();
+            let first = *pts.first()?;
+            pts.push(first);
+            Some(PathElement::new(pts, LAND.stroke_width(1)))
+        });
+    chart.draw_series(seams).map_err(|e| err(e.to_string()))?;
     // Outlines only when floes are big enough on screen to show them.
-    let pixels_per_floe = (width as f64 - 220.0) / (map.polygons.len() as f64).sqrt().max(1.0);
+    let bodies = map.land.iter().filter(|&&l| !l).count();
+    let pixels_per_floe = (width as f64 - 220.0) / (bodies as f64).sqrt().max(1.0);
     if pixels_per_floe > 6.0 {
         let outlines = map
             .polygons
             .iter()
-            .filter(|p| p.iter().any(inside))
-            .map(|poly| {
+            .zip(map.land)
+            .filter(|(p, &land)| !land && p.iter().any(inside))
+            .map(|(poly, _)| {
                 let mut pts: Vec<(f64, f64)> = poly
                     .iter()
                     .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
@@ -101,6 +126,43 @@ pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
     }
     colour_bar(&right, map.scale, map.label).map_err(err)?;
     root.present().map_err(|e| err(e.to_string()))
+}
+
+/// The convex outline `poly` clipped to the rectangle `view` (one
+/// Sutherland-Hodgman pass per side).
+fn clip_to_view(
+    poly: &[(f64, f64)],
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = poly.to_vec();
+    // Each side as (coordinate index, bound, keep at or above the bound).
+    for (axis, bound, above) in [(0, x0, true), (0, x1, false), (1, y0, true), (1, y1, false)] {
+        let value = |p: (f64, f64)| if axis == 0 { p.0 } else { p.1 };
+        let keep = |p: (f64, f64)| {
+            if above {
+                value(p) >= bound
+            } else {
+                value(p) <= bound
+            }
+        };
+        let n = out.len();
+        let mut next = Vec::with_capacity(n + 2);
+        for k in 0..n {
+            let (p, q) = (out[k], out[(k + 1) % n]);
+            if keep(p) {
+                next.push(p);
+            }
+            if keep(p) != keep(q) {
+                let t = (bound - value(p)) / (value(q) - value(p));
+                next.push((p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)));
+            }
+        }
+        out = next;
+        if out.len() < 3 {
+            break;
+        }
+    }
+    out
 }
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;

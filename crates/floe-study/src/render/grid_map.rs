@@ -115,6 +115,7 @@ pub fn render_grid(
                     polygons: &cells,
                     values: &values,
                     prescribed: &prescribed,
+                    land: &prescribed,
                     scale,
                     label: &label,
                     view,

@@ -1,5 +1,6 @@
 //! `floe render`: PNG maps of the floes of a run (coloured by speed, theta
-//! or pressure) and PNG plots of its observables; maps of the gridded fields
+//! or pressure; walls dark grey, land grey-brown) and PNG plots of its
+//! observables; maps of the gridded fields
 //! of `floe grid` ([`grid_map`]).
 
 pub mod colour;
@@ -145,6 +146,7 @@ pub fn render(
                 polygons: &polygons,
                 values: v,
                 prescribed: &prescribed,
+                land: &floes.land,
                 scale,
                 label: colour.label(),
                 view,
