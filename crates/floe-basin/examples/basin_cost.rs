@@ -139,6 +139,7 @@ fn main() {
             start_time: Some("2024-03-01 00:00:00"),
             region: (lo, hi),
             plane_spacing_m: None,
+            margin_m: 0.0,
         })
         .expect("source");
         VelocityField::Gridded(Box::new(

@@ -16,6 +16,11 @@ use crate::error::ScenarioError;
 use crate::source_file::SourceFile;
 use crate::spec::RawFluid;
 
+/// How far beyond the domain, as a fraction of its larger side, gridded
+/// fields reach where their files have data: floes that stray out of an
+/// open domain stay on the grid.
+pub const PLANE_MARGIN_FRACTION: f64 = 0.25;
+
 /// A file the run reads besides the scenario: what it is for and where it is.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct InputFile {
@@ -61,6 +66,7 @@ fn open_field(
         start_time: ctx.start_time.as_deref(),
         region: (d.min_m, d.min_m + d.size_m),
         plane_spacing_m,
+        margin_m: PLANE_MARGIN_FRACTION * d.size_m.x.max(d.size_m.y),
     };
     let source =
         NetcdfSource::open(request).map_err(|e| f.error(span.clone(), &key, e.to_string()))?;
