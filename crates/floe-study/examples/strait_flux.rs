@@ -40,7 +40,7 @@ fn parse_pair(s: &str) -> (f64, f64) {
     (it.next().expect("X0"), it.next().expect("X1"))
 }
 
-fn read(path: &PathBuf, gate: f64, mouth: f64, xr: (f64, f64)) -> Series {
+fn read(path: &std::path::Path, gate: f64, mouth: f64, xr: (f64, f64)) -> Series {
     let run = RunFile::open(path).expect("run file");
     let statics = run.static_floes().expect("floes");
     let free: Vec<bool> = statics.prescribed.iter().map(|p| !p).collect();
