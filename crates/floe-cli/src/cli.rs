@@ -232,23 +232,19 @@ pub enum Command {
         #[arg(long, value_enum, default_value_t = Colour::Speed)]
         color: Colour,
         /// Output directory for the pictures.
-        #[arg(
-            long,
-            short,
-            required_unless_present = "movie",
-            conflicts_with = "movie"
-        )]
+        #[arg(long, short, required_unless_present = "movie")]
         output: Option<PathBuf>,
         /// Write a movie of the maps instead: OUT.mp4 (needs ffmpeg),
         /// OUT.gif, or OUT (MP4 if ffmpeg is on PATH, else GIF).
         #[arg(long, value_name = "OUT")]
         movie: Option<PathBuf>,
-        /// Frames per second of the movie.
-        #[arg(long, default_value_t = 10.0, requires = "movie", value_parser = frame_rate)]
-        fps: f64,
-        /// The field of a gridded-fields file a movie shows.
-        #[arg(long, default_value = "concentration", requires = "movie")]
-        field: String,
+        /// Frames per second of the movie (default 10).
+        #[arg(long, requires = "movie", value_parser = frame_rate)]
+        fps: Option<f64>,
+        /// The field of a gridded-fields file a movie shows (default
+        /// concentration).
+        #[arg(long, requires = "movie")]
+        field: Option<String>,
         /// Replace existing pictures or movie.
         #[arg(long)]
         force: bool,
@@ -458,6 +454,9 @@ fn bounded(text: &str, min: f64, closed: bool, max: f64, what: &str) -> Result<f
         )),
     }
 }
+
+/// Frames per second of a movie unless `--fps` says otherwise.
+const DEFAULT_FPS: f64 = 10.0;
 
 /// A movie's frame rate.
 fn frame_rate(text: &str) -> Result<f64, String> {
@@ -721,10 +720,20 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 "frames"
             });
             let mut progress = |done, total| bar.update(done, total);
+            if movie.is_some() && output.is_some() {
+                return Err(CliError::Usage(
+                    "render: give -o DIR (pictures) or --movie OUT, not both".into(),
+                ));
+            }
             if let Some(path) = movie {
-                let args = MovieArgs { path, fps, force };
+                let args = MovieArgs {
+                    path,
+                    fps: fps.unwrap_or(DEFAULT_FPS),
+                    force,
+                };
                 let written = if grid {
-                    render::grid_map::render_grid_movie(&file, which, &field, &args, &mut progress)?
+                    let field = field.as_deref().unwrap_or("concentration");
+                    render::grid_map::render_grid_movie(&file, which, field, &args, &mut progress)?
                 } else {
                     render::render_movie(&file, which, color.into(), &args, &mut progress)?
                 };

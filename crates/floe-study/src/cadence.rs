@@ -23,14 +23,23 @@ impl Cadence {
     /// The indices, ascending, of the snapshots taken among snapshots at
     /// `times_s` (ascending, as a run writes them).
     pub fn select(self, times_s: &[f64]) -> Result<Vec<usize>, Error> {
+        self.check()?;
+        Ok(match self {
+            Cadence::All => (0..times_s.len()).collect(),
+            Cadence::Every(k) => (0..times_s.len()).step_by(k).collect(),
+            Cadence::IntervalS(t) => nearest_to_multiples(times_s, t),
+        })
+    }
+
+    /// Refuses `Every(0)` and an interval that is not a finite number > 0
+    /// (bad input, named by its flag).
+    pub fn check(self) -> Result<(), Error> {
         match self {
-            Cadence::All => Ok((0..times_s.len()).collect()),
             Cadence::Every(0) => Err(Error::Usage("--every must be at least 1".into())),
-            Cadence::Every(k) => Ok((0..times_s.len()).step_by(k).collect()),
             Cadence::IntervalS(t) if !(t.is_finite() && t > 0.0) => Err(Error::Usage(format!(
                 "--interval-s {t}: an interval in s, > 0"
             ))),
-            Cadence::IntervalS(t) => Ok(nearest_to_multiples(times_s, t)),
+            _ => Ok(()),
         }
     }
 }

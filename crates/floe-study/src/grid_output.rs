@@ -131,6 +131,7 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
             args.cell_m
         )));
     }
+    args.cadence.check()?;
     refuse_overwriting_input(&args.run, "run file", [args.output.as_path()])?;
     if args.output.exists() && !args.force {
         return Err(Error::WouldOverwrite(args.output.clone()));
