@@ -14,30 +14,9 @@ use floe_study::grid_output::{write_grid, GridArgs, FILL_VALUE};
 use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
 use netcdf::AttributeValue;
 
-const BOX: &str = r#"title = "drifting floes in a periodic box"
-duration_s = 20000.0
-seed = 1
-
-[domain]
-size_m = [4000.0, 3000.0]
-periodic = [true, true]
-
-[tessellation]
-kind = "grid"
-columns = 3
-rows = 2
-gap_m = 300.0
-
-[ice]
-thickness_range_m = [0.5, 2.0]
-initial_velocity_m_per_s = [0.3, 0.12]
-
-[wind]
-velocity_m_per_s = [8.0, -3.0]
-
-[output]
-snapshot_every_s = 2000.0
-"#;
+/// Six floes drifting in a doubly periodic box (20000 s, snapshots every
+/// 2000 s); tests/study_grid_xarray.rs grids it too.
+const BOX: &str = include_str!("data/grid_box.toml");
 
 fn f64s(file: &netcdf::File, name: &str) -> Vec<f64> {
     file.variable(name)
@@ -297,52 +276,4 @@ fn a_cadence_of_its_own_takes_the_snapshots_it_names() {
         assert!(e.to_string().contains(flag) && e.exit_code() == 2, "{e}");
         assert!(!nc.exists() && !dir.path().join("bad.nc.partial").exists());
     }
-}
-
-/// The xarray example of docs/output.md opens a gridded-fields file with
-/// its coordinates and units (skipped, with a note, where python3 lacks
-/// xarray or both of its NetCDF-4 engines, netCDF4 and h5netcdf).
-#[test]
-fn xarray_opens_the_file_as_docs_output_md_shows() {
-    use std::process::Command;
-    let has = |module: &str| {
-        Command::new("python3")
-            .args(["-c", &format!("import {module}")])
-            .output()
-            .is_ok_and(|o| o.status.success())
-    };
-    if !has("xarray") || !(has("netCDF4") || has("h5netcdf")) {
-        eprintln!("skipped: python3 without xarray, or without netCDF4 and h5netcdf (pip install h5netcdf)");
-        return;
-    }
-    let doc = include_str!("../docs/output.md");
-    let at = doc.rfind("```python\n").expect("a python block") + "```python\n".len();
-    let example = &doc[at..at + doc[at..].find("```").expect("its end")];
-    let dir = tempfile::tempdir().unwrap();
-    let h5 = box_run(dir.path());
-    let nc = dir.path().join("fields.nc");
-    write_grid(&GridArgs {
-        run: h5,
-        output: nc.clone(),
-        cell_m: 250.0,
-        cadence: Cadence::IntervalS(10000.0),
-        force: false,
-    })
-    .unwrap();
-    let check = "\nassert list(ds.concentration.dims) == ['time', 'y', 'x']\n\
-                 assert ds.x.attrs['units'] == 'm' and ds.time.attrs['units'] == 's'\n\
-                 assert len(ds.time) == 3, ds.time\n\
-                 assert ds.u.isnull().any() and ds.u.encoding['_FillValue'] > 9e36\n";
-    let out = Command::new("python3")
-        .arg("-c")
-        .arg(format!("{example}{check}"))
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    let (stdout, stderr) = (
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr),
-    );
-    assert!(out.status.success(), "{stdout}{stderr}");
-    assert!(stdout.trim_end().ends_with("m s-1"), "{stdout}");
 }
