@@ -165,11 +165,9 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
         path: args.output.clone(),
         message: e.to_string(),
     };
-    let mut file = netcdf::create_with(
-        partial.path(),
-        Options::NETCDF4 | Options::CLASSIC | Options::NOCLOBBER,
-    )
-    .map_err(nc)?;
+    partial.create()?;
+    let mut file =
+        netcdf::create_with(partial.path(), Options::NETCDF4 | Options::CLASSIC).map_err(nc)?;
     define(&mut file, &args.run, &grid).map_err(nc)?;
     // The classic model has a define mode to leave before writing data.
     file.enddef().map_err(nc)?;

@@ -38,6 +38,13 @@ impl PartialFile {
         &self.partial
     }
 
+    /// Creates the (empty) partial file, so that a missing or read-only
+    /// directory is reported by the system for the target, before any
+    /// library (HDF5, NetCDF, ffmpeg) writes into it.
+    pub fn create(&self) -> Result<std::fs::File, Error> {
+        std::fs::File::create_new(&self.partial).map_err(|e| Error::io(&self.target, e))
+    }
+
     /// The file it becomes.
     pub fn target(&self) -> &Path {
         &self.target

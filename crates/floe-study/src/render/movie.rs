@@ -144,9 +144,11 @@ impl Movie {
         fps: f64,
     ) -> Result<Self, Error> {
         let partial = PartialFile::new(target);
+        let file = partial.create()?;
         let sink = match encoding {
+            // ffmpeg opens the file again and writes over it.
             Encoding::Mp4 => Sink::Mp4(FfmpegSink::start(partial.path(), target, size, fps)?),
-            Encoding::Gif => Sink::Gif(GifSink::create(partial.path(), target, size, fps)?),
+            Encoding::Gif => Sink::Gif(GifSink::create(file, target, size, fps)?),
         };
         Ok(Self {
             partial,

@@ -17,11 +17,11 @@ pub(crate) struct GifSink {
 }
 
 impl GifSink {
-    /// Creates the GIF at `path` (the partial file of `target`) for frames
+    /// Starts the GIF in `file` (the partial file of `target`) for frames
     /// of `size` pixels shown at `fps` (GIF delays are whole hundredths of
     /// a second, at least 2: at most 50 frames per second).
     pub(crate) fn create(
-        path: &Path,
+        file: File,
         target: &Path,
         size: (u32, u32),
         fps: f64,
@@ -35,7 +35,6 @@ impl GifSink {
                 .map_err(|_| encode(format!("{n} pixels: a GIF is at most 65535 a side")))
         };
         let size = (side(size.0)?, side(size.1)?);
-        let file = File::create_new(path).map_err(|e| Error::io(path, e))?;
         let mut encoder = gif::Encoder::new(BufWriter::new(file), size.0, size.1, &[])
             .map_err(|e| encode(e.to_string()))?;
         encoder
