@@ -137,7 +137,6 @@ fn a_gif_of_the_chosen_snapshots_decodes_to_frames_of_the_maps_size() {
         ColourBy::Speed,
         &dir.path().join("maps"),
         false,
-        &mut |_, _| {},
     )
     .unwrap();
     let size = png_size(&pngs[0]);

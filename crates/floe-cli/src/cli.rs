@@ -757,7 +757,14 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             let written = if grid {
                 render::grid_map::render_grid(&file, which, &output, force, &mut progress)?
             } else {
-                render::render(&file, which, color.into(), &output, force, &mut progress)?
+                render::render_with_progress(
+                    &file,
+                    which,
+                    color.into(),
+                    &output,
+                    force,
+                    &mut progress,
+                )?
             };
             Ok(format!(
                 "{} pictures in {}",

@@ -177,14 +177,7 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
         hooks.say(&summary.describe(&output));
         let map_dir = args.out_dir.join(law.name());
         std::fs::create_dir_all(&map_dir).map_err(|e| Error::io(&map_dir, e))?;
-        render(
-            &output,
-            Snapshots::One(-1),
-            ColourBy::Speed,
-            &map_dir,
-            true,
-            &mut |_, _| {},
-        )?;
+        render(&output, Snapshots::One(-1), ColourBy::Speed, &map_dir, true)?;
         out.push(Variant {
             name: law.name().to_string(),
             friction_toml: friction,

@@ -79,8 +79,19 @@ pub fn select(which: Snapshots, count: usize) -> Result<Vec<usize>, Error> {
 
 /// Draws the selected snapshots and the observables into `out_dir`;
 /// returns the files written. Refuses to replace pictures unless `force`.
-/// `progress` hears (frames drawn, frames in all) after each map.
 pub fn render(
+    file: &Path,
+    which: Snapshots,
+    colour: ColourBy,
+    out_dir: &Path,
+    force: bool,
+) -> Result<Vec<PathBuf>, Error> {
+    render_with_progress(file, which, colour, out_dir, force, &mut |_, _| {})
+}
+
+/// [`render`], with `progress` told (frames drawn, frames in all) after
+/// each map.
+pub fn render_with_progress(
     file: &Path,
     which: Snapshots,
     colour: ColourBy,
