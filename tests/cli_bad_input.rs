@@ -385,6 +385,27 @@ fn grid_info_and_render_refuse_missing_or_foreign_files_and_grid_a_bad_cell_size
         assert_one_clear_error(code, &err, 2);
         assert!(err.contains("--cell-m"), "{err}");
     }
+    // The cadence flags likewise, before the run file is looked at.
+    for (flags, named) in [
+        (&["--every", "0"][..], "--every"),
+        (&["--interval-s", "0"], "--interval-s"),
+        (&["--interval-s", "-5"], "--interval-s"),
+        (&["--interval-s", "inf"], "--interval-s"),
+        (&["--every", "2", "--interval-s", "60"], "--interval-s"),
+    ] {
+        let mut args = vec![
+            "grid",
+            "/nonexistent/run.h5",
+            "-o",
+            &out,
+            "--cell-m",
+            "1000",
+        ];
+        args.extend_from_slice(flags);
+        let (code, err) = floe(&args);
+        assert_one_clear_error(code, &err, 2);
+        assert!(err.contains(named), "{flags:?}: {err}");
+    }
     assert!(!dir.path().join("f.nc").exists());
     // The other readers of run files say the same: a missing file, or one
     // that is not a floe run file, is bad input.
