@@ -79,7 +79,13 @@ fn main() {
     let mut xr = None;
     let mut out = PathBuf::from("out/strait_flux");
     let mut runs = Vec::new();
-    let mut args = std::env::args().skip(1);
+    // `--key=value` as well as `--key value` (values may be negative).
+    let mut args = std::env::args()
+        .skip(1)
+        .flat_map(|a| match a.split_once('=') {
+            Some((k, v)) if k.starts_with("--") => vec![k.to_string(), v.to_string()],
+            _ => vec![a],
+        });
     while let Some(a) = args.next() {
         match a.as_str() {
             "--gate-y-m" => gate = args.next().map(|v| v.parse::<f64>().expect("Y")),
