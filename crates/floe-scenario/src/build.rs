@@ -7,7 +7,6 @@
 //! then the land pieces, `[[land]]` table by table.
 
 use std::ops::Not;
-use std::ops::Range;
 
 use floe_dem::floes::{Floe, Floes};
 use floe_dem::geometry::FloeShape;
@@ -23,6 +22,7 @@ use crate::checks;
 use crate::error::ScenarioError;
 use crate::land_build;
 use crate::numbers::{short, sig, thousands};
+pub(crate) use crate::piece::Piece;
 use crate::resolve::{
     dem_error, voronoi_work, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION,
 };
@@ -31,30 +31,6 @@ use crate::source_file::SourceFile;
 /// Most segments one wall is made of (a wall much longer than the floes are
 /// wide gets longer segments rather than millions of them).
 const MAX_WALL_SEGMENTS: usize = 100_000;
-
-/// One floe to be created.
-pub(crate) struct Piece {
-    pub polygon: Vec<Vec2>,
-    pub thickness_m: f64,
-    pub velocity: Vec2,
-    pub angular_velocity: f64,
-    pub prescribed: bool,
-    /// The motion schedule of a prescribed piece that has one.
-    pub schedule: Option<MotionSchedule>,
-    /// The load point (stiffness, N/m, and schedule) of a free piece.
-    pub load_point: Option<(f64, MotionSchedule)>,
-    /// What it is, for messages (`floe[3]`, `wall[0] (bottom)`...).
-    pub label: Option<String>,
-    /// Where it was written, for explicit floes.
-    pub span: Option<Range<usize>>,
-}
-
-impl Piece {
-    /// The mean of its vertices (a point inside it), m.
-    fn vertex_mean(&self) -> Vec2 {
-        self.polygon.iter().fold(Vec2::ZERO, |a, &b| a + b) / self.polygon.len() as f64
-    }
-}
 
 /// The ice region: the domain minus the wall insets.
 pub(crate) fn ice_region(r: &Resolved) -> Rect {

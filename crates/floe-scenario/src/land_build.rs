@@ -5,11 +5,11 @@
 use floe_basin::{read_land, Coordinates, Land};
 use floe_dem::Vec2;
 
-use crate::build::Piece;
 use crate::checks::OVERLAP_TOLERANCE;
 use crate::error::ScenarioError;
 use crate::land_spec::LandFile;
 use crate::numbers::{sig, thousands};
+use crate::piece::Piece;
 use crate::resolve::{Resolved, MAX_LENGTH_M};
 use crate::source_file::SourceFile;
 

@@ -35,6 +35,7 @@ pub mod law_variants;
 mod motion_segments;
 pub mod numbers;
 pub mod output_cadence;
+mod piece;
 pub mod protocol_file;
 pub mod resolve;
 pub mod scenario;
