@@ -25,6 +25,8 @@ pub mod domain;
 pub mod error;
 pub mod exact;
 mod extent;
+mod ice_grid;
+pub mod ice_grid_keys;
 pub mod law_table;
 pub mod law_variants;
 mod motion_segments;
@@ -34,6 +36,7 @@ pub mod protocol_file;
 pub mod resolve;
 pub mod scenario;
 pub mod settings;
+mod size_distribution;
 pub mod source_file;
 pub mod spec;
 

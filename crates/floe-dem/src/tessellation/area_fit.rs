@@ -17,6 +17,8 @@
 
 use std::ops::Not;
 
+use std::f64::consts::PI;
+
 use rayon::prelude::*;
 
 use super::disk_grid::DiskGrid;
@@ -55,14 +57,22 @@ pub(crate) fn fit_areas(
     sites: &[Vec2],
     targets: &[f64],
     weights: &mut [f64],
-    grid: &mut DiskGrid,
     size: Vec2,
     (tolerance, max_passes): (f64, usize),
 ) -> AreaFit {
     let n = sites.len();
     let mut rho: Vec<f64> = targets.iter().map(|t| t.sqrt()).collect();
     let mut passes = 1;
-    let mut cells = power_cells(sites, weights, &rho, grid, size);
+    // Indexed by the radius of a disk of half the target area: levels by
+    // the floes' own sizes, bounds by their weights.
+    let radius: Vec<f64> = targets.iter().map(|t| (0.5 * t / PI).sqrt()).collect();
+    let smallest = radius.iter().copied().fold(f64::INFINITY, f64::min);
+    let largest = radius.iter().copied().fold(0.0, f64::max);
+    let mut grid = DiskGrid::new(size, smallest, largest, sites.len());
+    for (&s, &r) in sites.iter().zip(&radius) {
+        grid.insert(s, r);
+    }
+    let mut cells = power_cells(sites, weights, &rho, &mut grid, size);
     let floor = 0.5
         * cells
             .iter()
@@ -101,7 +111,7 @@ pub(crate) fn fit_areas(
             for k in 0..n {
                 trial[k] = weights[k] + tau * step[k];
             }
-            let next = power_cells(sites, &trial, &rho, grid, size);
+            let next = power_cells(sites, &trial, &rho, &mut grid, size);
             passes += 1;
             let smallest = next.iter().map(|c| c.area()).fold(f64::INFINITY, f64::min);
             let r_next = residual(&next);
@@ -131,8 +141,9 @@ pub(crate) fn fit_areas(
     }
 }
 
-/// Every power cell at weights `w` (`rho`: where to look first).
-fn power_cells(
+/// Every power cell at weights `w` (`rho`: where to look first), the
+/// sites indexed in `grid`.
+pub(crate) fn power_cells(
     sites: &[Vec2],
     w: &[f64],
     rho: &[f64],

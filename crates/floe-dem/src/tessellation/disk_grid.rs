@@ -1,12 +1,16 @@
 //! A spatial index of disks of very different radii (floes of a power-law
 //! size distribution span a factor of 10 to 1000): one uniform grid per
 //! octave of radius, each disk in the one cell of its level that holds its
-//! centre. A query visits, per level, the cells within its reach plus the
-//! level's largest radius, so its cost does not depend on how many scales
-//! the disks span. Cells are linked lists (a head per cell, a next per
-//! disk), so insertion is O(1) and memory is a few bytes per cell; the
-//! finest cells are made no smaller than the mean spacing of the disks so
-//! that no level has many more cells than disks.
+//! centre. Each cell keeps a bound (the largest radius in it, or another
+//! number per disk such as a power-diagram weight, [`DiskGrid::rebound`]);
+//! a query visits, per level, the cells within its reach of that level's
+//! largest bound, and skips a cell that lies farther from the query point
+//! than its reach of the cell's own bound. So its cost does not depend on
+//! how many scales the disks span, nor on how the bound varies over the
+//! region. Cells are linked lists (a head per cell, a next per disk), so
+//! insertion is O(1) and memory is a few bytes per cell; the finest cells
+//! are made no smaller than the mean spacing of the disks so that no level
+//! has many more cells than disks.
 
 use std::ops::Not;
 
@@ -21,7 +25,9 @@ struct Level {
     nx: usize,
     ny: usize,
     head: Vec<u32>,
-    /// The largest radius (or weight bound) of a disk in this level.
+    /// Per cell, the largest bound of its disks.
+    bound: Vec<f64>,
+    /// The largest bound in this level.
     largest: f64,
     /// Disks in this level.
     count: usize,
@@ -52,7 +58,8 @@ impl DiskGrid {
                 nx,
                 ny,
                 head: vec![NONE; nx * ny],
-                largest: 0.0,
+                bound: vec![f64::NEG_INFINITY; nx * ny],
+                largest: f64::NEG_INFINITY,
                 count: 0,
             });
             if cell >= 2.0 * r_max || levels.len() == 60 {
@@ -88,6 +95,7 @@ impl DiskGrid {
         let cell = j * level.nx + i;
         self.next.push(level.head[cell]);
         level.head[cell] = id as u32;
+        level.bound[cell] = level.bound[cell].max(radius);
         level.largest = level.largest.max(radius);
         level.count += 1;
         self.centre.push(centre);
@@ -100,20 +108,26 @@ impl DiskGrid {
         self.next.len()
     }
 
-    /// Sets each level's bound to the largest of `bound(k)` over its
-    /// disks (a weight instead of the radius, for power-diagram queries).
+    /// Sets each cell's bound to the largest of `bound(k)` over its disks
+    /// (a weight instead of the radius, for power-diagram queries).
     pub(crate) fn rebound(&mut self, bound: impl Fn(usize) -> f64) {
         for l in &mut self.levels {
             l.largest = f64::NEG_INFINITY;
+            l.bound.fill(f64::NEG_INFINITY);
         }
         for k in 0..self.len() {
             let l = &mut self.levels[self.level_of[k] as usize];
-            l.largest = l.largest.max(bound(k));
+            let (i, j) = Self::cell_index(l, self.centre[k]);
+            let b = bound(k);
+            let cell = j * l.nx + i;
+            l.bound[cell] = l.bound[cell].max(b);
+            l.largest = l.largest.max(b);
         }
     }
 
     /// Calls `visit(k)` for every disk `k` whose centre may lie within
-    /// `reach(level bound)` of `p` (a superset: whole cells are visited),
+    /// `reach(bound)` of `p`, `reach` increasing in the bound (a superset:
+    /// whole cells are visited, those within `reach` of their own bound),
     /// level by level from the finest, cells in row order, each cell's
     /// disks newest first: a deterministic order.
     pub(crate) fn visit_near(
@@ -132,9 +146,20 @@ impl DiskGrid {
             }
             let (i0, j0) = Self::cell_index(level, p - Vec2::splat(r));
             let (i1, j1) = Self::cell_index(level, p + Vec2::splat(r));
+            let h = level.cell_m;
             for j in j0..=j1 {
                 for i in i0..=i1 {
-                    let mut k = level.head[j * level.nx + i];
+                    let cell = j * level.nx + i;
+                    if level.head[cell] == NONE {
+                        continue;
+                    }
+                    // The distance from p to the cell's square.
+                    let lo = Vec2::new(i as f64 * h, j as f64 * h);
+                    let gap = (lo - p).max(p - (lo + Vec2::splat(h))).max(Vec2::ZERO);
+                    if gap.length() >= reach(level.bound[cell]) {
+                        continue;
+                    }
+                    let mut k = level.head[cell];
                     while k != NONE {
                         visit(k as usize);
                         k = self.next[k as usize];

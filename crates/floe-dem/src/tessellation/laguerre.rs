@@ -11,10 +11,12 @@
 //! A cell is the domain rectangle clipped by the half-plane of each site
 //! that can reach it, found through a [`DiskGrid`]: if the cell lies within
 //! `ρ` of its site, site `j` can cut it only if
-//! `|p_j − p_i| < ρ + sqrt(ρ² − w_i + w_j)`. A first pass assumes `ρ` and
-//! a second, with the `ρ` of the first pass's cell, is exact. Each cell
-//! is computed on its own, in a frame centred on its site, so the result
-//! does not depend on the order or the thread count.
+//! `|p_j − p_i| < ρ + sqrt(ρ² − w_i + w_j)`. A pass assumes a `ρ`, clips
+//! by the sites that pass the test (nearest first, skipping those that can
+//! no longer reach the shrinking cell), and is exact if the cell it makes
+//! lies within `ρ`; otherwise `ρ` doubles. Each cell is computed on its
+//! own, in a frame centred on its site, so the result does not depend on
+//! the order or the thread count.
 
 use super::disk_grid::DiskGrid;
 use super::polygon_area;
@@ -92,9 +94,16 @@ impl PowerDiagram<'_> {
             ]);
             cell.tags.clear();
             cell.tags.extend_from_slice(&[BOUNDARY; 4]);
-            for &(_, j) in candidates.iter() {
+            // The cell only shrinks: a candidate that cannot reach the
+            // current cell is skipped.
+            let mut reach_now = cell.reach();
+            for &(d, j) in candidates.iter() {
+                let wj = self.weights[j as usize];
+                if d >= reach_now + (reach_now * reach_now - wi + wj).max(0.0).sqrt() {
+                    continue;
+                }
                 let n = self.sites[j as usize] - p;
-                let c = 0.5 * (n.length_squared() + wi - self.weights[j as usize]);
+                let c = 0.5 * (n.length_squared() + wi - wj);
                 clip_tagged(&cell, &mut scratch, n, c, j);
                 std::mem::swap(&mut cell, &mut scratch);
                 if cell.polygon.len() < 3 {
@@ -102,13 +111,15 @@ impl PowerDiagram<'_> {
                     cell.tags.clear();
                     return cell;
                 }
+                reach_now = cell.reach();
             }
-            let reached = cell.reach();
-            if reached <= rho {
+            if reach_now <= rho {
                 return cell;
             }
-            // The true cell lies inside this one, hence within `reached`.
-            rho = reached;
+            // Sites beyond `rho` may still cut the cell: look twice as far
+            // (not at once as far as the cell reaches, which for a cell
+            // still open to the domain's edge is the whole domain).
+            rho *= 2.0;
         }
         cell
     }
