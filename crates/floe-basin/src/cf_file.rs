@@ -137,8 +137,10 @@ impl CfFile {
                 why: "no such file".to_string(),
             });
         }
-        // NetCDF-4 files are HDF5: the library's own failed probes (an
-        // attribute that is not there) must not print HDF5 diagnostics.
+        // NetCDF-C turns HDF5's error printing off only in the thread that
+        // opens its first file; HDF5 keeps that setting per thread, and
+        // NetCDF-C's probes of attributes a file lacks (`_Quantize...`)
+        // would print pages of HDF5-DIAG from any other thread.
         hdf5::silence_errors(true);
         let file = netcdf::open(path).map_err(|e| BasinError::File {
             path: path.to_path_buf(),
@@ -335,6 +337,19 @@ impl CfFile {
             return Err(self.error(format!("time \"{dim}\" does not increase strictly")));
         }
         Ok(Some(out))
+    }
+
+    /// The number of time records of variable `name`: the length of its
+    /// time dimension, 1 without one.
+    ///
+    /// # Errors
+    /// As [`CfFile::layout`].
+    pub fn records(&self, name: &str) -> Result<usize, BasinError> {
+        let layout = self.layout(name)?;
+        let Some(k) = layout.time_dim else {
+            return Ok(1);
+        };
+        Ok(self.variable(name)?.dimensions()[k].len())
     }
 
     /// The values of `layout` at time index `time` (ignored without a time

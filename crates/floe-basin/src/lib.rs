@@ -27,6 +27,10 @@ pub use projection::MapProjection;
 pub mod cf_file;
 pub mod cf_time;
 pub mod checksum;
+pub mod ice_fields;
 pub mod netcdf_source;
+pub mod scalar_grid;
 
+pub use ice_fields::{open_concentration, open_thickness, ConcentrationGrid, ConcentrationUnits};
 pub use netcdf_source::{FieldRequest, NetcdfSource};
+pub use scalar_grid::{ScalarGrid, ScalarRequest};

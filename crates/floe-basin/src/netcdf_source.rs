@@ -88,6 +88,9 @@ pub struct NetcdfSource {
     /// Per plane node, the plane directions of east and north (vectors
     /// given as east/north components), or empty.
     east_north: Vec<(Vec2, Vec2)>,
+    /// For a source of one chosen record ([`NetcdfSource::open_record`]):
+    /// the file's time index that slice 0 reads.
+    record: Option<usize>,
 }
 
 impl std::fmt::Debug for NetcdfSource {
@@ -106,6 +109,21 @@ impl NetcdfSource {
     /// components on different kinds of grid, a region the grid does not
     /// cover, a longitude-latitude file without a projection, bad times.
     pub fn open(request: FieldRequest<'_>) -> Result<Self, BasinError> {
+        Self::open_with(request, None)
+    }
+
+    /// Like [`NetcdfSource::open`], but one slice only, at time 0: the
+    /// file's record `record` (its time index; 0 for a variable without a
+    /// time dimension). The file's dates are not read, so no
+    /// `start_time` is needed.
+    ///
+    /// # Errors
+    /// As [`NetcdfSource::open`], and a record beyond the file's.
+    pub fn open_record(request: FieldRequest<'_>, record: usize) -> Result<Self, BasinError> {
+        Self::open_with(request, Some(record))
+    }
+
+    fn open_with(request: FieldRequest<'_>, record: Option<usize>) -> Result<Self, BasinError> {
         let file = CfFile::open(request.path)?;
         let err = |why: String| BasinError::File {
             path: request.path.to_path_buf(),
@@ -126,11 +144,28 @@ impl NetcdfSource {
                 request.variables.join(", ")
             )));
         }
-        let times = match file.times_s(request.variables[0], request.start_time)? {
-            Some(t) => t,
-            None => vec![0.0],
+        if let Some(k) = record {
+            for v in request.variables {
+                let records = file.records(v)?;
+                if k >= records {
+                    return Err(err(format!(
+                        "variable \"{v}\" has {records} time record(s): time index {k} is \
+                         beyond the last, {}",
+                        records - 1
+                    )));
+                }
+            }
+        }
+        let times = match record {
+            Some(_) => vec![0.0],
+            None => file
+                .times_s(request.variables[0], request.start_time)?
+                .unwrap_or_else(|| vec![0.0]),
         };
         for v in &request.variables[1..] {
+            if record.is_some() {
+                break;
+            }
             let other = file
                 .times_s(v, request.start_time)?
                 .unwrap_or_else(|| vec![0.0]);
@@ -205,6 +240,7 @@ impl NetcdfSource {
             times,
             components,
             east_north,
+            record,
         })
     }
 }
@@ -457,6 +493,7 @@ impl SliceSource for NetcdfSource {
             .lock()
             .map_err(|_| ForcingFailure(format!("{}: reader poisoned", self.describe)))?;
         let c = self.components.len();
+        let index = self.record.unwrap_or(index);
         for (k, comp) in self.components.iter().enumerate() {
             comp.sample(&file, index, out, c, k)
                 .map_err(|e| ForcingFailure(e.to_string()))?;

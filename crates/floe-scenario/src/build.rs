@@ -12,7 +12,10 @@ use floe_dem::floes::{Floe, Floes};
 use floe_dem::geometry::FloeShape;
 use floe_dem::motion_schedule::MotionSchedule;
 use floe_dem::pipeline::integrator::{damping_step_factor, STABILITY_SAFETY};
-use floe_dem::tessellation::{DiamondLattice, Rect, Tessellation, VoronoiFloes, MAX_FLOES};
+use floe_dem::tessellation::{
+    fit_sizes, DiamondLattice, PowerLawFit, PowerLawFloes, PowerLawSizes, Rect, Tessellation,
+    VoronoiFloes, MAX_FLOES,
+};
 use floe_dem::world::stable_time_step;
 use floe_dem::Vec2;
 use floe_friction::Law;
@@ -20,12 +23,14 @@ use floe_friction::Law;
 use crate::built_floes::{BuiltFloes, StressWall};
 use crate::checks;
 use crate::error::ScenarioError;
+use crate::ice_grid::{place_from_grids, GridFrame};
 use crate::land_build;
 use crate::numbers::{short, sig, thousands};
 pub(crate) use crate::piece::Piece;
 use crate::resolve::{
     dem_error, voronoi_work, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION,
 };
+use crate::size_distribution::check_fits;
 use crate::source_file::SourceFile;
 
 /// Most segments one wall is made of (a wall much longer than the floes are
@@ -67,8 +72,17 @@ fn generate(
 ) -> Result<Vec<Piece>, ScenarioError> {
     let span = r.floes_span.clone();
     let dem = |e| dem_error(f, span.clone(), "tessellation", e);
-    let free = |t: Tessellation, v: Vec2| -> Vec<Piece> {
-        t.polygons
+    // The floes of a tessellation, placed from the ice grids if any.
+    let frame = GridFrame {
+        projection: r.map.as_ref(),
+        start_time: r.start_time.as_deref(),
+    };
+    let free = |mut t: Tessellation,
+                v: Vec2,
+                report: &mut Vec<String>|
+     -> Result<Vec<Piece>, ScenarioError> {
+        place_from_grids(f, r, region, &mut t, frame, report)?;
+        Ok(t.polygons
             .into_iter()
             .zip(t.thickness_m)
             .map(|(polygon, thickness_m)| Piece {
@@ -82,7 +96,7 @@ fn generate(
                 label: None,
                 span: None,
             })
-            .collect()
+            .collect())
     };
     let v0 = r.initial_velocity;
     let dropped_line = |what: &str, dropped: usize, area: f64| {
@@ -147,7 +161,7 @@ fn generate(
                 drop.dropped,
                 drop.dropped_area_m2,
             ));
-            Ok(free(t, v0))
+            free(t, v0, report)
         }
         FloeSource::Voronoi {
             count,
@@ -189,7 +203,65 @@ fn generate(
                 relax_iterations
             ));
             report.push(dropped_line("cells", drop.dropped, drop.dropped_area_m2));
-            Ok(free(t, v0))
+            free(t, v0, report)
+        }
+        FloeSource::PowerLaw {
+            sizes,
+            relax_iterations,
+            relax_span,
+        } => {
+            check_fits(f, sizes, region, (*relax_iterations, relax_span.clone()))?;
+            let (mut t, pr) = PowerLawFloes {
+                domain: region,
+                sizes: sizes.law,
+                seed: r.seed,
+                thickness: r.thickness,
+                relax_iterations: *relax_iterations,
+            }
+            .build()
+            .map_err(dem)?;
+            let law = sizes.law;
+            let drop = t.drop_floes_smaller_than(r.min_area_fraction * law.min_m * law.min_m);
+            report.push(format!(
+                "floes: {} Laguerre cells, sizes sqrt(area) from a power law N(>d) ~ d^-{} between {} and {} m ({} Lloyd iterations)",
+                thousands(t.len()),
+                sig(law.exponent),
+                sig(law.min_m),
+                sig(law.max_m),
+                relax_iterations
+            ));
+            report.push(format!(
+                "  cell areas within {} % of the drawn sizes' (rms {} %) after {} power diagrams; sizes scaled by {} to fill the region; {} disks placed overlapping",
+                sig(100.0 * pr.max_area_error),
+                sig(100.0 * pr.rms_area_error),
+                pr.passes,
+                sig(pr.size_scale),
+                pr.forced_placements
+            ));
+            report.push(describe_fit("  fitted exponent", fit_sizes(&t, law), law));
+            if pr.empty_cells + drop.dropped > 0 {
+                report.push(format!(
+                    "  {} empty cells and {} cells below {} of min_m^2 dropped ({} m^2)",
+                    pr.empty_cells,
+                    drop.dropped,
+                    r.min_area_fraction,
+                    sig(drop.dropped_area_m2)
+                ));
+            }
+            let placed = free(t, v0, report)?;
+            if r.ice_grids.concentration.is_some() {
+                let polygons: Vec<Vec<Vec2>> = placed.iter().map(|p| p.polygon.clone()).collect();
+                let t = Tessellation {
+                    thickness_m: vec![1.0; polygons.len()],
+                    polygons,
+                };
+                report.push(describe_fit(
+                    "  fitted exponent of the placed floes",
+                    fit_sizes(&t, law),
+                    law,
+                ));
+            }
+            Ok(placed)
         }
         FloeSource::Grid {
             columns,
@@ -234,13 +306,14 @@ fn generate(
                 sig(ch - gap_m),
                 sig(*gap_m)
             ));
-            Ok(free(
+            free(
                 Tessellation {
                     polygons,
                     thickness_m: thickness,
                 },
                 v0,
-            ))
+                report,
+            )
         }
         FloeSource::Explicit(list) => {
             let thickness = r.thickness.sample(list.len(), r.seed).map_err(dem)?;
@@ -293,6 +366,20 @@ fn generate(
             (*push_velocity_m_per_s, push_schedule.as_ref()),
             report,
         ),
+    }
+}
+
+/// A report line of a fitted size exponent.
+fn describe_fit(what: &str, fit: Option<PowerLawFit>, law: PowerLawSizes) -> String {
+    match fit {
+        Some(fit) => format!(
+            "{what} {} +- {} (maximum likelihood over {} floes; requested {})",
+            sig(fit.exponent),
+            sig(fit.std_error),
+            thousands(fit.used),
+            sig(law.exponent)
+        ),
+        None => format!("{what}: none (too few floes, or sizes weighted to the large end)"),
     }
 }
 
@@ -504,7 +591,17 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
                 .fold(0.0, f64::max)
         })
         .fold(0.0, f64::max);
-    let mean_h = r.thickness.mean_m();
+    // The walls' thickness: the mean floe's.
+    let mean_h = if r.ice_grids.thickness.is_some() {
+        let free: Vec<f64> = pieces
+            .iter()
+            .filter(|p| !p.prescribed)
+            .map(|p| p.thickness_m)
+            .collect();
+        free.iter().sum::<f64>() / free.len() as f64
+    } else {
+        r.thickness.mean_m()
+    };
     let mut stress_walls = Vec::new();
     for w in &r.walls {
         let first_piece = pieces.len();

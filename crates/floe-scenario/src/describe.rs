@@ -9,6 +9,9 @@ use crate::resolve::Resolved;
 
 pub(crate) fn describe_thickness(r: &Resolved) -> String {
     use floe_dem::tessellation::ThicknessDistribution as T;
+    if let Some(g) = &r.ice_grids.thickness {
+        return format!("from {} in `{}`", g.variable, g.written);
+    }
     match r.thickness {
         T::Uniform { thickness_m } => format!("{thickness_m} m"),
         T::UniformRange { min_m, max_m } => format!("uniform in [{min_m}, {max_m}] m"),

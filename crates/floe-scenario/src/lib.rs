@@ -27,6 +27,8 @@ pub mod error;
 pub mod exact;
 mod extent;
 pub mod gridded_inputs;
+mod ice_grid;
+pub mod ice_grid_keys;
 pub mod input_paths;
 mod land_build;
 mod land_spec;
@@ -40,6 +42,7 @@ pub mod protocol_file;
 pub mod resolve;
 pub mod scenario;
 pub mod settings;
+mod size_distribution;
 pub mod source_file;
 pub mod spec;
 

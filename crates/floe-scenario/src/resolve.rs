@@ -22,10 +22,12 @@ use crate::extent::{Extent, MAX_ANGULAR_VELOCITY_RAD_PER_S, MAX_TRAVEL_DOMAINS};
 use crate::gridded_inputs::{
     resolve_gridded_velocity, resolve_sea_surface_height, GridContext, InputFile,
 };
+use crate::ice_grid_keys::{resolve_ice_grids, IceGrids};
 use crate::law_table::{law_from_table, preset_applies, RawLawTable};
 use crate::motion_segments::resolve_schedule;
 use crate::numbers::{short, short_list, sig, thousands};
 use crate::output_cadence::{OutputCadence, OutputWindow};
+use crate::size_distribution::{resolve_size_distribution, SizeDistribution};
 use crate::source_file::SourceFile;
 use crate::spec::*;
 
@@ -169,6 +171,12 @@ pub(crate) enum FloeSource {
         rows: usize,
         gap_m: f64,
     },
+    /// Voronoi with `size_distribution`: Laguerre cells of drawn areas.
+    PowerLaw {
+        sizes: SizeDistribution,
+        relax_iterations: usize,
+        relax_span: Option<Range<usize>>,
+    },
     DoubleShear {
         block_m: [f64; 2],
         side_block_m: [f64; 2],
@@ -198,6 +206,8 @@ pub(crate) struct Resolved {
     pub floes_span: Range<usize>,
     pub min_area_fraction: f64,
     pub thickness: ThicknessDistribution,
+    /// `[ice] concentration_grid` and `thickness_grid`.
+    pub ice_grids: IceGrids,
     pub density_kg_per_m3: f64,
     pub initial_velocity: Vec2,
     pub model: ContactModel,
@@ -522,6 +532,20 @@ pub(crate) fn resolve(
     let (thickness, density_kg_per_m3, initial_velocity) = resolve_ice(f, raw.ice.as_ref())?;
     let extent = Extent { duration_s, domain };
     let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw, extent)?;
+    let ice_grids = resolve_ice_grids(f, raw.ice.as_ref(), base_dir)?;
+    if let Some(g) = ice_grids.first() {
+        if matches!(
+            floes,
+            FloeSource::Explicit(_) | FloeSource::DoubleShear { .. }
+        ) {
+            return Err(f.error(
+                g.span.clone(),
+                g.key,
+                "places the floes of a [tessellation] of kind `diamond`, `voronoi` or `grid`; \
+                 not explicit [[floe]] tables or a double-shear set-up",
+            ));
+        }
+    }
     let model = resolve_contact(f, raw.contact.as_ref(), raw.friction.as_ref(), registry)?;
     let map = crate::land_spec::resolve_map(f, raw.map.as_ref())?;
     let mut grids = GridContext {
@@ -545,6 +569,15 @@ pub(crate) fn resolve(
         map.as_ref(),
         base_dir,
     )?;
+    for g in [&ice_grids.concentration, &ice_grids.thickness]
+        .into_iter()
+        .flatten()
+    {
+        grids.inputs.push(InputFile {
+            role: g.key.to_string(),
+            path: g.path.clone(),
+        });
+    }
     for l in &land {
         grids.inputs.push(InputFile {
             role: format!("land[{}]", l.index),
@@ -571,6 +604,7 @@ pub(crate) fn resolve(
         floes_span,
         min_area_fraction,
         thickness,
+        ice_grids,
         density_kg_per_m3,
         initial_velocity,
         model,
@@ -696,12 +730,13 @@ fn resolve_ice(
         ice.thickness_m.is_some(),
         ice.thickness_mean_m.is_some(),
         ice.thickness_range_m.is_some(),
+        ice.thickness_grid.is_some(),
     ];
     if ways.iter().filter(|&&w| w).count() > 1 {
         return Err(f.error(
             raw.span(),
             "ice",
-            "give one of `thickness_m`, `thickness_mean_m` (with `thickness_std_m`) or `thickness_range_m`",
+            "give one of `thickness_m`, `thickness_mean_m` (with `thickness_std_m`), `thickness_range_m` or `thickness_grid`",
         ));
     }
     if ice.thickness_std_m.is_some() && ice.thickness_mean_m.is_none() {
@@ -1017,6 +1052,7 @@ fn resolve_tessellation(
             t.segment.as_ref().and_then(|s| s.first()).map(|s| s.span()),
             "segment",
         ),
+        (span_of(&t.size_distribution), "size_distribution"),
     ];
     let allowed: &[&str] = match kind {
         "diamond" => &[
@@ -1032,6 +1068,7 @@ fn resolve_tessellation(
             "floe_scale_m",
             "count",
             "relax_iterations",
+            "size_distribution",
         ],
         "grid" => &["columns", "rows", "gap_m"],
         "double-shear" => &[
@@ -1150,6 +1187,38 @@ fn resolve_tessellation(
                 orientation_deg,
                 diagonals_m,
                 jitter_fraction,
+            }
+        }
+        "voronoi" if t.size_distribution.is_some() => {
+            let sizes = t.size_distribution.as_ref().expect("checked by the guard");
+            if let Some((span, name)) = [
+                (span_of(&t.count), "count"),
+                (span_of(&t.floe_scale_m), "floe_scale_m"),
+            ]
+            .into_iter()
+            .find_map(|(s, n)| s.map(|s| (s, n)))
+            {
+                return Err(f.error(
+                    span,
+                    format!("tessellation.{name}"),
+                    "give `size_distribution` or the floes' count or scale, not both \
+                     (the distribution sets how many floes fill the region)",
+                ));
+            }
+            let relax_iterations = match &t.relax_iterations {
+                Some(r) => count(
+                    f,
+                    r,
+                    "tessellation.relax_iterations",
+                    0,
+                    MAX_RELAX_ITERATIONS,
+                )?,
+                None => 1,
+            };
+            FloeSource::PowerLaw {
+                sizes: resolve_size_distribution(f, sizes)?,
+                relax_iterations,
+                relax_span: span_of(&t.relax_iterations),
             }
         }
         "voronoi" => {

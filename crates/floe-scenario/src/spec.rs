@@ -103,6 +103,19 @@ pub(crate) struct RawTessellation {
     pub push_velocity_m_per_s: Num,
     /// `[[tessellation.segment]]`: the double shear's pusher on a schedule.
     pub segment: Option<Vec<Spanned<RawSegment>>>,
+    /// voronoi: `size_distribution = { kind = "power_law", exponent, min_m, max_m }`.
+    pub size_distribution: Option<Spanned<RawSizeDistribution>>,
+}
+
+/// `size_distribution = { kind = "power_law", exponent, min_m, max_m }`:
+/// floe sizes `sqrt(area)` with `N(>d) ∝ d^−exponent` in `[min_m, max_m]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSizeDistribution {
+    pub kind: Word,
+    pub exponent: Num,
+    pub min_m: Num,
+    pub max_m: Num,
 }
 
 /// `[[floe]]`: one explicit floe.
@@ -137,6 +150,21 @@ pub(crate) struct RawIce {
     pub thickness_range_m: Pair,
     pub density_kg_per_m3: Num,
     pub initial_velocity_m_per_s: Pair,
+    /// `concentration_grid = { file, variable, time_index, units }`
+    pub concentration_grid: Option<Spanned<RawGridField>>,
+    /// `thickness_grid = { file, variable, time_index }`
+    pub thickness_grid: Option<Spanned<RawGridField>>,
+}
+
+/// A field of a NetCDF file: `{ file, variable, time_index, units }`
+/// (`units` for a concentration only).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawGridField {
+    pub file: Word,
+    pub variable: Word,
+    pub time_index: Count,
+    pub units: Word,
 }
 
 /// `[contact]`

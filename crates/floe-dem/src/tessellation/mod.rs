@@ -1,14 +1,20 @@
 //! Initial floe fields: sets of convex polygons that tile a rectangular
 //! domain exactly, each with a thickness.
 //!
-//! Two generators:
+//! Three generators:
 //! - [`DiamondLattice`]: a rhombus (diamond) lattice, optionally with its
 //!   nodes jittered, clipped to the domain (the geometry of ice-tank and
 //!   laboratory "diamond floe" tests);
 //! - [`VoronoiFloes`]: irregular convex floes, the Voronoi cells of random
-//!   sites (optionally Lloyd-relaxed), clipped to the domain.
+//!   sites (optionally Lloyd-relaxed), clipped to the domain;
+//! - [`PowerLawFloes`]: irregular convex floes whose sizes follow a
+//!   power-law floe-size distribution ([`PowerLawSizes`]), the cells of a
+//!   Laguerre (power) diagram fitted to drawn areas.
 //!
-//! Both return a [`Tessellation`]: polygons in world coordinates (m),
+//! [`select_by_concentration`] thins any of them to an ice concentration
+//! field.
+//!
+//! All return a [`Tessellation`]: polygons in world coordinates (m),
 //! counter-clockwise, without a repeated closing vertex, whose areas add up to
 //! the domain's area. Geometry is computed in frames local to the domain,
 //! the cell or the site so that domains placed at coordinates of order
@@ -19,8 +25,21 @@
 //! generator: the same parameters and seed give bitwise identical output on
 //! every platform.
 
+mod area_fit;
+mod concentration;
 mod diamond;
+mod disk_grid;
+mod laguerre;
+mod power_law;
+mod power_law_floes;
 mod voronoi;
+
+pub use concentration::{select_by_concentration, ConcentrationSelection};
+pub use power_law::{fit_power_law, PowerLawFit, PowerLawSizes, MAX_POWER_LAW_EXPONENT};
+pub use power_law_floes::{
+    fit_sizes, PowerLawFloes, PowerLawReport, AREA_TOLERANCE, MAX_POWER_LAW_FLOES,
+    MAX_WEIGHT_PASSES, PACKING_FRACTION, PLACEMENT_ATTEMPTS,
+};
 
 pub use diamond::{
     max_jitter_fraction, DiamondLattice, LatticeReport, SLIVER_AREA_FRACTION,
@@ -380,6 +399,12 @@ pub(crate) mod streams {
     pub const THICKNESS: u64 = 0x0074_6869_636b; // "thick"
     /// Voronoi sites.
     pub const SITES: u64 = 0x0073_6974_6573; // "sites"
+    /// Floe sizes of a size distribution.
+    pub const SIZES: u64 = 0x0073_697a_6573; // "sizes"
+    /// Placement of the floes of a size distribution.
+    pub const PLACEMENT: u64 = 0x0070_6c61_6365; // "place"
+    /// Thresholds of the selection by concentration.
+    pub const CONCENTRATION: u64 = 0x0000_636f_6e63; // "conc"
 }
 
 /// A 64-bit seed for stream `stream` of generator seed `seed` (SplitMix64
