@@ -108,7 +108,7 @@ pub(crate) fn place_from_grids(
             let value = h.at(centroids[k]);
             match value {
                 Some(v) if v >= MIN_THICKNESS_M => t.thickness_m[k] = v,
-                _ if !(c[k] > 0.0) => {}
+                _ if c[k].is_nan() || c[k] <= 0.0 => {}
                 Some(v) if v > 0.0 => {
                     dropped.too_thin += 1;
                     c[k] = f64::NAN;
