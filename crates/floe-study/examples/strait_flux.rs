@@ -2,7 +2,7 @@
 //! Nares Strait study, docs/studies/nares-strait.md).
 //!
 //! Run: `cargo run --release -p floe-study --example strait_flux -- \
-//!        --gate-y-m Y --mouth-y-m Y2 --x-range-m X0,X1 -o DIR RUN.h5...`
+//!        --gate-y-m Y --mouth-y-m Y2 --x-range-m X0,X1 [--scenario S] -o DIR RUN.h5...`
 //!
 //! For each run: the area of free ice past the gate `y < Y` (floes clipped
 //! exactly to the half-plane, floe_analysis::gate_flux) at every snapshot,
@@ -10,14 +10,16 @@
 //! band `Y2 − 5 km < y < Y2` over `X0 < x < X1` (the channel's width). The
 //! strait is *blocked* (an arch holds) at a snapshot interval when ice
 //! fills the mouth (concentration above 0.5) but less than 2 % of the
-//! run's peak flux passes. Writes DIR/flux.csv, DIR/flux.png and prints a
+//! run's peak flux passes. With `--scenario`, the panel of winds: the
+//! scenario's wind at the gate's centre, the component down the strait
+//! (−y) and across it. Writes DIR/flux.csv, DIR/flux.png and prints a
 //! summary table.
 
 use std::path::PathBuf;
 
 use floe_analysis::gate_flux::{area_past_gate, flux};
 use floe_io::RunFile;
-use floe_study::plot::{panels, Axes, Line};
+use floe_study::plot::{Axes, Line};
 
 /// Depth of the mouth band, m.
 const MOUTH_DEPTH_M: f64 = 5000.0;
@@ -79,6 +81,7 @@ fn main() {
     let mut xr = None;
     let mut out = PathBuf::from("out/strait_flux");
     let mut runs = Vec::new();
+    let mut scenario = None;
     // `--key=value` as well as `--key value` (values may be negative).
     let mut args = std::env::args()
         .skip(1)
@@ -92,6 +95,7 @@ fn main() {
             "--mouth-y-m" => mouth = args.next().map(|v| v.parse::<f64>().expect("Y2")),
             "--x-range-m" => xr = args.next().map(|v| parse_pair(&v)),
             "-o" => out = PathBuf::from(args.next().expect("DIR")),
+            "--scenario" => scenario = args.next().map(PathBuf::from),
             _ => runs.push(PathBuf::from(a)),
         }
     }
@@ -168,35 +172,59 @@ fn main() {
         ));
     }
     std::fs::write(out.join("flux.csv"), csv).expect("csv");
-    panels(
-        &out.join("flux.png"),
-        &[
-            (
-                Axes {
-                    title: "ice area through the gate",
-                    x: "time (h)",
-                    y: "area (km²)",
-                },
-                area_lines,
-            ),
-            (
-                Axes {
-                    title: "area flux through the gate",
-                    x: "time (h)",
-                    y: "flux (km²/day)",
-                },
-                flux_lines,
-            ),
-            (
-                Axes {
-                    title: "ice concentration in the strait's mouth",
-                    x: "time (h)",
-                    y: "concentration",
-                },
-                mouth_lines,
-            ),
-        ],
-    )
-    .expect("plot");
+    let mut wind_panel = Vec::new();
+    if let Some(path) = &scenario {
+        let sc = floe_scenario::Scenario::load(path).expect("scenario");
+        let mut forcing = sc.forcing().clone();
+        let at = floe_dem::Vec2::new(0.5 * (xr.0 + xr.1), gate);
+        let none = floe_dem::floes::FloeColumns::default();
+        let hours = series.first().map_or(vec![], |s| s.hours.clone());
+        let (mut down, mut across) = (Vec::new(), Vec::new());
+        for &h in &hours {
+            forcing.prepare(h * 3600.0, &none).expect("wind");
+            let w = forcing.wind.velocity(at, h * 3600.0);
+            down.push((h, -w.y));
+            across.push((h, w.x));
+        }
+        wind_panel.push((
+            Axes {
+                title: "wind at the gate",
+                x: "time (h)",
+                y: "wind (m/s)",
+            },
+            vec![
+                Line::new("down the strait (-y)", down),
+                Line::new("across (+x)", across),
+            ],
+        ));
+    }
+    let mut all = wind_panel;
+    all.extend([
+        (
+            Axes {
+                title: "ice area through the gate",
+                x: "time (h)",
+                y: "area (km²)",
+            },
+            area_lines,
+        ),
+        (
+            Axes {
+                title: "area flux through the gate",
+                x: "time (h)",
+                y: "flux (km²/day)",
+            },
+            flux_lines,
+        ),
+        (
+            Axes {
+                title: "ice concentration in the strait's mouth",
+                x: "time (h)",
+                y: "concentration",
+            },
+            mouth_lines,
+        ),
+    ]);
+    floe_study::plot::grid(&out.join("flux.png"), 2, &all).expect("plot");
     println!("wrote {}/flux.csv and flux.png", out.display());
 }
