@@ -242,3 +242,31 @@ fn thinning_to_a_concentration_keeps_the_size_distribution() {
         assert!(cells < cells_drawn, "c {c}: {cells} {cells_drawn}");
     }
 }
+
+/// Sizes over a factor of 100: a 2 km floe among 20 m ones touches more
+/// neighbours than a floe may have vertices (32); such cells are cut down
+/// (the smallest corners first), losing little area.
+#[test]
+fn a_wide_range_of_sizes_keeps_floes_within_the_vertex_limit() {
+    let law = PowerLawSizes {
+        exponent: 1.5,
+        min_m: 20.0,
+        max_m: 2000.0,
+    };
+    let region = region_for(law, 3000.0);
+    let (t, report) = floes(law, region, 9).build().unwrap();
+    t.validate().unwrap();
+    let most = t.polygons.iter().map(|p| p.len()).max().unwrap();
+    let lost = report.simplified_area_m2 / region.area_m2();
+    println!(
+        "{} floes, {} cut down to 32 vertices, {:.3} % of the area lost; fitted {:.3} +- {:.3}",
+        t.len(),
+        report.simplified,
+        100.0 * lost,
+        report.fit.unwrap().exponent,
+        report.fit.unwrap().std_error
+    );
+    assert!(most <= floe_dem::geometry::MAX_VERTICES, "{most}");
+    assert!(report.simplified > 0);
+    assert!(lost < 0.01, "{lost}");
+}

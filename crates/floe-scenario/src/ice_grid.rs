@@ -8,6 +8,8 @@
 //! each, and gives the ice area kept against concentration × area, overall
 //! and per grid cell.
 
+use std::ops::Not;
+
 use floe_basin::{open_concentration, open_thickness, MapProjection, ScalarGrid, ScalarRequest};
 use floe_dem::tessellation::{select_by_concentration, Rect, Tessellation};
 use floe_dem::Vec2;
@@ -108,7 +110,7 @@ pub(crate) fn place_from_grids(
             let value = h.at(centroids[k]);
             match value {
                 Some(v) if v >= MIN_THICKNESS_M => t.thickness_m[k] = v,
-                _ if !(c[k] > 0.0) => {}
+                _ if (c[k] > 0.0).not() => {}
                 Some(v) if v > 0.0 => {
                     dropped.too_thin += 1;
                     c[k] = f64::NAN;

@@ -1,6 +1,6 @@
 //! `[ice] concentration_grid` and `thickness_grid`: which NetCDF file and
 //! variable give the initial ice, checked where they are written. The
-//! files are opened only when the scenario is built ([`crate::ice_grid`]),
+//! files are opened only when the scenario is built (`ice_grid.rs`),
 //! so that a run resumes from its checkpoint without them.
 
 use std::ops::Range;

@@ -26,7 +26,7 @@ pub mod error;
 pub mod exact;
 mod extent;
 mod ice_grid;
-pub mod ice_grid_keys;
+mod ice_grid_keys;
 pub mod law_table;
 pub mod law_variants;
 mod motion_segments;

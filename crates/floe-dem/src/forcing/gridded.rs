@@ -9,7 +9,7 @@
 //! forces are gathered (the [`ExternalForces::prepare`] hook): it loads the
 //! two slices around the step's time when the time has moved past them,
 //! and checks that every free floe lies on the grid, on cells without
-//! missing values. Evaluation ([`GriddedField::value`]) then only reads.
+//! missing values. Evaluation ([`GriddedField::value_and_gradient`]) then only reads.
 //!
 //! Between grid nodes the field is bilinear in the cell; between the slice
 //! times `t_i ≤ t ≤ t_{i+1}` it is `(1 − w) F_i + w F_{i+1}`,
