@@ -899,6 +899,7 @@ fn ice_grids_are_checked_where_they_are_written() {
         units,
     };
     grid("siconc", Some("1")).write(Path::new(&file("conc.nc")), |_, _, _| 0.5);
+    grid("siconc", Some("1")).write(Path::new(&file("open.nc")), |_, _, _| 0.0);
     grid("siconc", Some("1")).write(Path::new(&file("high.nc")), |x, y, _| {
         if x > 2000.0 && y > 2000.0 {
             1.3
@@ -975,6 +976,8 @@ fn ice_grids_are_checked_where_they_are_written() {
         key,
         &["small.nc", "covers the domain"],
     );
+    // No ice at all.
+    check(&conc("open.nc", ""), "{ file", 0, key, &["leaves no floe"]);
     // Values and units.
     check(
         &conc("high.nc", ""),

@@ -589,6 +589,15 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
     let glued = glue_to_walls(r, region, &mut pieces, &mut report);
     let free = pieces.iter().filter(|p| !p.prescribed).count();
     if free == 0 {
+        if let Some(g) = r.ice_grids.first() {
+            return Err(f.error(
+                g.span.clone(),
+                g.key,
+                "leaves no floe: no floe's centroid lies where the grids give ice (a concentration \
+                 above 0 and, with a thickness grid, a thickness of at least 0.001 m); check \
+                 that the grid is the one for this domain and time",
+            ));
+        }
         return Err(f.error(
             r.floes_span.clone(),
             "tessellation",
