@@ -385,6 +385,27 @@ fn grid_info_and_render_refuse_missing_or_foreign_files_and_grid_a_bad_cell_size
         assert_one_clear_error(code, &err, 2);
         assert!(err.contains("--cell-m"), "{err}");
     }
+    // The cadence flags likewise, before the run file is looked at.
+    for (flags, named) in [
+        (&["--every", "0"][..], "--every"),
+        (&["--interval-s", "0"], "--interval-s"),
+        (&["--interval-s", "-5"], "--interval-s"),
+        (&["--interval-s", "inf"], "--interval-s"),
+        (&["--every", "2", "--interval-s", "60"], "--interval-s"),
+    ] {
+        let mut args = vec![
+            "grid",
+            "/nonexistent/run.h5",
+            "-o",
+            &out,
+            "--cell-m",
+            "1000",
+        ];
+        args.extend_from_slice(flags);
+        let (code, err) = floe(&args);
+        assert_one_clear_error(code, &err, 2);
+        assert!(err.contains(named), "{flags:?}: {err}");
+    }
     assert!(!dir.path().join("f.nc").exists());
     // The other readers of run files say the same: a missing file, or one
     // that is not a floe run file, is bad input.
@@ -421,4 +442,52 @@ fn a_run_refuses_a_missing_ice_grid_and_a_bad_size_distribution_at_their_keys() 
         ("400.0", 0),
         &["`tessellation.size_distribution.max_m`", "above min_m"],
     );
+}
+
+#[test]
+fn bad_land_files_stop_floe_run_with_one_located_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("coast.toml");
+    let base = "duration_s = 10.0\n\n[domain]\nsize_m = [4000.0, 4000.0]\n\n\
+                [tessellation]\nkind = \"grid\"\ncolumns = 2\nrows = 2\n\n\
+                [[land]]\nfile = \"coast.geojson\"\ncoordinates = \"xy\"\n";
+    std::fs::write(&scenario, base).unwrap();
+    let out = dir.path().join("run.h5");
+    let run = || {
+        floe(&[
+            "run",
+            &scenario.to_string_lossy(),
+            "-o",
+            &out.to_string_lossy(),
+            "--quiet",
+        ])
+    };
+    // Missing: relative to the scenario's directory, named.
+    let (code, err) = run();
+    assert_one_clear_error(code, &err, 2);
+    assert!(
+        err.contains("coast.toml:12:8")
+            && err.contains("land[0].file")
+            && err.contains("coast.geojson"),
+        "{err}"
+    );
+    // Bad geometry.
+    std::fs::write(
+        dir.path().join("coast.geojson"),
+        r#"{"type": "Polygon", "coordinates": [[[0, 0], [10, 10], [10, 0], [0, 10], [0, 0]]]}"#,
+    )
+    .unwrap();
+    let (code, err) = run();
+    assert_one_clear_error(code, &err, 2);
+    assert!(err.contains("not simple"), "{err}");
+    assert!(!out.exists(), "nothing is written for bad input");
+    // Good land runs, and the run file marks it.
+    std::fs::write(
+        dir.path().join("coast.geojson"),
+        r#"{"type": "Polygon", "coordinates": [[[3000, -500], [4500, -500], [4500, 4500], [3000, 4500], [3000, -500]]]}"#,
+    )
+    .unwrap();
+    let (code, err) = run();
+    assert_eq!(code, 0, "{err}");
+    assert!(out.exists());
 }

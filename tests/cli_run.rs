@@ -451,6 +451,97 @@ fn render_draws_the_floes_and_the_observables() {
     assert_eq!(code(&out), 2, "{}", text(&out.stderr));
 }
 
+/// `floe render --movie`: a GIF of every snapshot by default; an MP4
+/// without ffmpeg is refused with a message that says so and offers a GIF;
+/// no extension gives a GIF without ffmpeg; no overwrite without --force.
+#[test]
+fn render_writes_a_movie_and_explains_a_missing_ffmpeg() {
+    let case = Case::new(SMALL);
+    case.run_ok("run.h5", &[]);
+    let file = case.path("run.h5");
+    let snapshots = RunFile::open(Path::new(&file))
+        .unwrap()
+        .snapshot_count()
+        .unwrap();
+    let gif = case.path("run.gif");
+    let out = run_ok(&["render", &file, "--movie", &gif, "--fps", "4"]);
+    assert!(
+        out.contains(&format!("{snapshots} frames")) && out.contains("GIF"),
+        "{out}"
+    );
+    assert_eq!(&std::fs::read(&gif).unwrap()[..6], b"GIF89a");
+    let out = run(&["render", &file, "--movie", &gif]);
+    assert_eq!(code(&out), 2, "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("--force"));
+    run_ok(&["render", &file, "--movie", &gif, "--every", "3", "--force"]);
+
+    // Without ffmpeg on PATH.
+    let empty = case.path("no-programs");
+    std::fs::create_dir(&empty).unwrap();
+    let without_ffmpeg = |args: &[&str]| floe().args(args).env("PATH", &empty).output().unwrap();
+    let mp4 = case.path("run.mp4");
+    let out = without_ffmpeg(&["render", &file, "--movie", &mp4]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 2, "{err}");
+    assert_no_panic(&err);
+    assert!(err.contains("ffmpeg") && err.contains("run.gif"), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(!Path::new(&mp4).exists());
+    let out = without_ffmpeg(&["render", &file, "--movie", &case.path("plain")]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert!(Path::new(&case.path("plain.gif")).exists());
+
+    // An ffmpeg that fails: its message, exit 1, no file left.
+    let broken = case.path("broken-ffmpeg");
+    std::fs::create_dir(&broken).unwrap();
+    let script = Path::new(&broken).join("ffmpeg");
+    std::fs::write(
+        &script,
+        "#!/bin/sh\n[ \"$1\" = -version ] && exit 0\necho 'Unknown encoder libx264' >&2\nexit 1\n",
+    )
+    .unwrap();
+    let mut mode = std::fs::metadata(&script).unwrap().permissions();
+    std::os::unix::fs::PermissionsExt::set_mode(&mut mode, 0o755);
+    std::fs::set_permissions(&script, mode).unwrap();
+    let out = floe()
+        .args(["render", &file, "--movie", &mp4])
+        .env("PATH", &broken)
+        .output()
+        .unwrap();
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 1, "{err}");
+    assert_no_panic(&err);
+    assert!(
+        err.contains("ffmpeg failed") && err.contains("Unknown encoder libx264"),
+        "{err}"
+    );
+    assert!(!Path::new(&mp4).exists() && !Path::new(&format!("{mp4}.partial")).exists());
+
+    // Bad flags: one message, exit 2, nothing written.
+    for args in [
+        vec!["--movie", "m.avi"],
+        vec!["--movie", "m.gif", "--fps", "0"],
+        vec!["--movie", "m.gif", "--fps", "nan"],
+        vec!["--fps", "10", "-o", "pictures"],
+        vec!["--field", "u", "-o", "pictures"],
+        vec!["--movie", "m.gif", "-o", "pictures"],
+        vec![],
+    ] {
+        let mut all = vec!["render", file.as_str()];
+        all.extend_from_slice(&args);
+        let out = floe()
+            .args(&all)
+            .current_dir(case.dir.path())
+            .output()
+            .unwrap();
+        let err = text(&out.stderr);
+        assert_eq!(code(&out), 2, "{args:?}: {err}");
+        assert_no_panic(&err);
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+    }
+    assert!(!case.dir.path().join("m.gif").exists() && !case.dir.path().join("pictures").exists());
+}
+
 /// A run paused by the previous checkpoint format (2) resumes, taking its
 /// time step from the stored scenario, and ends bitwise as a fresh run of
 /// the same scenario does.

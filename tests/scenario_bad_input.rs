@@ -881,6 +881,220 @@ fn more_than_a_thousand_windows_or_more_outputs_than_steps_are_refused() {
     );
 }
 
+/// `BASE` with land from a GeoJSON file holding `geojson`, written in a
+/// fresh directory (returned with the text; the file key gives the
+/// absolute path).
+fn with_land(geojson: &str, extra: &str) -> (tempfile::TempDir, String, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("coast.geojson");
+    std::fs::write(&path, geojson).unwrap();
+    let file = path.to_string_lossy().into_owned();
+    let t = format!("{BASE}\n[[land]]\nfile = \"{file}\"\ncoordinates = \"xy\"\n{extra}");
+    (dir, t, file)
+}
+
+/// A GeoJSON polygon of the (x, y) ring `ring` (closed here).
+fn polygon(ring: &[(f64, f64)]) -> String {
+    let mut c: Vec<String> = ring.iter().map(|(x, y)| format!("[{x}, {y}]")).collect();
+    c.push(c[0].clone());
+    format!(
+        r#"{{"type": "Feature", "properties": {{}}, "geometry": {{"type": "Polygon", "coordinates": [[{}]]}}}}"#,
+        c.join(", ")
+    )
+}
+
+#[test]
+fn map_and_land_keys_are_checked_where_written() {
+    let t = format!("{BASE}\n[map]\nprojection = \"mercator\"\n");
+    check(&t, "\"mercator\"", 0, "map.projection", &["EPSG:3413"]);
+    let t = format!("{BASE}\n[map]\nprojection = \"EPSG:4326\"\n");
+    check(
+        &t,
+        "\"EPSG:4326\"",
+        0,
+        "map.projection",
+        &["longitude-latitude"],
+    );
+    let t = format!("{BASE}\n[map]\nzone = 3\n");
+    check(&t, "zone", 0, "zone", &["unknown field"]);
+    let t = format!("{BASE}\n[[land]]\ncoordinates = \"xy\"\n");
+    check(&t, "[[land]]", 0, "land[0].file", &["missing", "GeoJSON"]);
+    let t = format!("{BASE}\n[[land]]\nfile = \"coast.geojson\"\n");
+    check(
+        &t,
+        "[[land]]",
+        0,
+        "land[0].coordinates",
+        &["[map]", "\"xy\""],
+    );
+    let t = format!("{BASE}\n[[land]]\nfile = \"coast.geojson\"\ncoordinates = \"utm\"\n");
+    check(
+        &t,
+        "\"utm\"",
+        0,
+        "land[0].coordinates",
+        &["unknown value", "`lonlat`"],
+    );
+    let t = format!(
+        "{BASE}\n[[land]]\nfile = \"c.geojson\"\ncoordinates = \"xy\"\nthickness_m = 2.0\n"
+    );
+    check(
+        &t,
+        "thickness_m = 2.0",
+        0,
+        "thickness_m",
+        &["unknown field"],
+    );
+}
+
+#[test]
+fn land_files_that_are_missing_or_wrong_name_the_file_and_what_is_wrong() {
+    let square = [
+        (5000.0, 0.0),
+        (9000.0, 0.0),
+        (9000.0, 4000.0),
+        (5000.0, 4000.0),
+    ];
+    // Missing.
+    let (_d, t, file) = with_land("", "");
+    std::fs::remove_file(&file).unwrap();
+    check(
+        &t,
+        &format!("\"{file}\""),
+        0,
+        "land[0].file",
+        &[&file, "cannot read"],
+    );
+    // Not JSON, not GeoJSON.
+    let (_d, t, file) = with_land("{ coast", "");
+    check(
+        &t,
+        &format!("\"{file}\""),
+        0,
+        "land[0].file",
+        &[&file, "not GeoJSON"],
+    );
+    // A line is not land; the feature is named.
+    let line = format!(
+        r#"{{"type": "FeatureCollection", "features": [{}, {{"type": "Feature", "properties": {{}}, "geometry": {{"type": "LineString", "coordinates": [[0, 0], [1, 1]]}}}}]}}"#,
+        polygon(&square)
+    );
+    let (_d, t, file) = with_land(&line, "");
+    check(
+        &t,
+        &format!("\"{file}\""),
+        0,
+        "land[0].file",
+        &["feature 1", "LineString"],
+    );
+    // A figure eight.
+    let eight = polygon(&[
+        (5000.0, 0.0),
+        (9000.0, 4000.0),
+        (9000.0, 0.0),
+        (5000.0, 4000.0),
+    ]);
+    let (_d, t, file) = with_land(&eight, "");
+    check(
+        &t,
+        &format!("\"{file}\""),
+        0,
+        "land[0].file",
+        &["feature 0", "not simple"],
+    );
+    // Degenerate: all on a line.
+    let flat = polygon(&[(5000.0, 0.0), (6000.0, 0.0), (7000.0, 0.0)]);
+    let (_d, t, file) = with_land(&flat, "");
+    check(
+        &t,
+        &format!("\"{file}\""),
+        0,
+        "land[0].file",
+        &["feature 0", "not simple"],
+    );
+    let two = polygon(&[(5000.0, 0.0), (6000.0, 0.0), (5000.0, 0.0)]);
+    let (_d, t, file) = with_land(&two, "");
+    check(
+        &t,
+        &format!("\"{file}\""),
+        0,
+        "land[0].file",
+        &["distinct vertices"],
+    );
+    // A hole.
+    let hole = r#"{"type": "Polygon", "coordinates": [[[5000, 0], [9000, 0], [9000, 4000], [5000, 0]], [[8000, 500], [8500, 500], [8500, 1000], [8000, 500]]]}"#;
+    let (_d, t, file) = with_land(hole, "");
+    check(
+        &t,
+        &format!("\"{file}\""),
+        0,
+        "land[0].file",
+        &["1 holes", "lake"],
+    );
+    // Longitude and latitude out of range (x/y given as lon/lat).
+    let (_d, t, file) = with_land(&polygon(&square), "\n[map]\nprojection = \"EPSG:3413\"\n");
+    let t = t.replace("coordinates = \"xy\"\n", "coordinates = \"lonlat\"\n");
+    check(
+        &t,
+        &format!("\"{file}\""),
+        0,
+        "land[0].file",
+        &["latitude", "\"xy\""],
+    );
+}
+
+#[test]
+fn ice_on_land_is_dropped_and_explicit_floes_on_land_are_refused() {
+    // The right half of the 2 x 2 grid is on land: two floes dropped.
+    let right = polygon(&[
+        (2000.0, -100.0),
+        (5000.0, -100.0),
+        (5000.0, 4100.0),
+        (2000.0, 4100.0),
+    ]);
+    let (_d, t, _) = with_land(&right, "");
+    let setup = Scenario::from_text(&t, Path::new("land.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    let w = setup.world.floes();
+    let free = (0..w.len()).filter(|&i| w.is_free(i)).count();
+    assert_eq!(free, 2);
+    assert!(setup
+        .report
+        .iter()
+        .any(|l| l.contains("2 floes on land dropped")));
+    // All of it on land: nothing left to run.
+    let all = polygon(&[
+        (-100.0, -100.0),
+        (5000.0, -100.0),
+        (5000.0, 4100.0),
+        (-100.0, 4100.0),
+    ]);
+    let (_d, t, _) = with_land(&all, "");
+    check(
+        &t,
+        "[tessellation]",
+        0,
+        "tessellation",
+        &["no free floes", "on land"],
+    );
+    // An explicit floe on land is an overlap, named.
+    let t = "duration_s = 10.0\n\n[domain]\nsize_m = [4000.0, 4000.0]\n\n[[floe]]\nbox_m = [100.0, 100.0, 900.0, 900.0]\n\n[[floe]]\nbox_m = [2500.0, 100.0, 3300.0, 900.0]\n";
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("coast.geojson");
+    std::fs::write(&path, &right).unwrap();
+    let t = format!(
+        "{t}\n[[land]]\nfile = \"{}\"\ncoordinates = \"xy\"\n",
+        path.display()
+    );
+    let msg = error(&t).to_string();
+    assert!(
+        msg.contains("overlaps") && msg.contains("floe[1]") && msg.contains("land[0]"),
+        "{msg}"
+    );
+}
+
 /// `BASE` with the `[ice]` table's body replaced by `ice`.
 fn with_ice(ice: &str) -> String {
     edit("thickness_m = 1.0\n", &format!("{ice}\n"))

@@ -1,55 +1,42 @@
 //! `floe grid` (floe_study::grid_output): a run's snapshots on a grid as CF
-//! NetCDF, read back with the `netcdf3` reader. In a doubly periodic box of
+//! NetCDF, read back with the `netcdf` crate. In a doubly periodic box of
 //! drifting, spinning floes that cross its edges, every record holds all
 //! the ice (concentration x cell area sums to the floes' area) and all the
 //! momentum (the area-weighted velocity sums to sum A v, the rigid-body
-//! mean), both computed here from the run file on their own.
+//! mean), both computed here from the run file on their own. With a
+//! cadence of its own, the records are the snapshots it names.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use floe_io::RunFile;
-use floe_study::grid_output::{write_grid, GridArgs};
+use floe_study::cadence::Cadence;
+use floe_study::grid_output::{write_grid, GridArgs, FILL_VALUE};
 use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
-use netcdf3::{DataVector, FileReader};
+use netcdf::AttributeValue;
 
-const BOX: &str = r#"title = "drifting floes in a periodic box"
-duration_s = 20000.0
-seed = 1
+/// Six floes drifting in a doubly periodic box (20000 s, snapshots every
+/// 2000 s); tests/study_grid_xarray.rs grids it too.
+const BOX: &str = include_str!("data/grid_box.toml");
 
-[domain]
-size_m = [4000.0, 3000.0]
-periodic = [true, true]
+fn f64s(file: &netcdf::File, name: &str) -> Vec<f64> {
+    file.variable(name)
+        .unwrap_or_else(|| panic!("no variable {name}"))
+        .get_values::<f64, _>(..)
+        .unwrap()
+}
 
-[tessellation]
-kind = "grid"
-columns = 3
-rows = 2
-gap_m = 300.0
-
-[ice]
-thickness_range_m = [0.5, 2.0]
-initial_velocity_m_per_s = [0.3, 0.12]
-
-[wind]
-velocity_m_per_s = [8.0, -3.0]
-
-[output]
-snapshot_every_s = 2000.0
-"#;
-
-fn f64s(v: DataVector) -> Vec<f64> {
-    match v {
-        DataVector::F64(x) => x,
-        other => panic!("not f64: {other:?}"),
+fn text(value: Option<netcdf::Result<AttributeValue>>) -> String {
+    match value {
+        Some(Ok(AttributeValue::Str(s))) => s,
+        other => panic!("not a text attribute: {other:?}"),
     }
 }
 
-#[test]
-fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
-    let dir = tempfile::tempdir().unwrap();
-    let scenario = dir.path().join("box.toml");
+/// The box's run, in `dir`.
+fn box_run(dir: &Path) -> PathBuf {
+    let scenario = dir.join("box.toml");
     std::fs::write(&scenario, BOX).unwrap();
-    let h5 = dir.path().join("box.h5");
+    let h5 = dir.join("box.h5");
     run(
         &RunArgs {
             scenario: Some(scenario),
@@ -65,11 +52,19 @@ fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
         &Quiet,
     )
     .unwrap();
+    h5
+}
+
+#[test]
+fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
+    let dir = tempfile::tempdir().unwrap();
+    let h5 = box_run(dir.path());
     let nc = dir.path().join("box.nc");
     let args = GridArgs {
         run: h5.clone(),
         output: nc.clone(),
         cell_m: 450.0,
+        cadence: Cadence::All,
         force: false,
     };
     write_grid(&args).unwrap();
@@ -86,30 +81,38 @@ fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
         .contains("--cell-m"));
     assert!(!dir.path().join("x.nc").exists());
 
-    let mut reader = FileReader::open(&nc).unwrap();
-    let data = reader.data_set();
+    let data = netcdf::open(&nc).unwrap();
     // 4000 / 450 -> 9 cells of 444.4 m, 3000 / 450 -> 7 of 428.6 m.
-    assert_eq!(data.dim_size("x"), Some(9));
-    assert_eq!(data.dim_size("y"), Some(7));
-    let units = |var: &str| {
-        data.get_var_attr(var, "units")
-            .and_then(|a| a.get_as_string())
-            .unwrap_or_default()
-    };
+    assert_eq!(data.dimension_len("x"), Some(9));
+    assert_eq!(data.dimension_len("y"), Some(7));
+    let var = |name: &str| data.variable(name).unwrap();
+    let units = |name: &str| text(var(name).attribute_value("units"));
     assert_eq!(units("u"), "m s-1");
     assert_eq!(units("divergence"), "s-1");
     assert_eq!(units("stress_xx"), "N m-1");
+    assert_eq!(units("x"), "m");
+    assert_eq!(text(var("x").attribute_value("axis")), "X");
+    assert_eq!(
+        text(var("concentration").attribute_value("standard_name")),
+        "sea_ice_area_fraction"
+    );
+    assert_eq!(
+        text(Some(data.attribute("Conventions").unwrap().value())),
+        "CF-1.8"
+    );
+    assert_eq!(var("u").fill_value::<f64>().unwrap(), Some(FILL_VALUE));
+    assert!(data.dimension("time").unwrap().is_unlimited());
     let cell = (4000.0 / 9.0) * (3000.0 / 7.0);
 
     let file = RunFile::open(&h5).unwrap();
     let floes = file.static_floes().unwrap();
     let snapshots = file.snapshot_count().unwrap();
-    assert_eq!(data.num_records(), Some(snapshots));
-    let time = f64s(reader.read_var("time").unwrap());
+    assert_eq!(data.dimension_len("time"), Some(snapshots));
+    let time = f64s(&data, "time");
     let (conc, u, v) = (
-        f64s(reader.read_var("concentration").unwrap()),
-        f64s(reader.read_var("u").unwrap()),
-        f64s(reader.read_var("v").unwrap()),
+        f64s(&data, "concentration"),
+        f64s(&data, "u"),
+        f64s(&data, "v"),
     );
     let per = 9 * 7;
     let ice: f64 = floes.area_m2.iter().sum();
@@ -159,9 +162,14 @@ fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
 
     // `floe render` draws the fields: one map per field and record.
     use floe_study::render::{grid_map, Snapshots};
-    assert!(grid_map::is_netcdf(&nc) && !grid_map::is_netcdf(&h5));
+    assert!(grid_map::is_grid_file(&nc) && !grid_map::is_grid_file(&h5));
     let maps = dir.path().join("maps");
-    let written = grid_map::render_grid(&nc, Snapshots::Every(5), &maps, false).unwrap();
+    let mut calls = 0;
+    let written = grid_map::render_grid(&nc, Snapshots::Every(5), &maps, false, &mut |_, _| {
+        calls += 1
+    })
+    .unwrap();
+    assert_eq!(calls, written.len());
     assert_eq!(
         written.len(),
         3 * 11,
@@ -170,8 +178,102 @@ fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
     assert!(written.iter().all(|p| p.exists()));
     assert!(maps.join("grid_divergence_0010.png").exists());
     assert!(
-        grid_map::render_grid(&nc, Snapshots::One(5), &maps, false).is_err(),
+        grid_map::render_grid(&nc, Snapshots::One(5), &maps, false, &mut |_, _| {}).is_err(),
         "no overwrite"
     );
     assert!(Path::new(&nc).exists());
+
+    // A movie of one field: a frame per record.
+    use floe_study::render::movie::MovieArgs;
+    let args = MovieArgs {
+        path: dir.path().join("divergence.gif"),
+        fps: 10.0,
+        force: false,
+    };
+    let written = grid_map::render_grid_movie(
+        &nc,
+        Snapshots::Every(1),
+        "divergence",
+        &args,
+        &mut |_, _| {},
+    )
+    .unwrap();
+    assert_eq!(written.frames, snapshots);
+    let decoder = gif::DecodeOptions::new()
+        .read_info(std::fs::File::open(&written.path).unwrap())
+        .unwrap();
+    assert_eq!(decoder.into_iter().count(), snapshots);
+    let e = grid_map::render_grid_movie(&nc, Snapshots::Every(1), "speed", &args, &mut |_, _| {})
+        .unwrap_err();
+    assert!(
+        e.exit_code() == 2 && e.to_string().contains("concentration"),
+        "{e}"
+    );
+}
+
+/// `--every K` and `--interval-s T`: the records are the K-th snapshots,
+/// or those nearest to the multiples of T, with the snapshots' own times.
+#[test]
+fn a_cadence_of_its_own_takes_the_snapshots_it_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let h5 = box_run(dir.path());
+    let times = RunFile::open(&h5).unwrap().snapshot_times().unwrap();
+    // Snapshots about every 2000 s (every 707 steps of 2.83 s), and the
+    // final one at the run's last step, 8 s after the one before.
+    assert_eq!(times.len(), 12);
+    let grid = |cadence: Cadence, name: &str| -> Vec<f64> {
+        let nc = dir.path().join(name);
+        write_grid(&GridArgs {
+            run: h5.clone(),
+            output: nc.clone(),
+            cell_m: 1000.0,
+            cadence,
+            force: false,
+        })
+        .unwrap();
+        let data = netcdf::open(&nc).unwrap();
+        let time = f64s(&data, "time");
+        // Every field has one record per time.
+        assert_eq!(f64s(&data, "shear").len(), time.len() * 4 * 3);
+        time
+    };
+    assert_eq!(grid(Cadence::All, "all.nc"), times);
+    assert_eq!(
+        grid(Cadence::Every(3), "every3.nc"),
+        [0, 3, 6, 9].map(|k| times[k])
+    );
+    // Nearest to 0, 5000, 10000, 15000, 20000 s (the earlier of two as
+    // near, as `min_by` finds it).
+    let nearest = |target: f64| {
+        *times
+            .iter()
+            .min_by(|a, b| (*a - target).abs().total_cmp(&(*b - target).abs()))
+            .unwrap()
+    };
+    let expected: Vec<f64> = [0.0, 5000.0, 10000.0, 15000.0, 20000.0]
+        .map(nearest)
+        .to_vec();
+    assert_eq!(grid(Cadence::IntervalS(5000.0), "interval.nc"), expected);
+    assert_eq!(
+        grid(Cadence::IntervalS(6000.0), "interval6.nc"),
+        [0, 3, 6, 9].map(|k| times[k]),
+        "0, 6000, 12000, 18000 s"
+    );
+    // A bad cadence is bad input, and nothing is written.
+    for (cadence, flag) in [
+        (Cadence::Every(0), "--every"),
+        (Cadence::IntervalS(-1.0), "--interval-s"),
+    ] {
+        let nc = dir.path().join("bad.nc");
+        let e = write_grid(&GridArgs {
+            run: h5.clone(),
+            output: nc.clone(),
+            cell_m: 1000.0,
+            cadence,
+            force: false,
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains(flag) && e.exit_code() == 2, "{e}");
+        assert!(!nc.exists() && !dir.path().join("bad.nc.partial").exists());
+    }
 }

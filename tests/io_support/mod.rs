@@ -105,6 +105,7 @@ pub fn metadata() -> RunMetadata {
         threads: 3,
         author: "tester".into(),
         domain: DOMAIN,
+        inputs: Vec::new(),
     }
 }
 

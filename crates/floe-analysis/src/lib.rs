@@ -6,12 +6,14 @@
 //! history of the assembly ([`stress`]) and of each floe ([`love_weber`]),
 //! floes coarse-grained onto a grid
 //! ([`grid_fields`]), the rheology of a shear cell
-//! ([`rheology`]), whether a driven pack has jammed ([`jam`]), and means
+//! ([`rheology`]), whether a driven pack has jammed ([`jam`]), the ice area through a
+//! gate across a strait ([`gate_flux`]), and means
 //! over time of series sampled unevenly ([`time_mean`]). No I/O and no engine types, so each
 //! metric can be checked on a constructed case with a known answer.
 #![deny(missing_docs)]
 
 pub mod error;
+pub mod gate_flux;
 pub mod grid_fields;
 pub mod jam;
 pub mod love_weber;

@@ -146,7 +146,7 @@ fn unit_seconds(unit: &str) -> Option<f64> {
     })
 }
 
-/// Seconds from `start` (a date as `parse_datetime` reads it) to the
+/// Seconds from `start` (`YYYY-MM-DD[ HH:MM[:SS]]`, `T` or a space between) to the
 /// origin of `units` (`"<unit> since <date>"`) in `calendar`, and the
 /// seconds of one unit: a time value `v` is `offset + v unit` seconds
 /// after `start`.

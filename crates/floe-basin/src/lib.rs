@@ -5,12 +5,24 @@
 //! coastlines and islands from GeoJSON as fixed bodies, initial ice placed
 //! from concentration and thickness grids, and the map projection that
 //! puts longitude and latitude onto the model plane.
+//!
+//! Land: [`coastline`] reads the polygons of a GeoJSON file onto the model
+//! plane, checked simple by [`simple_ring`]; [`convex_pieces`] cuts each
+//! exactly into convex pieces of at most a given size; [`land`] holds the
+//! pieces with a grid for overlap queries.
 #![deny(missing_docs)]
 
+pub mod coastline;
+pub mod convex_pieces;
 pub mod error;
+pub mod land;
+pub mod planar;
 pub mod projection;
+pub mod simple_ring;
 
+pub use coastline::{read_land, Coordinates, LandPolygon};
 pub use error::BasinError;
+pub use land::Land;
 pub use projection::MapProjection;
 pub mod cf_file;
 pub mod cf_time;

@@ -52,6 +52,9 @@ pub struct FieldRequest<'a> {
     /// Plane grid spacing for a longitude-latitude file, m; `None`: half
     /// the file's spacing at the region's centre.
     pub plane_spacing_m: Option<f64>,
+    /// How far beyond the region the plane grid reaches where the file has
+    /// data, m (floes that stray out of an open domain stay on the grid).
+    pub margin_m: f64,
 }
 
 /// Where plane node `k` samples one component: the file node `(i, j)` of
@@ -197,7 +200,7 @@ impl NetcdfSource {
             geographic_plane_grid(&layouts[0], request, projection.expect("checked above"))
                 .map_err(err)?
         } else {
-            projected_plane_grid(&layouts[0], request.region).map_err(err)?
+            projected_plane_grid(&layouts[0], request.region, request.margin_m).map_err(err)?
         };
         let mut plane_lonlat = Vec::new();
         let mut east_north = Vec::new();
@@ -247,11 +250,12 @@ fn node_position(grid: &PlaneGrid, k: usize) -> Vec2 {
     grid.origin_m + Vec2::new(i as f64 * grid.spacing_m.x, j as f64 * grid.spacing_m.y)
 }
 
-/// The file's own x/y grid cut to the region (one node of margin where the
-/// file has it), ascending.
+/// The file's own x/y grid cut to the region and its margin (as far as
+/// the file reaches), ascending.
 fn projected_plane_grid(
     layout: &VariableLayout,
     (lo, hi): (Vec2, Vec2),
+    margin: f64,
 ) -> Result<PlaneGrid, String> {
     let cut = |a: &RegularAxis, lo: f64, hi: f64, name: &str| -> Result<(f64, usize), String> {
         let (min, max) = a.bounds();
@@ -262,6 +266,7 @@ fn projected_plane_grid(
                 layout.name
             ));
         }
+        let (lo, hi) = ((lo - margin).max(min), (hi + margin).min(max));
         let step = a.step.abs();
         let first = ((lo - min) / step).floor().max(0.0) as usize;
         let n_all = a.len;
@@ -280,8 +285,9 @@ fn projected_plane_grid(
     })
 }
 
-/// A plane grid over the region, at the requested spacing or half the
-/// file's, with one node of margin.
+/// A plane grid over the region and its margin, at the requested spacing
+/// or half the file's, with one node more on each side (nodes the file
+/// does not reach have no values).
 fn geographic_plane_grid(
     layout: &VariableLayout,
     request: FieldRequest<'_>,
@@ -301,6 +307,10 @@ fn geographic_plane_grid(
     if !(spacing.is_finite() && spacing > 0.0) {
         return Err(format!("plane grid spacing {spacing} m must be > 0"));
     }
+    let (lo, hi) = (
+        lo - Vec2::splat(request.margin_m),
+        hi + Vec2::splat(request.margin_m),
+    );
     let n = |span: f64| ((span / spacing).ceil() as usize + 3).max(2);
     let (nx, ny) = (n(hi.x - lo.x), n(hi.y - lo.y));
     let nodes = nx as u64 * ny as u64;

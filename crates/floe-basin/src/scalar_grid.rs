@@ -68,6 +68,7 @@ impl ScalarGrid {
             start_time: request.start_time,
             region: request.region,
             plane_spacing_m: None,
+            margin_m: 0.0,
         };
         let err = |why: String| BasinError::File {
             path: request.path.to_path_buf(),

@@ -9,14 +9,17 @@ use floe_friction::{Form, StateLaw};
 use floe_friction::LawRegistry;
 use floe_scenario::law_variants::{LawChoice, Matching};
 use floe_scenario::settings::parse_setting;
+use floe_study::cadence::Cadence;
 use floe_study::compare::{self, CompareArgs};
 use floe_study::grid_output::{self, GridArgs};
+use floe_study::render::movie::{Encoding, MovieArgs};
 use floe_study::render::{self, ColourBy, Snapshots};
 use floe_study::rheology::{self, RheologyArgs};
 use floe_study::run_file::{self as run, RunArgs};
 use floe_study::sweep::{self, SweepArgs};
 
 use crate::hooks::{provenance, TerminalHooks};
+use crate::progress_bar::CountProgress;
 use crate::slider::{self, ExperimentOptions};
 use crate::{info, CliError};
 
@@ -200,28 +203,49 @@ pub enum Command {
         /// Largest cell size, m: the domain is split into whole cells of at most this.
         #[arg(long, value_name = "M")]
         cell_m: f64,
+        /// Grid every K-th snapshot (default: every snapshot).
+        #[arg(long, value_name = "K", conflicts_with = "interval_s")]
+        every: Option<usize>,
+        /// Grid the snapshot nearest to each multiple of T seconds (0, T,
+        /// 2T, ...) that has one within T/2.
+        #[arg(long, value_name = "T", value_parser = positive)]
+        interval_s: Option<f64>,
         /// Replace an existing output.
         #[arg(long)]
         force: bool,
     },
-    /// Draw PNG maps of the floes and plots of the observables.
+    /// Draw PNG maps of the floes and plots of the observables, or a movie
+    /// of the maps; of a gridded-fields file of `floe grid`, maps or a
+    /// movie of its fields.
     #[command(allow_negative_numbers = true)]
     Render {
-        /// The run's HDF5 file.
+        /// The run's HDF5 file, or gridded fields (NetCDF) of `floe grid`.
         file: PathBuf,
         /// Draw only this snapshot (0-based; negative counts from the end).
         #[arg(long, allow_negative_numbers = true, conflicts_with = "every")]
         snapshot: Option<i64>,
-        /// Draw every K-th snapshot (default: the last snapshot only).
+        /// Draw every K-th snapshot (default: the last snapshot only; every
+        /// snapshot for a movie).
         #[arg(long, value_name = "K")]
         every: Option<usize>,
         /// What colours the floes.
         #[arg(long, value_enum, default_value_t = Colour::Speed)]
         color: Colour,
-        /// Output directory.
-        #[arg(long, short)]
-        output: PathBuf,
-        /// Replace existing pictures.
+        /// Output directory for the pictures.
+        #[arg(long, short, required_unless_present = "movie")]
+        output: Option<PathBuf>,
+        /// Write a movie of the maps instead: OUT.mp4 (needs ffmpeg),
+        /// OUT.gif, or OUT (MP4 if ffmpeg is on PATH, else GIF).
+        #[arg(long, value_name = "OUT")]
+        movie: Option<PathBuf>,
+        /// Frames per second of the movie (default 10).
+        #[arg(long, requires = "movie", value_parser = frame_rate)]
+        fps: Option<f64>,
+        /// The field of a gridded-fields file a movie shows (default
+        /// concentration).
+        #[arg(long, requires = "movie")]
+        field: Option<String>,
+        /// Replace existing pictures or movie.
         #[arg(long)]
         force: bool,
     },
@@ -429,6 +453,15 @@ fn bounded(text: &str, min: f64, closed: bool, max: f64, what: &str) -> Result<f
             floe_scenario::numbers::short(max)
         )),
     }
+}
+
+/// Frames per second of a movie unless `--fps` says otherwise.
+const DEFAULT_FPS: f64 = 10.0;
+
+/// A movie's frame rate.
+fn frame_rate(text: &str) -> Result<f64, String> {
+    let (min, max) = render::movie::FPS_RANGE;
+    bounded(text, min, true, max, "frames per second")
 }
 
 /// A spring-slider time step, s.
@@ -645,12 +678,20 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             file,
             output,
             cell_m,
+            every,
+            interval_s,
             force,
         } => {
+            let cadence = match (every, interval_s) {
+                (Some(k), _) => Cadence::Every(k),
+                (None, Some(t)) => Cadence::IntervalS(t),
+                (None, None) => Cadence::All,
+            };
             let path = grid_output::write_grid(&GridArgs {
                 run: file,
                 output,
                 cell_m,
+                cadence,
                 force,
             })?;
             Ok(format!("gridded fields: {}", path.display()))
@@ -661,17 +702,69 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             every,
             color,
             output,
+            movie,
+            fps,
+            field,
             force,
         } => {
             let which = match (snapshot, every) {
                 (Some(k), _) => Snapshots::One(k),
                 (None, Some(k)) => Snapshots::Every(k),
+                (None, None) if movie.is_some() => Snapshots::Every(1),
                 (None, None) => Snapshots::One(-1),
             };
-            let written = if render::grid_map::is_netcdf(&file) {
-                render::grid_map::render_grid(&file, which, &output, force)?
+            let grid = render::grid_map::is_grid_file(&file);
+            let mut bar = CountProgress::new(if grid && movie.is_none() {
+                "maps"
             } else {
-                render::render(&file, which, color.into(), &output, force)?
+                "frames"
+            });
+            let mut progress = |done, total| bar.update(done, total);
+            if movie.is_some() && output.is_some() {
+                return Err(CliError::Usage(
+                    "render: give -o DIR (pictures) or --movie OUT, not both".into(),
+                ));
+            }
+            if let Some(path) = movie {
+                let args = MovieArgs {
+                    path,
+                    fps: fps.unwrap_or(DEFAULT_FPS),
+                    force,
+                };
+                let written = if grid {
+                    let field = field.as_deref().unwrap_or("concentration");
+                    render::grid_map::render_grid_movie(&file, which, field, &args, &mut progress)?
+                } else {
+                    render::render_movie(&file, which, color.into(), &args, &mut progress)?
+                };
+                return Ok(format!(
+                    "movie: {} ({} frames of {} x {} pixels, {})",
+                    written.path.display(),
+                    written.frames,
+                    written.size.0,
+                    written.size.1,
+                    match written.encoding {
+                        Encoding::Mp4 => "H.264 MP4",
+                        Encoding::Gif => "GIF",
+                    }
+                ));
+            }
+            let Some(output) = output else {
+                return Err(CliError::Usage(
+                    "render: give -o DIR (pictures) or --movie OUT".into(),
+                ));
+            };
+            let written = if grid {
+                render::grid_map::render_grid(&file, which, &output, force, &mut progress)?
+            } else {
+                render::render_with_progress(
+                    &file,
+                    which,
+                    color.into(),
+                    &output,
+                    force,
+                    &mut progress,
+                )?
             };
             Ok(format!(
                 "{} pictures in {}",

@@ -34,6 +34,12 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
         ),
     );
     line("command", meta.command_line.join(" "));
+    for input in &meta.inputs {
+        line(
+            "input",
+            format!("{}: {} (sha256 {})", input.role, input.path, input.sha256),
+        );
+    }
     let walls = floes.prescribed.iter().filter(|&&p| p).count();
     line(
         "floes",

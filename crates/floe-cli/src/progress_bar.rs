@@ -1,6 +1,7 @@
 //! Progress of a long run: an indicatif bar on a terminal (simulated time,
 //! steps per second, ETA), plain log lines every 10 % otherwise (batch jobs
-//! whose standard error goes to a file).
+//! whose standard error goes to a file); likewise for the frames of a
+//! render ([`CountProgress`]).
 
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
@@ -83,6 +84,68 @@ impl Progress for RunProgress {
     fn finish(&mut self) {
         if let Some(bar) = self.bar.take() {
             bar.abandon();
+        }
+    }
+}
+
+/// Progress through a count of items (the frames of a render): a bar on a
+/// terminal; otherwise log lines every 10 %, once the work has taken more
+/// than a few seconds (short renders stay quiet).
+pub struct CountProgress {
+    what: &'static str,
+    bar: Option<ProgressBar>,
+    terminal: bool,
+    started: Instant,
+    next_log_fraction: f64,
+}
+
+impl CountProgress {
+    /// Seconds before log lines start.
+    const QUIET_S: f64 = 5.0;
+
+    /// Progress through `what` (a plural noun: "frames").
+    pub fn new(what: &'static str) -> Self {
+        Self {
+            what,
+            bar: None,
+            terminal: std::io::stderr().is_terminal(),
+            started: Instant::now(),
+            next_log_fraction: 0.1,
+        }
+    }
+
+    /// `done` of `total` items are done.
+    pub fn update(&mut self, done: usize, total: usize) {
+        if self.terminal {
+            let bar = self.bar.get_or_insert_with(|| {
+                let bar = ProgressBar::with_draw_target(
+                    Some(total as u64),
+                    ProgressDrawTarget::stderr_with_hz(4),
+                );
+                let template = format!("{{bar:30}} {{pos}}/{{len}} {}  ETA {{eta}}", self.what);
+                if let Ok(style) = ProgressStyle::with_template(&template) {
+                    bar.set_style(style.progress_chars("=> "));
+                }
+                bar
+            });
+            bar.set_position(done as u64);
+            if done >= total {
+                bar.finish_and_clear();
+            }
+            return;
+        }
+        let fraction = done as f64 / total.max(1) as f64;
+        let elapsed = self.started.elapsed().as_secs_f64();
+        if fraction >= self.next_log_fraction && elapsed > Self::QUIET_S {
+            crate::stderr::line(&format!(
+                "{done}/{total} {} ({:.0} %), {:.1} s",
+                self.what,
+                100.0 * fraction,
+                elapsed
+            ));
+        }
+        while self.next_log_fraction <= fraction {
+            self.next_log_fraction += 0.1;
         }
     }
 }

@@ -88,5 +88,11 @@ pub enum DemError {
     /// The forcing cannot be evaluated (a gridded field's time, grid or
     /// values; the message names the file).
     #[error("{0}")]
-    Forcing(#[from] crate::forcing::ForcingFailure),
+    Forcing(#[from] ForcingFailure),
 }
+
+/// Why a gridded forcing cannot go on: names the source (file and
+/// variables), the time or the floe.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{0}")]
+pub struct ForcingFailure(pub String);

@@ -79,6 +79,7 @@ fn main() {
             threads: 1,
             author: "io_size".into(),
             domain,
+            inputs: Vec::new(),
         };
         let path = dir.join(format!("deflate{}.h5", opts.deflate_level));
         let _ = std::fs::remove_file(&path);

@@ -14,6 +14,9 @@ pub const H5MD: &str = "h5md";
 pub const FLOES: &str = "particles/floes";
 /// The simulation box, inside [`FLOES`].
 pub const BOX: &str = "particles/floes/box";
+/// Inside [`FLOES`]: uint8 per floe, 1 for land pieces (optional: files
+/// without it have no land).
+pub const LAND: &str = "land";
 /// The time-dependent floe elements, inside [`FLOES`], with their units.
 pub const FLOE_ELEMENTS: [(&str, &str, usize); 4] = [
     ("position", "m", 2),

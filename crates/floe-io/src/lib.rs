@@ -25,6 +25,6 @@ pub mod run_status;
 pub mod writer;
 
 pub use error::IoError;
-pub use metadata::{CheckpointInfo, DomainBox, OutputOptions, RunMetadata};
+pub use metadata::{CheckpointInfo, DomainBox, InputRecord, OutputOptions, RunMetadata};
 pub use reader::{ContactSnapshot, RunFile, Series, Snapshot, StaticFloes};
 pub use writer::RunWriter;

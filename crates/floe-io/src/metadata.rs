@@ -31,6 +31,21 @@ pub struct RunMetadata {
     pub author: String,
     /// The domain.
     pub domain: DomainBox,
+    /// The files the run reads besides the scenario (forcing, coastlines,
+    /// ice grids) with their checksums; empty for runs without them and
+    /// for files written before floe recorded them.
+    pub inputs: Vec<InputRecord>,
+}
+
+/// One input file of a run, as recorded in `/parameters`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InputRecord {
+    /// What it gives (`wind`, `ocean`, `land[0]`...).
+    pub role: String,
+    /// Its path as the run opened it.
+    pub path: String,
+    /// Lowercase hex SHA-256 of its content (as `sha256sum` prints).
+    pub sha256: String,
 }
 
 /// How the bulk arrays are stored.

@@ -11,7 +11,7 @@ use crate::checkpoint_blob::{self, OutputCounts};
 use crate::error::{invalid, Context, IoError};
 use crate::h5;
 use crate::layout;
-use crate::metadata::{CheckpointInfo, DomainBox, RunMetadata};
+use crate::metadata::{CheckpointInfo, DomainBox, InputRecord, RunMetadata};
 
 /// The floes' fixed properties (owned floes, in file order).
 #[derive(Debug, Clone, PartialEq)]
@@ -32,6 +32,10 @@ pub struct StaticFloes {
     pub inertia_kg_m2: Vec<f64>,
     /// Whether the floe moves at a prescribed velocity (a wall).
     pub prescribed: Vec<bool>,
+    /// Whether the floe is a piece of land (`[[land]]`; fixed and
+    /// prescribed). All false for files written without land, or before
+    /// floe marked land.
+    pub land: Vec<bool>,
 }
 
 impl StaticFloes {
@@ -253,6 +257,7 @@ impl RunFile {
                     size_m: two("size")?,
                     periodic: [periodic[0] != 0, periodic[1] != 0],
                 },
+                inputs: read_inputs(&g)?,
             })
         })()
         .at(path, || "reading /parameters".into())
@@ -274,7 +279,17 @@ impl RunFile {
         let n = id.len();
         let vertex_offsets: Vec<u32> = self.read_all(&p("vertex_offsets"))?;
         let vertices = pairs(&self.read_all::<f64>(&p("vertices"))?);
+        let land_path = p(layout::LAND);
+        let land = if self.file.link_exists(&land_path) {
+            self.read_all::<u8>(&land_path)?
+                .into_iter()
+                .map(|b| b != 0)
+                .collect()
+        } else {
+            vec![false; n]
+        };
         let floes = StaticFloes {
+            land,
             id,
             vertex_offsets,
             vertices,
@@ -295,6 +310,7 @@ impl RunFile {
             floes.area_m2.len(),
             floes.inertia_kg_m2.len(),
             floes.prescribed.len(),
+            floes.land.len(),
         ]
         .iter()
         .all(|&l| l == n)
@@ -514,4 +530,26 @@ pub(crate) fn read_checkpoint(
         )));
     }
     Ok(Some((slot, state, counts)))
+}
+
+/// `/parameters` `input_roles`, `input_paths`, `input_sha256` (absent in
+/// runs without input files).
+fn read_inputs(g: &hdf5::Group) -> hdf5::Result<Vec<InputRecord>> {
+    if !g.attr_names()?.iter().any(|n| n == "input_paths") {
+        return Ok(Vec::new());
+    }
+    let (roles, paths, sums) = (
+        h5::read_strs(g, "input_roles")?,
+        h5::read_strs(g, "input_paths")?,
+        h5::read_strs(g, "input_sha256")?,
+    );
+    if roles.len() != paths.len() || sums.len() != paths.len() {
+        return Err("input_roles, input_paths and input_sha256 differ in length".into());
+    }
+    Ok(roles
+        .into_iter()
+        .zip(paths)
+        .zip(sums)
+        .map(|((role, path), sha256)| InputRecord { role, path, sha256 })
+        .collect())
 }

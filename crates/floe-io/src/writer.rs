@@ -18,7 +18,7 @@ use crate::error::{invalid, Context, IoError};
 use crate::h5;
 use crate::headroom::Headroom;
 use crate::layout;
-use crate::metadata::{CheckpointInfo, OutputOptions, RunMetadata};
+use crate::metadata::{CheckpointInfo, InputRecord, OutputOptions, RunMetadata};
 use crate::reader;
 
 /// A time-dependent H5MD element: `step`, `time` and `value` grown together.
@@ -247,6 +247,13 @@ impl RunWriter {
             h5::write_scalar(&g, "threads", meta.threads as u64)?;
             h5::write_str(&g, "author", &meta.author)?;
             h5::write_str(&g, "status", "created")?;
+            if !meta.inputs.is_empty() {
+                let col =
+                    |f: fn(&InputRecord) -> &str| meta.inputs.iter().map(f).collect::<Vec<_>>();
+                h5::write_strs(&g, "input_roles", &col(|r| &r.role))?;
+                h5::write_strs(&g, "input_paths", &col(|r| &r.path))?;
+                h5::write_strs(&g, "input_sha256", &col(|r| &r.sha256))?;
+            }
             let d = g.create_group("domain")?;
             h5::write_array(&d, "min", &meta.domain.min_m)?;
             h5::write_array(&d, "size", &meta.domain.size_m)?;
@@ -405,6 +412,34 @@ impl RunWriter {
             pending: Vec::new(),
             headroom,
         })
+    }
+
+    /// Marks the floes with ids in `land_ids` as land (fixed pieces of
+    /// coastlines and islands, `[[land]]`) in `/particles/floes/land`
+    /// (uint8, one per floe, 1: land), so that pictures tell land from walls. Ids the
+    /// file does not hold are ignored. A file without the dataset (older
+    /// files, runs without land) has no land. Call once, after
+    /// [`RunWriter::create`].
+    pub fn mark_land(&mut self, land_ids: &[u64]) -> Result<(), IoError> {
+        let mut sorted = land_ids.to_vec();
+        sorted.sort_unstable();
+        let flags: Vec<u8> = self
+            .ids
+            .iter()
+            .map(|id| u8::from(sorted.binary_search(id).is_ok()))
+            .collect();
+        (|| -> hdf5::Result<()> {
+            self.file
+                .group(layout::FLOES)?
+                .new_dataset_builder()
+                .with_data(&flags[..])
+                .create(layout::LAND)?;
+            Ok(())
+        })()
+        .at(&self.path, || {
+            format!("writing /{}/{}", layout::FLOES, layout::LAND)
+        })?;
+        self.file.flush().at(&self.path, || "flushing".to_string())
     }
 
     /// The file written.

@@ -3,10 +3,10 @@
 //!
 //! Floe order (and id): the free floes of the tessellation, or the
 //! `[[floe]]` tables in file order; then the prescribed blocks of a
-//! double-shear set-up; then the wall segments, wall by wall in file order.
+//! double-shear set-up; then the wall segments, wall by wall in file order;
+//! then the land pieces, `[[land]]` table by table.
 
 use std::ops::Not;
-use std::ops::Range;
 
 use floe_dem::floes::{Floe, Floes};
 use floe_dem::geometry::FloeShape;
@@ -24,7 +24,9 @@ use crate::built_floes::{BuiltFloes, StressWall};
 use crate::checks;
 use crate::error::ScenarioError;
 use crate::ice_grid::{place_from_grids, GridFrame};
+use crate::land_build;
 use crate::numbers::{short, sig, thousands};
+pub(crate) use crate::piece::Piece;
 use crate::resolve::{
     dem_error, voronoi_work, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION,
 };
@@ -34,30 +36,6 @@ use crate::source_file::SourceFile;
 /// Most segments one wall is made of (a wall much longer than the floes are
 /// wide gets longer segments rather than millions of them).
 const MAX_WALL_SEGMENTS: usize = 100_000;
-
-/// One floe to be created.
-pub(crate) struct Piece {
-    pub polygon: Vec<Vec2>,
-    pub thickness_m: f64,
-    pub velocity: Vec2,
-    pub angular_velocity: f64,
-    pub prescribed: bool,
-    /// The motion schedule of a prescribed piece that has one.
-    pub schedule: Option<MotionSchedule>,
-    /// The load point (stiffness, N/m, and schedule) of a free piece.
-    pub load_point: Option<(f64, MotionSchedule)>,
-    /// What it is, for messages (`floe[3]`, `wall[0] (bottom)`...).
-    pub label: Option<String>,
-    /// Where it was written, for explicit floes.
-    pub span: Option<Range<usize>>,
-}
-
-impl Piece {
-    /// The mean of its vertices (a point inside it), m.
-    fn vertex_mean(&self) -> Vec2 {
-        self.polygon.iter().fold(Vec2::ZERO, |a, &b| a + b) / self.polygon.len() as f64
-    }
-}
 
 /// The ice region: the domain minus the wall insets.
 pub(crate) fn ice_region(r: &Resolved) -> Rect {
@@ -95,9 +73,10 @@ fn generate(
     let span = r.floes_span.clone();
     let dem = |e| dem_error(f, span.clone(), "tessellation", e);
     // The floes of a tessellation, placed from the ice grids if any.
-    // [map] projection and start_time: not scenario keys yet (other
-    // branches add them); until then grids on x/y axes in plane metres.
-    let frame = GridFrame::default();
+    let frame = GridFrame {
+        projection: r.map.as_ref(),
+        start_time: r.start_time.as_deref(),
+    };
     let free = |mut t: Tessellation,
                 v: Vec2,
                 report: &mut Vec<String>|
@@ -586,22 +565,28 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         report.push(format!("scenario: {t}"));
     }
     let mut pieces = generate(f, r, region, &mut report)?;
+    // Land pieces no larger than the largest free floe (the broad phase's
+    // cells are as wide as the largest body).
+    let land = if r.land.is_empty() {
+        Vec::new()
+    } else {
+        land_build::read_all(f, r, free_radius(&pieces).max(f64::MIN_POSITIVE))?
+    };
+    if !matches!(r.floes, FloeSource::Explicit(_)) && !land.is_empty() {
+        let (dropped, area) = land_build::drop_ice_on_land(&mut pieces, &land);
+        report.push(format!(
+            "  {} floes on land dropped ({} m^2)",
+            thousands(dropped),
+            sig(area)
+        ));
+    }
     let glued = glue_to_walls(r, region, &mut pieces, &mut report);
     let free = pieces.iter().filter(|p| !p.prescribed).count();
     if free == 0 {
-        if let Some(g) = r.ice_grids.first() {
-            return Err(f.error(
-                g.span.clone(),
-                g.key,
-                "leaves no floe: no floe's centroid lies where the grids give ice (a concentration \
-                 above 0 and, with a thickness grid, a thickness of at least 0.001 m); check \
-                 that the grid is the one for this domain and time",
-            ));
-        }
         return Err(f.error(
             r.floes_span.clone(),
             "tessellation",
-            "no free floes: the tessellation is empty (cells larger than the ice region?), every [[floe]] is prescribed, or every floe is glued to a wall (glue_depth_m)",
+            "no free floes: the tessellation is empty (cells larger than the ice region?), every [[floe]] is prescribed, every floe is glued to a wall (glue_depth_m), or every floe lies on land",
         ));
     }
     let r_max = pieces
@@ -690,6 +675,14 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
             });
         }
     }
+    let first_land = pieces.len();
+    pieces.extend(land_build::land_pieces(
+        &land,
+        mean_h,
+        r.map.as_ref(),
+        &mut report,
+    ));
+    let land_ids: Vec<u64> = (first_land..pieces.len()).map(|i| i as u64).collect();
     let periodicity = r.domain.periodicity();
     let mut floes = Floes::default();
     let mut schedules = Vec::new();
@@ -749,11 +742,27 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
         labels,
         report,
         free,
+        land_ids,
     };
     if matches!(r.floes, FloeSource::Explicit(_)) {
         checks::no_initial_overlap(f, r, &built)?;
     }
     Ok(built)
+}
+
+/// The largest bounding radius (about the vertex mean) of the free pieces, m.
+fn free_radius(pieces: &[Piece]) -> f64 {
+    pieces
+        .iter()
+        .filter(|p| !p.prescribed)
+        .map(|p| {
+            let c = p.vertex_mean();
+            p.polygon
+                .iter()
+                .map(|&q| (q - c).length())
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The outlines of a wall's segments: rectangles about one floe diameter

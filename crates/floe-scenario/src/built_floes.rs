@@ -21,6 +21,8 @@ pub(crate) struct BuiltFloes {
     pub report: Vec<String>,
     /// Number of free floes.
     pub free: usize,
+    /// Ids of the land pieces (fixed prescribed floes), increasing.
+    pub land_ids: Vec<u64>,
 }
 
 /// A wall that holds a normal stress, as built: its pieces and geometry.

@@ -8,8 +8,6 @@
 //! each, and gives the ice area kept against concentration × area, overall
 //! and per grid cell.
 
-use std::ops::Not;
-
 use floe_basin::{open_concentration, open_thickness, MapProjection, ScalarGrid, ScalarRequest};
 use floe_dem::tessellation::{select_by_concentration, Rect, Tessellation};
 use floe_dem::Vec2;
@@ -110,7 +108,7 @@ pub(crate) fn place_from_grids(
             let value = h.at(centroids[k]);
             match value {
                 Some(v) if v >= MIN_THICKNESS_M => t.thickness_m[k] = v,
-                _ if (c[k] > 0.0).not() => {}
+                _ if c[k].is_nan() || c[k] <= 0.0 => {}
                 Some(v) if v > 0.0 => {
                     dropped.too_thin += 1;
                     c[k] = f64::NAN;
@@ -142,6 +140,19 @@ pub(crate) fn place_from_grids(
         .as_ref()
         .map(|g| per_cell(&g.field, &centroids, &areas, &c, &keep));
     t.retain(&keep);
+    if t.is_empty() && n > 0 {
+        let g = grids.first().expect("a grid is given");
+        return Err(f.error(
+            g.span.clone(),
+            g.key,
+            format!(
+                "leaves no floe: none of the {} floes has its centroid where the grids give ice \
+                 (a concentration above 0 and, with a thickness grid, a thickness of at least \
+                 {MIN_THICKNESS_M} m); check that the grid is the one for this domain and time",
+                thousands(n)
+            ),
+        ));
+    }
 
     let region_area = region.area_m2();
     let mut line = format!(

@@ -1,7 +1,7 @@
 //! `[ice] concentration_grid` and `thickness_grid`: which NetCDF file and
 //! variable give the initial ice, checked where they are written. The
-//! files are opened only when the scenario is built (`ice_grid.rs`),
-//! so that a run resumes from its checkpoint without them.
+//! files are opened when the scenario is built (`ice_grid.rs`); a resumed
+//! run takes its floes from the checkpoint.
 
 use std::ops::Range;
 use std::path::PathBuf;
@@ -55,6 +55,7 @@ impl IceGrids {
 pub(crate) fn resolve_ice_grids(
     f: &SourceFile,
     ice: Option<&Spanned<RawIce>>,
+    base_dir: &std::path::Path,
 ) -> Result<IceGrids, ScenarioError> {
     let Some(ice) = ice else {
         return Ok(IceGrids::default());
@@ -64,12 +65,12 @@ pub(crate) fn resolve_ice_grids(
         concentration: ice
             .concentration_grid
             .as_ref()
-            .map(|g| grid_field(f, g, "ice.concentration_grid", true))
+            .map(|g| grid_field(f, g, "ice.concentration_grid", true, base_dir))
             .transpose()?,
         thickness: ice
             .thickness_grid
             .as_ref()
-            .map(|g| grid_field(f, g, "ice.thickness_grid", false))
+            .map(|g| grid_field(f, g, "ice.thickness_grid", false, base_dir))
             .transpose()?,
     })
 }
@@ -79,6 +80,7 @@ fn grid_field(
     raw: &Spanned<RawGridField>,
     key: &'static str,
     concentration: bool,
+    base_dir: &std::path::Path,
 ) -> Result<GridField, ScenarioError> {
     let g = raw.get_ref();
     let text = |w: &Option<Spanned<String>>, name: &str| -> Result<String, ScenarioError> {
@@ -134,12 +136,7 @@ fn grid_field(
             )?),
             None => None,
         };
-    let path = PathBuf::from(&written);
-    let path = if path.is_absolute() {
-        path
-    } else {
-        f.path.parent().map_or(path.clone(), |dir| dir.join(&path))
-    };
+    let path = crate::gridded_inputs::input_path(base_dir, &written);
     Ok(GridField {
         path,
         written,

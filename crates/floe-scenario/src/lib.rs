@@ -13,7 +13,8 @@
 //! * edits of scenario text that keep it a valid file: `--set` settings
 //!   ([`settings`]) and law variants for comparisons ([`law_variants`]).
 //!
-//! Depends on the engine and the friction laws only: no command-line,
+//! Depends on the engine, the friction laws and floe-basin (NetCDF and
+//! GeoJSON inputs) only: no command-line,
 //! plotting or terminal crates. Nothing here panics on input.
 #![deny(missing_docs)]
 
@@ -25,13 +26,18 @@ pub mod domain;
 pub mod error;
 pub mod exact;
 mod extent;
+pub mod gridded_inputs;
 mod ice_grid;
-mod ice_grid_keys;
+pub mod ice_grid_keys;
+pub mod input_paths;
+mod land_build;
+mod land_spec;
 pub mod law_table;
 pub mod law_variants;
 mod motion_segments;
 pub mod numbers;
 pub mod output_cadence;
+mod piece;
 pub mod protocol_file;
 pub mod resolve;
 pub mod scenario;
@@ -42,6 +48,7 @@ pub mod spec;
 
 pub use domain::Domain;
 pub use error::ScenarioError;
+pub use gridded_inputs::InputFile;
 pub use output_cadence::{OutputCadence, OutputWindow};
 pub use resolve::{
     AUTO_DT_FRACTION, DEFAULT_ICE_DENSITY_KG_PER_M3, DEFAULT_MIN_AREA_FRACTION,

@@ -5,6 +5,7 @@
 
 use std::ops::Not;
 use std::ops::Range;
+use std::path::Path;
 
 use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::{Coriolis, DragParameters, Envelope, Forcing, VelocityField};
@@ -18,6 +19,9 @@ use toml::Spanned;
 use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::extent::{Extent, MAX_ANGULAR_VELOCITY_RAD_PER_S, MAX_TRAVEL_DOMAINS};
+use crate::gridded_inputs::{
+    resolve_gridded_velocity, resolve_sea_surface_height, GridContext, InputFile,
+};
 use crate::ice_grid_keys::{resolve_ice_grids, IceGrids};
 use crate::law_table::{law_from_table, preset_applies, RawLawTable};
 use crate::motion_segments::resolve_schedule;
@@ -209,9 +213,17 @@ pub(crate) struct Resolved {
     pub model: ContactModel,
     pub forcing: Forcing,
     pub walls: Vec<Wall>,
+    /// `[map]`: the projection of longitude and latitude onto the plane.
+    pub map: Option<floe_basin::MapProjection>,
+    /// `[[land]]` tables (the files are read when the floes are built).
+    pub land: Vec<crate::land_spec::LandFile>,
     pub output: OutputCadence,
     /// Location of each `[[output.window]]`.
     pub window_spans: Vec<Range<usize>>,
+    /// `start_time`.
+    pub start_time: Option<String>,
+    /// Files read besides the scenario.
+    pub inputs: Vec<InputFile>,
 }
 
 /// What a table allows, for refusing keys that do not apply.
@@ -480,7 +492,12 @@ pub(crate) fn dem_error(
 }
 
 /// Reads the file, applies defaults and checks every value on its own.
-pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved, ScenarioError> {
+/// Resolves `f`; relative input file paths are taken from `base_dir`.
+pub(crate) fn resolve(
+    f: &SourceFile,
+    registry: &LawRegistry,
+    base_dir: &Path,
+) -> Result<Resolved, ScenarioError> {
     let raw: RawScenario = f.parse_toml()?;
 
     let title = raw.title.as_ref().map(|t| t.get_ref().clone());
@@ -515,7 +532,7 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
     let (thickness, density_kg_per_m3, initial_velocity) = resolve_ice(f, raw.ice.as_ref())?;
     let extent = Extent { duration_s, domain };
     let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw, extent)?;
-    let ice_grids = resolve_ice_grids(f, raw.ice.as_ref())?;
+    let ice_grids = resolve_ice_grids(f, raw.ice.as_ref(), base_dir)?;
     if let Some(g) = ice_grids.first() {
         if matches!(
             floes,
@@ -530,13 +547,50 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         }
     }
     let model = resolve_contact(f, raw.contact.as_ref(), raw.friction.as_ref(), registry)?;
+    let map = crate::land_spec::resolve_map(f, raw.map.as_ref())?;
+    let mut grids = GridContext {
+        projection: map.clone(),
+        start_time: resolve_start_time(f, raw.start_time.as_ref())?,
+        region: domain,
+        base_dir: base_dir.to_path_buf(),
+        inputs: Vec::new(),
+    };
     let forcing = resolve_forcing(
         f,
         raw.wind.as_ref(),
         raw.ocean.as_ref(),
         raw.coriolis.as_ref(),
+        &mut grids,
     )?;
     let walls = resolve_walls(f, raw.wall.as_deref().unwrap_or(&[]), extent)?;
+    let land = crate::land_spec::resolve_land(
+        f,
+        raw.land.as_deref().unwrap_or(&[]),
+        map.as_ref(),
+        base_dir,
+    )?;
+    for g in [&ice_grids.concentration, &ice_grids.thickness]
+        .into_iter()
+        .flatten()
+    {
+        grids.inputs.push(InputFile {
+            role: g.key.to_string(),
+            path: g.path.clone(),
+        });
+    }
+    for l in &land {
+        grids.inputs.push(InputFile {
+            role: format!("land[{}]", l.index),
+            path: l.path.clone(),
+        });
+    }
+    if let (FloeSource::DoubleShear { .. }, Some(first)) = (&floes, land.first()) {
+        return Err(f.error(
+            first.span.clone(),
+            "land[0].file",
+            "land does not apply to the double-shear set-up",
+        ));
+    }
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
     Ok(Resolved {
         title,
@@ -556,9 +610,37 @@ pub(crate) fn resolve(f: &SourceFile, registry: &LawRegistry) -> Result<Resolved
         model,
         forcing,
         walls,
+        map,
+        land,
         output,
         window_spans,
+        start_time: grids.start_time,
+        inputs: grids.inputs,
     })
+}
+
+/// `start_time`: a date like "2024-03-01 00:00:00".
+fn resolve_start_time(
+    f: &SourceFile,
+    raw: Option<&Spanned<String>>,
+) -> Result<Option<String>, ScenarioError> {
+    let Some(t) = raw else { return Ok(None) };
+    floe_basin::cf_time::offset_and_unit(
+        "seconds since 2000-01-01",
+        "proleptic_gregorian",
+        t.get_ref(),
+    )
+    .map_err(|_| {
+        f.error(
+            t.span(),
+            "start_time",
+            format!(
+                "\"{}\" is not a date and time like \"2024-03-01 00:00:00\" (UTC)",
+                t.get_ref()
+            ),
+        )
+    })?;
+    Ok(Some(t.get_ref().trim().to_string()))
 }
 
 /// `dt_fraction`: a number in (0, 1].
@@ -1427,18 +1509,21 @@ fn resolve_field(
     f: &SourceFile,
     raw: &RawFluid,
     table: &str,
+    grids: &mut GridContext,
 ) -> Result<VelocityField, ScenarioError> {
     let ways = [
         raw.velocity_m_per_s.is_some(),
         raw.time_series.is_some(),
         raw.shear.is_some(),
         raw.gyre.is_some(),
+        raw.file.is_some(),
     ];
     if ways.iter().filter(|&&w| w).count() > 1 {
         let span = [
             span_of(&raw.time_series),
             span_of(&raw.shear),
             span_of(&raw.gyre),
+            span_of(&raw.file),
         ]
         .into_iter()
         .flatten()
@@ -1447,7 +1532,14 @@ fn resolve_field(
         return Err(f.error(
             span,
             table,
-            "give one of `velocity_m_per_s`, `time_series`, `shear` or `gyre`",
+            "give one of `velocity_m_per_s`, `time_series`, `shear`, `gyre` or `file`",
+        ));
+    }
+    if raw.plane_spacing_m.is_some() && raw.file.is_none() && raw.sea_surface_height.is_none() {
+        return Err(f.error(
+            span_of(&raw.plane_spacing_m).unwrap_or(0..0),
+            format!("{table}.plane_spacing_m"),
+            "applies only to a field read from a `file`",
         ));
     }
     let check = |field: VelocityField, span: Range<usize>, key: &str| {
@@ -1456,7 +1548,9 @@ fn resolve_field(
             .map(|()| field)
             .map_err(|e| f.error(span, format!("{table}.{key}"), e.to_string()))
     };
-    let field = if let Some(v) = &raw.velocity_m_per_s {
+    let field = if let Some(g) = resolve_gridded_velocity(f, raw, table, grids)? {
+        g
+    } else if let Some(v) = &raw.velocity_m_per_s {
         VelocityField::Uniform(f.pair(v, &format!("{table}.velocity_m_per_s"))?)
     } else if let Some(ts) = &raw.time_series {
         let t = ts.get_ref();
@@ -1548,10 +1642,18 @@ fn resolve_forcing(
     wind: Option<&Spanned<RawFluid>>,
     ocean: Option<&Spanned<RawFluid>>,
     coriolis: Option<&Spanned<RawCoriolis>>,
+    grids: &mut GridContext,
 ) -> Result<Forcing, ScenarioError> {
     let mut forcing = Forcing::default();
     if let Some(w) = wind {
         let w = w.get_ref();
+        if let Some(v) = &w.sea_surface_height {
+            return Err(f.error(
+                v.span(),
+                "wind.sea_surface_height",
+                "belongs in [ocean], not [wind]",
+            ));
+        }
         for (flag, name) in [
             (&w.sea_surface_tilt, "sea_surface_tilt"),
             (&w.rotational_drag, "rotational_drag"),
@@ -1564,12 +1666,13 @@ fn resolve_forcing(
                 ));
             }
         }
-        forcing.wind = resolve_field(f, w, "wind")?;
+        forcing.wind = resolve_field(f, w, "wind", grids)?;
         forcing.air = resolve_drag(f, w, "wind", forcing.air)?;
     }
     if let Some(o) = ocean {
         let o = o.get_ref();
-        forcing.current = resolve_field(f, o, "ocean")?;
+        forcing.current = resolve_field(f, o, "ocean", grids)?;
+        forcing.sea_surface_height = resolve_sea_surface_height(f, o, grids)?;
         forcing.ocean = resolve_drag(f, o, "ocean", forcing.ocean)?;
         if let Some(v) = &o.sea_surface_tilt {
             forcing.sea_surface_tilt = *v.get_ref();

@@ -10,6 +10,7 @@ use floe_dem::load_point::LoadPoint;
 use floe_dem::periodicity::Periodicity;
 use floe_dem::stress_control::StressControl;
 use floe_dem::world::World;
+use floe_dem::DemError;
 
 use floe_friction::LawRegistry;
 
@@ -18,6 +19,7 @@ use crate::checks;
 use crate::describe::{describe_contact, describe_forcing, describe_thickness};
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
+use crate::gridded_inputs::InputFile;
 use crate::numbers::{sig, thousands};
 pub use crate::output_cadence::{OutputCadence, OutputWindow};
 use crate::resolve::MAX_RUN_STEPS;
@@ -35,6 +37,10 @@ pub struct Setup {
     pub dt_s: f64,
     /// The stable limit of the time step, s.
     pub stable_limit_s: f64,
+    /// Ids of the floes that are land (`[[land]]`: fixed prescribed
+    /// pieces), increasing; a run file marks them so that pictures tell
+    /// land from walls.
+    pub land_floe_ids: Vec<u64>,
 }
 
 /// What [`World::resume`] needs besides the saved state.
@@ -67,7 +73,7 @@ impl Scenario {
     /// outside floe-friction).
     pub fn load_with(path: &Path, registry: &LawRegistry) -> Result<Scenario, ScenarioError> {
         let source = SourceFile::read(path)?;
-        let resolved = resolve::resolve(&source, registry)?;
+        let resolved = resolve::resolve(&source, registry, &directory_of(path))?;
         Ok(Scenario {
             source,
             resolved,
@@ -75,7 +81,9 @@ impl Scenario {
         })
     }
 
-    /// Parses and checks scenario text; `origin` names it in error messages.
+    /// Parses and checks scenario text; `origin` names it in error messages,
+    /// and relative input files (forcing, coastlines) are found from its
+    /// directory.
     pub fn from_text(text: &str, origin: &Path) -> Result<Scenario, ScenarioError> {
         Self::from_text_with(text, origin, &LawRegistry::builtin())
     }
@@ -86,11 +94,23 @@ impl Scenario {
         origin: &Path,
         registry: &LawRegistry,
     ) -> Result<Scenario, ScenarioError> {
+        Self::from_text_in(text, origin, &directory_of(origin), registry)
+    }
+
+    /// [`Scenario::from_text_with`] with relative input files found from
+    /// `base_dir` (a scenario stored in a run file, whose `origin` is not a
+    /// path).
+    pub fn from_text_in(
+        text: &str,
+        origin: &Path,
+        base_dir: &Path,
+        registry: &LawRegistry,
+    ) -> Result<Scenario, ScenarioError> {
         let source = SourceFile {
             path: origin.to_path_buf(),
             text: text.to_string(),
         };
-        let resolved = resolve::resolve(&source, registry)?;
+        let resolved = resolve::resolve(&source, registry, base_dir)?;
         Ok(Scenario {
             source,
             resolved,
@@ -160,6 +180,12 @@ impl Scenario {
         }
     }
 
+    /// The map projection of `[map]`: the model plane of everything given
+    /// in longitude and latitude.
+    pub fn map_projection(&self) -> Option<&floe_basin::MapProjection> {
+        self.resolved.map.as_ref()
+    }
+
     /// The contact model, friction law included.
     pub fn contact_model(&self) -> &ContactModel {
         &self.resolved.model
@@ -168,6 +194,17 @@ impl Scenario {
     /// The forcing (wind, ocean, Coriolis).
     pub fn forcing(&self) -> &Forcing {
         &self.resolved.forcing
+    }
+
+    /// `start_time`: the date of model time 0, as written.
+    pub fn start_time(&self) -> Option<&str> {
+        self.resolved.start_time.as_deref()
+    }
+
+    /// The files the run reads besides the scenario (forcing, coastlines,
+    /// ice grids), for the run file's provenance.
+    pub fn input_files(&self) -> &[InputFile] {
+        &self.resolved.inputs
     }
 
     /// Builds the world: floes, walls, contact model, forcing, time step.
@@ -181,8 +218,9 @@ impl Scenario {
         let built = build::build_floes(f, r)?;
         let (dt_s, stable_limit_s, dt_line) = build::time_step(f, r, &built, self.max_steps)?;
         let mut report = built.report.clone();
+        let land_floe_ids = built.land_ids.clone();
         report.push(format!(
-            "  {} free floes, {} prescribed (walls, fixed blocks); ice density {} kg/m^3, thickness {}",
+            "  {} free floes, {} prescribed (walls, fixed blocks, land); ice density {} kg/m^3, thickness {}",
             thousands(built.free),
             thousands(built.floes.len() - built.free),
             r.density_kg_per_m3,
@@ -198,7 +236,12 @@ impl Scenario {
             r.forcing.clone(),
             r.domain.periodicity(),
             dt_s,
-        )?;
+        )
+        .map_err(|e| match e {
+            // A floe off a forcing grid: the files do not fit the ice.
+            DemError::Forcing(failure) => f.error_in_file(failure.to_string()),
+            e => e.into(),
+        })?;
         for (id, schedule) in built.schedules {
             world.set_schedule(id, schedule)?;
         }
@@ -239,6 +282,7 @@ impl Scenario {
             report,
             dt_s,
             stable_limit_s,
+            land_floe_ids,
         })
     }
 
@@ -261,6 +305,14 @@ impl Scenario {
         let r = &self.resolved;
         let built = build::build_floes(f, r)?;
         Ok(build::time_step(f, r, &built, f64::INFINITY)?.0)
+    }
+}
+
+/// The directory of a scenario file, where its relative input paths start.
+fn directory_of(path: &Path) -> std::path::PathBuf {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
     }
 }
 

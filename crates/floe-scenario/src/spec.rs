@@ -27,6 +27,8 @@ pub(crate) type Count = Option<Spanned<i64>>;
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawScenario {
     pub title: Option<Spanned<String>>,
+    /// The date of model time 0, for forcing files with dates.
+    pub start_time: Option<Spanned<String>>,
     pub seed: Count,
     pub threads: Count,
     pub duration_s: Option<Spanned<f64>>,
@@ -44,7 +46,24 @@ pub(crate) struct RawScenario {
     pub ocean: Option<Spanned<RawFluid>>,
     pub coriolis: Option<Spanned<RawCoriolis>>,
     pub wall: Option<Vec<Spanned<RawWall>>>,
+    pub map: Option<Spanned<RawMap>>,
+    pub land: Option<Vec<Spanned<RawLand>>>,
     pub output: Option<RawOutput>,
+}
+
+/// `[map]`: the model plane of everything given in longitude and latitude.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMap {
+    pub projection: Word,
+}
+
+/// `[[land]]`: coastlines and islands from one GeoJSON file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLand {
+    pub file: Word,
+    pub coordinates: Word,
 }
 
 /// `[domain]`
@@ -169,13 +188,27 @@ pub(crate) struct RawFluid {
     pub shear: Option<Spanned<RawShear>>,
     pub gyre: Option<Spanned<RawGyre>>,
     pub envelope: Option<Spanned<RawEnvelope>>,
+    /// A CF NetCDF file of the field, with `variables` (x/east, y/north).
+    pub file: Option<Spanned<String>>,
+    pub variables: Option<Spanned<Vec<String>>>,
+    pub plane_spacing_m: Num,
     pub density_kg_per_m3: Num,
     pub drag_coefficient: Num,
     pub turning_angle_deg: Num,
     pub relative_to_ice: Flag,
     // [ocean] only
+    pub sea_surface_height: Option<Spanned<RawGridVariable>>,
     pub sea_surface_tilt: Flag,
     pub rotational_drag: Flag,
+}
+
+/// `sea_surface_height = { variable = "zos", file = "ssh.nc" }` (the
+/// file defaults to the table's `file`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawGridVariable {
+    pub variable: String,
+    pub file: Option<String>,
 }
 
 /// `time_series = { times_s = [...], velocities_m_per_s = [[u, v], ...] }`

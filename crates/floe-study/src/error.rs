@@ -26,6 +26,22 @@ pub enum Error {
         /// The operating-system error.
         source: std::io::Error,
     },
+    /// Writing or reading a NetCDF file failed.
+    #[error("{}: NetCDF: {message}", path.display())]
+    NetCdf {
+        /// The file.
+        path: PathBuf,
+        /// What the NetCDF library said.
+        message: String,
+    },
+    /// Encoding a movie failed (ffmpeg or the GIF encoder).
+    #[error("{}: could not write the movie: {message}", path.display())]
+    Encode {
+        /// The movie file.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
     /// Drawing a plot failed.
     #[error("{path}: could not draw the plot: {message}")]
     Plot {

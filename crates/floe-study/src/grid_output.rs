@@ -1,20 +1,25 @@
 //! `floe grid`: a run's snapshots coarse-grained onto a regular grid
-//! (`floe_analysis::grid_fields`) and written as CF NetCDF (NetCDF-3, 64-bit
-//! offset, through the pure-Rust `netcdf3` crate: the `netcdf` crate's C
-//! library would link a second HDF5 beside hdf5-metno's, which Cargo refuses).
-//! One record per snapshot along the unlimited `time` dimension; variables
+//! (`floe_analysis::grid_fields`) and written as CF NetCDF through the
+//! system's NetCDF-C library (the `netcdf` crate): NetCDF-4 files in the
+//! classic data model, so that each record is compressed (deflate and
+//! shuffle, as the run files) while classic tools' conversions
+//! (`nccopy -k classic`) still work. One record per snapshot taken (a
+//! [`Cadence`] of its own) along the unlimited `time` dimension; variables
 //! on `(time, y, x)` with CF standard names and units where CF has them;
 //! cells without ice hold the fill value (`_FillValue`, NetCDF's default
-//! 9.97e36: a NaN attribute would not compare equal to itself in `netcdf3`).
+//! for doubles, 9.97e36, rather than NaN, which compares unequal to
+//! itself).
 
 use std::path::{Path, PathBuf};
 
 use floe_analysis::grid_fields::{grid_fields, FloeSnapshot, Grid};
 use floe_analysis::love_weber::{stress_moments, ContactForces};
 use floe_io::RunFile;
-use netcdf3::{DataSet, FileWriter, Version, NC_FILL_F64};
+use netcdf::{FileMut, Options};
 
+use crate::cadence::Cadence;
 use crate::error::Error;
+use crate::partial_file::PartialFile;
 use crate::same_file::refuse_overwriting_input;
 
 /// What `floe grid` was asked to do.
@@ -26,9 +31,22 @@ pub struct GridArgs {
     pub output: PathBuf,
     /// Largest cell size, m (the domain is split into whole cells of at most this).
     pub cell_m: f64,
+    /// Which snapshots become records.
+    pub cadence: Cadence,
     /// Replace an existing output.
     pub force: bool,
 }
+
+/// The value of cells without ice: NetCDF's default fill value for doubles
+/// (`NC_FILL_DOUBLE`).
+pub const FILL_VALUE: f64 = 9.969_209_968_386_869e36;
+
+/// Deflate level of the fields (with byte shuffle), as the run files'.
+const DEFLATE_LEVEL: i32 = 4;
+
+/// Most cells along an axis of a chunk (one record per chunk): 2 MiB
+/// chunks at most, so a reader of a small region decompresses little.
+const CHUNK_CELLS: usize = 512;
 
 /// Most cells along one axis, and in all.
 const MAX_CELLS_PER_AXIS: usize = 4096;
@@ -104,8 +122,8 @@ pub(crate) const FIELDS: [(&str, &str, &str, &str); 11] = [
     ),
 ];
 
-/// Writes the gridded fields of every snapshot of `args.run`; returns the
-/// output's path.
+/// Writes the gridded fields of the snapshots of `args.run` that
+/// `args.cadence` takes; returns the output's path.
 pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
     if !(args.cell_m.is_finite() && args.cell_m > 0.0) {
         return Err(Error::Usage(format!(
@@ -113,6 +131,7 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
             args.cell_m
         )));
     }
+    args.cadence.check()?;
     refuse_overwriting_input(&args.run, "run file", [args.output.as_path()])?;
     if args.output.exists() && !args.force {
         return Err(Error::WouldOverwrite(args.output.clone()));
@@ -137,99 +156,94 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
         shape,
     };
     let times = run.snapshot_times()?;
-
-    let mut data = DataSet::new();
-    let nc = |e: netcdf3::InvalidDataSet| Error::Usage(format!("{}: {e:?}", args.output.display()));
-    data.set_unlimited_dim("time", times.len()).map_err(nc)?;
-    data.add_fixed_dim("y", shape[1]).map_err(nc)?;
-    data.add_fixed_dim("x", shape[0]).map_err(nc)?;
-    for (name, text) in [
-        ("Conventions", "CF-1.8".to_string()),
-        ("title", format!("floe run {} on a grid", args.run.display())),
-        ("source", format!("floe {} (floe grid)", env!("CARGO_PKG_VERSION"))),
-        ("comment", "floes coarse-grained onto the grid: each floe clipped exactly to the cells; prescribed floes (walls, blocks, glued rows) left out".to_string()),
-    ] {
-        data.add_global_attr_string(name, text).map_err(nc)?;
-    }
-    data.add_var_f64("time", &["time"]).map_err(nc)?;
-    data.add_var_attr_string("time", "units", "s").map_err(nc)?;
-    data.add_var_attr_string("time", "long_name", "time since the start of the run")
-        .map_err(nc)?;
-    for (axis, dim) in [("X", "x"), ("Y", "y")] {
-        data.add_var_f64(dim, &[dim]).map_err(nc)?;
-        data.add_var_attr_string(dim, "units", "m").map_err(nc)?;
-        data.add_var_attr_string(dim, "axis", axis).map_err(nc)?;
-        data.add_var_attr_string(dim, "standard_name", format!("projection_{dim}_coordinate"))
-            .map_err(nc)?;
-        data.add_var_attr_string(dim, "long_name", format!("cell centre, {dim}"))
-            .map_err(nc)?;
-    }
-    for (name, standard, units, long) in FIELDS {
-        data.add_var_f64(name, &["time", "y", "x"]).map_err(nc)?;
-        data.add_var_attr_string(name, "units", units).map_err(nc)?;
-        data.add_var_attr_string(name, "long_name", long)
-            .map_err(nc)?;
-        if !standard.is_empty() {
-            data.add_var_attr_string(name, "standard_name", standard)
-                .map_err(nc)?;
-        }
-        data.add_var_attr_f64(name, "_FillValue", vec![NC_FILL_F64])
-            .map_err(nc)?;
-    }
+    let taken = args.cadence.select(&times)?;
 
     // Written beside the target and renamed at the end: a failure leaves
     // no half file under the output's name.
-    let partial = partial_path(&args.output);
-    let _ = std::fs::remove_file(&partial);
-    let write_err =
-        |e: netcdf3::WriteError| Error::Usage(format!("{}: {e:?}", args.output.display()));
-    let mut writer = FileWriter::create_new(&partial).map_err(write_err)?;
-    writer
-        .set_def(&data, Version::Offset64Bit, 0)
-        .map_err(write_err)?;
-    writer
-        .write_var_f64(
-            "x",
-            &(0..shape[0])
-                .map(|i| grid.centre(i, 0)[0])
-                .collect::<Vec<_>>(),
-        )
-        .map_err(write_err)?;
-    writer
-        .write_var_f64(
-            "y",
-            &(0..shape[1])
-                .map(|j| grid.centre(0, j)[1])
-                .collect::<Vec<_>>(),
-        )
-        .map_err(write_err)?;
-    for (k, &t) in times.iter().enumerate() {
-        writer
-            .write_record_f64("time", k, &[t])
-            .map_err(write_err)?;
-        let records = snapshot_fields(&run, &floes, &grid, meta.domain.periodic, size, k)?;
-        for ((name, ..), mut values) in FIELDS.iter().zip(records) {
-            // Cells without ice (NaN) get the CF fill value.
+    let partial = PartialFile::new(&args.output);
+    let nc = |e: netcdf::Error| Error::NetCdf {
+        path: args.output.clone(),
+        message: e.to_string(),
+    };
+    partial.create()?;
+    let mut file =
+        netcdf::create_with(partial.path(), Options::NETCDF4 | Options::CLASSIC).map_err(nc)?;
+    define(&mut file, &args.run, &grid).map_err(nc)?;
+    // The classic model has a define mode to leave before writing data.
+    file.enddef().map_err(nc)?;
+    let centres =
+        |axis: usize| -> Vec<f64> { (0..shape[axis]).map(|i| grid.centre(i, i)[axis]).collect() };
+    for (axis, name) in [(0, "x"), (1, "y")] {
+        variable(&mut file, name)
+            .and_then(|mut v| v.put_values(&centres(axis), ..))
+            .map_err(nc)?;
+    }
+    for (record, &k) in taken.iter().enumerate() {
+        variable(&mut file, "time")
+            .and_then(|mut v| v.put_value(times[k], [record]))
+            .map_err(nc)?;
+        let fields = snapshot_fields(&run, &floes, &grid, meta.domain.periodic, size, k)?;
+        for ((name, ..), mut values) in FIELDS.iter().zip(fields) {
+            // Cells without ice (NaN) get the fill value.
             for v in values.iter_mut().filter(|v| v.is_nan()) {
-                *v = NC_FILL_F64;
+                *v = FILL_VALUE;
             }
-            writer
-                .write_record_f64(name, k, &values)
-                .map_err(write_err)?;
+            variable(&mut file, name)
+                .and_then(|mut v| {
+                    v.put_values(&values, [record..record + 1, 0..shape[1], 0..shape[0]])
+                })
+                .map_err(nc)?;
         }
     }
-    writer.close().map_err(write_err)?;
-    std::fs::rename(&partial, &args.output).map_err(|e| Error::io(&args.output, e))?;
-    Ok(args.output.clone())
+    file.close().map_err(nc)?;
+    partial.commit()
 }
 
-fn partial_path(output: &Path) -> PathBuf {
-    let mut name = output
-        .file_name()
-        .map(|n| n.to_os_string())
-        .unwrap_or_default();
-    name.push(".partial");
-    output.with_file_name(name)
+/// The dimensions, variables and attributes of a gridded-fields file.
+fn define(file: &mut FileMut, run: &Path, grid: &Grid) -> Result<(), netcdf::Error> {
+    let [nx, ny] = grid.shape;
+    file.add_unlimited_dimension("time")?;
+    file.add_dimension("y", ny)?;
+    file.add_dimension("x", nx)?;
+    for (name, text) in [
+        ("Conventions", "CF-1.8".to_string()),
+        ("title", format!("floe run {} on a grid", run.display())),
+        ("source", format!("floe {} (floe grid)", env!("CARGO_PKG_VERSION"))),
+        ("comment", "floes coarse-grained onto the grid: each floe clipped exactly to the cells; prescribed floes (walls, blocks, glued rows) left out".to_string()),
+    ] {
+        file.add_attribute(name, text)?;
+    }
+    let mut time = file.add_variable::<f64>("time", &["time"])?;
+    time.put_attribute("units", "s")?;
+    time.put_attribute("long_name", "time since the start of the run")?;
+    for (axis, dim) in [("X", "x"), ("Y", "y")] {
+        let mut coordinate = file.add_variable::<f64>(dim, &[dim])?;
+        coordinate.put_attribute("units", "m")?;
+        coordinate.put_attribute("axis", axis)?;
+        coordinate.put_attribute("standard_name", format!("projection_{dim}_coordinate"))?;
+        coordinate.put_attribute("long_name", format!("cell centre, {dim}"))?;
+    }
+    for (name, standard, units, long) in FIELDS {
+        let mut field = file.add_variable::<f64>(name, &["time", "y", "x"])?;
+        field.set_chunking(&[1, ny.min(CHUNK_CELLS), nx.min(CHUNK_CELLS)])?;
+        field.set_compression(DEFLATE_LEVEL, true)?;
+        field.set_fill_value(FILL_VALUE)?;
+        field.put_attribute("units", units)?;
+        field.put_attribute("long_name", long)?;
+        if !standard.is_empty() {
+            field.put_attribute("standard_name", standard)?;
+        }
+    }
+    Ok(())
+}
+
+/// The variable `name`, which [`define`] made.
+fn variable<'f>(
+    file: &'f mut FileMut,
+    name: &str,
+) -> Result<netcdf::VariableMut<'f>, netcdf::Error> {
+    file.variable_mut(name)
+        .ok_or_else(|| netcdf::Error::NotFound(format!("variable {name}")))
 }
 
 /// The fields of snapshot `k`, in the order of [`FIELDS`].

@@ -9,10 +9,12 @@
 //! (`examples/`) use it directly.
 #![deny(missing_docs)]
 
+pub mod cadence;
 pub mod compare;
 pub mod double_shear_protocol;
 pub mod error;
 pub mod grid_output;
+pub mod partial_file;
 pub mod plot;
 pub mod render;
 pub mod rheology;

@@ -13,7 +13,7 @@ use floe_dem::forcing::Forcing;
 use floe_dem::run::{self, format_sim_time, Ending, Progress, Silent};
 use floe_dem::world::World;
 use floe_friction::{FrictionLaw, LawRegistry};
-use floe_io::{DomainBox, OutputOptions, RunFile, RunMetadata, RunWriter};
+use floe_io::{DomainBox, InputRecord, OutputOptions, RunFile, RunMetadata, RunWriter};
 use floe_scenario::Scenario;
 
 use crate::error::Error;
@@ -184,7 +184,11 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         let p = &args.provenance;
         let metadata = RunMetadata {
             scenario_toml: scenario.text().to_string(),
-            scenario_path: path.display().to_string(),
+            // Absolute: a resume finds relative input files from it.
+            scenario_path: std::path::absolute(path)
+                .unwrap_or_else(|_| path.clone())
+                .display()
+                .to_string(),
             floe_version: p.floe_version.clone(),
             git_commit: p.git_commit.clone(),
             command_line: p.command_line.clone(),
@@ -195,6 +199,7 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
                 size_m: [domain.size_m.x, domain.size_m.y],
                 periodic: domain.periodic,
             },
+            inputs: input_records(&scenario)?,
         };
         // The output's directory is made if missing, as `-o out/run.h5` suggests.
         if let Some(parent) = args.output.parent().filter(|p| !p.as_os_str().is_empty()) {
@@ -206,6 +211,9 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
             setup.world.floes(),
             &OutputOptions::default(),
         )?;
+        if !setup.land_floe_ids.is_empty() {
+            writer.mark_land(&setup.land_floe_ids)?;
+        }
         writer.set_status(&floe_io::run_status::running())?;
         let mut world = setup.world;
         run::start(&world, &mut writer, domain.area_m2())?;
@@ -220,7 +228,11 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         metadata.scenario_path,
         args.output.display()
     ));
-    let scenario = Scenario::from_text_with(&metadata.scenario_toml, &origin, &args.laws)?;
+    let base_dir = Path::new(&metadata.scenario_path)
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let scenario = Scenario::from_text_in(&metadata.scenario_toml, &origin, &base_dir, &args.laws)?;
+    check_inputs_unchanged(&metadata.inputs, &scenario, &args.output)?;
     let d = scenario.domain();
     let recorded = metadata.domain;
     if [d.min_m.x, d.min_m.y] != recorded.min_m
@@ -329,6 +341,64 @@ fn advance(
             })
         }
     }
+}
+
+/// The scenario's input files with their SHA-256, for the provenance.
+fn input_records(scenario: &Scenario) -> Result<Vec<InputRecord>, Error> {
+    scenario
+        .input_files()
+        .iter()
+        .map(|i| {
+            Ok(InputRecord {
+                role: i.role.clone(),
+                path: i.path.display().to_string(),
+                sha256: floe_basin::checksum::sha256_file(&i.path)
+                    .map_err(|e| Error::Usage(e.to_string()))?,
+            })
+        })
+        .collect()
+}
+
+/// A resume continues the same run only if the input files are the ones
+/// it began with.
+fn check_inputs_unchanged(
+    recorded: &[InputRecord],
+    scenario: &Scenario,
+    output: &Path,
+) -> Result<(), Error> {
+    let now = input_records(scenario)?;
+    for (was, is) in recorded.iter().zip(&now) {
+        if was.sha256 != is.sha256 {
+            return Err(Error::Usage(format!(
+                "{}: input {} ({}) has changed since the run began (sha256 {} then, {} now);                  a run resumes only with the files it started with",
+                output.display(),
+                is.role,
+                is.path,
+                was.sha256,
+                is.sha256
+            )));
+        }
+    }
+    if recorded.len() != now.len() && !recorded.is_empty() {
+        return Err(Error::Usage(format!(
+            "{}: the run recorded {} input files, its scenario now reads {}",
+            output.display(),
+            recorded.len(),
+            now.len()
+        )));
+    }
+    Ok(())
+}
+
+/// The scenario file at `path`, with its relative input files (`file`
+/// keys) made absolute so that variants written elsewhere still find them.
+pub(crate) fn read_anchored(path: &Path) -> Result<String, Error> {
+    let text = floe_scenario::SourceFile::read(path)?.text;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    Ok(floe_scenario::input_paths::anchor_input_paths(&text, dir))
 }
 
 pub(crate) fn thread_count(requested: Option<usize>) -> Result<usize, Error> {

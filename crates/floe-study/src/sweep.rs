@@ -61,7 +61,7 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     }
     floe_scenario::settings::check_distinct(&args.settings)?;
     let budget = thread_count(args.threads)?;
-    let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
+    let text = crate::run_file::read_anchored(&args.scenario)?;
     Scenario::from_text_with(&text, &args.scenario, &args.laws)?;
     let combos = cartesian(&args.settings);
     // Every variant is made and built (floes, time step, step limit)

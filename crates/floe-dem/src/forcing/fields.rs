@@ -75,7 +75,7 @@ pub enum VelocityField {
     },
     /// Given on a grid at a sequence of times (a NetCDF file): see
     /// [`GriddedField`]. Needs [`VelocityField::prepare`] each step.
-    Gridded(GriddedField),
+    Gridded(Box<GriddedField>),
 }
 
 impl Default for VelocityField {
@@ -275,6 +275,24 @@ impl VelocityField {
                 envelope.factor(t_s) * field.velocity(position_m, t_s)
             }
             VelocityField::Gridded(g) => g.vector(position_m, t_s),
+        }
+    }
+
+    /// [`VelocityField::velocity`] and [`VelocityField::vorticity`]
+    /// together (one grid lookup for a gridded field).
+    #[inline]
+    pub fn velocity_and_vorticity(&self, position_m: Vec2, t_s: f64) -> (Vec2, f64) {
+        match self {
+            VelocityField::Gridded(g) => g.vector_and_vorticity(position_m, t_s),
+            VelocityField::Scaled { field, envelope } => {
+                let a = envelope.factor(t_s);
+                let (u, z) = field.velocity_and_vorticity(position_m, t_s);
+                (a * u, a * z)
+            }
+            _ => (
+                self.velocity(position_m, t_s),
+                self.vorticity(position_m, t_s),
+            ),
         }
     }
 

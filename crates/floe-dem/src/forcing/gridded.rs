@@ -9,7 +9,8 @@
 //! forces are gathered (the [`ExternalForces::prepare`] hook): it loads the
 //! two slices around the step's time when the time has moved past them,
 //! and checks that every free floe lies on the grid, on cells without
-//! missing values. Evaluation ([`GriddedField::value_and_gradient`]) then only reads.
+//! missing values, and mixes the two slices at the step's time. Evaluation
+//! ([`GriddedField::vector`], [`GriddedField::value_and_gradient`]) then only reads.
 //!
 //! Between grid nodes the field is bilinear in the cell; between the slice
 //! times `t_i ≤ t ≤ t_{i+1}` it is `(1 − w) F_i + w F_{i+1}`,
@@ -20,14 +21,9 @@
 use std::fmt;
 use std::sync::Arc;
 
+pub use crate::error::ForcingFailure;
 use crate::floes::FloeColumns;
 use crate::{DemError, Vec2};
-
-/// Why a gridded forcing cannot go on: names the source (file and
-/// variables), the time or the floe.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{0}")]
-pub struct ForcingFailure(pub String);
 
 /// A regular grid of the model plane: node `(i, j)` at
 /// `origin + (i dx, j dy)`, `i < nx`, `j < ny`.
@@ -118,23 +114,6 @@ impl PlaneGrid {
             fy: gy - j as f64,
         })
     }
-
-    /// The cell of `p` with `p` moved onto the grid first (never `None` for
-    /// a finite point; evaluation after [`GriddedField::prepare`] checked
-    /// the floes).
-    #[inline]
-    fn cell_clamped(&self, p: Vec2) -> CellPosition {
-        let end = self.end_m();
-        let q = Vec2::new(
-            p.x.clamp(self.origin_m.x, end.x),
-            p.y.clamp(self.origin_m.y, end.y),
-        );
-        self.cell(q).unwrap_or(CellPosition {
-            node: 0,
-            fx: 0.0,
-            fy: 0.0,
-        })
-    }
 }
 
 /// Where a [`GriddedField`]'s time slices come from. Implementations read
@@ -181,6 +160,19 @@ pub struct GriddedField {
     usable: Vec<bool>,
     /// Slices read so far (the memory bound is tested by it).
     reads: u64,
+    /// `1/dx, 1/dy`.
+    inverse_spacing: Vec2,
+    /// The interval's lower time, `1/(t_{i+1} − t_i)`, and whether there
+    /// is an upper slice (not for a steady field).
+    lower_time_s: f64,
+    inverse_interval_s: f64,
+    has_upper: bool,
+    /// The two slices mixed at `blended_time_s` (the step's time, set by
+    /// `prepare`): evaluation at that time reads one array.
+    blended: Vec<f64>,
+    blended_time_s: f64,
+    /// Largest fractional node indices, `nx − 1` and `ny − 1`.
+    last_index: Vec2,
 }
 
 impl fmt::Debug for GriddedField {
@@ -243,6 +235,13 @@ impl GriddedField {
             lower: 0,
             usable: Vec::new(),
             reads: 0,
+            inverse_spacing: Vec2::new(1.0 / grid.spacing_m.x, 1.0 / grid.spacing_m.y),
+            lower_time_s: 0.0,
+            inverse_interval_s: 0.0,
+            has_upper: false,
+            blended: Vec::new(),
+            blended_time_s: f64::NAN,
+            last_index: Vec2::new((grid.nx - 1) as f64, (grid.ny - 1) as f64),
         })
     }
 
@@ -305,6 +304,7 @@ impl GriddedField {
         if self.interval != Some(interval) {
             self.load(interval)?;
         }
+        self.blend(t_s);
         self.check_floes(floes)
     }
 
@@ -326,8 +326,32 @@ impl GriddedField {
         }
         self.lower = lower;
         self.interval = Some(interval);
+        let times = self.source.times_s();
+        self.lower_time_s = times[interval];
+        self.has_upper = wanted[1] != wanted[0];
+        self.inverse_interval_s = if self.has_upper {
+            1.0 / (times[interval + 1] - times[interval])
+        } else {
+            0.0
+        };
         self.mark_usable_cells();
         Ok(())
+    }
+
+    /// Mixes the two slices at `t_s` into `blended` (grid-sized work, once
+    /// a step, instead of a time interpolation per floe and component).
+    fn blend(&mut self, t_s: f64) {
+        let lo = &self.slots[self.lower].values;
+        self.blended.clear();
+        if self.has_upper {
+            let w = ((t_s - self.lower_time_s) * self.inverse_interval_s).clamp(0.0, 1.0);
+            let hi = &self.slots[1 - self.lower].values;
+            self.blended
+                .extend(lo.iter().zip(hi).map(|(&a, &b)| a + w * (b - a)));
+        } else {
+            self.blended.extend_from_slice(lo);
+        }
+        self.blended_time_s = t_s;
     }
 
     fn fill(&mut self, slot: usize, index: usize, len: usize) -> Result<(), ForcingFailure> {
@@ -388,59 +412,94 @@ impl GriddedField {
         Ok(())
     }
 
-    /// The time weight `w` of the upper slice at `t_s`.
-    #[inline]
-    fn weight(&self, t_s: f64) -> f64 {
-        let times = self.source.times_s();
-        match self.interval {
-            Some(i) if i + 1 < times.len() => {
-                ((t_s - times[i]) / (times[i + 1] - times[i])).clamp(0.0, 1.0)
-            }
-            _ => 0.0,
-        }
-    }
-
     /// Component `comp` at `p` and `t_s`, with its gradient `(∂/∂x, ∂/∂y)`.
     /// Zero before the first [`GriddedField::prepare`].
     #[inline]
     pub fn value_and_gradient(&self, comp: usize, p: Vec2, t_s: f64) -> (f64, Vec2) {
-        if self.interval.is_none() {
-            return (0.0, Vec2::ZERO);
+        match self.lookup(p, t_s) {
+            Some(l) => {
+                let c = self.corners(&l, comp);
+                (l.value(&c), l.gradient(&c, self.inverse_spacing))
+            }
+            None => (0.0, Vec2::ZERO),
         }
-        let cell = self.grid.cell_clamped(p);
-        let w = self.weight(t_s);
-        let (lo, hi) = (&self.slots[self.lower], &self.slots[1 - self.lower]);
-        let (v, g) = self.bilinear(&lo.values, cell, comp);
-        if w == 0.0 {
-            return (v, g);
-        }
-        let (v1, g1) = self.bilinear(&hi.values, cell, comp);
-        ((1.0 - w) * v + w * v1, (1.0 - w) * g + w * g1)
     }
 
-    #[inline]
-    fn bilinear(&self, values: &[f64], cell: CellPosition, comp: usize) -> (f64, Vec2) {
+    /// Where `p` and `t_s` fall: cell, fractions, time weight (NaN: the
+    /// blended slice of the step's time). A point off the grid takes the
+    /// nearest edge (`prepare` refused free floes there).
+    #[inline(always)]
+    fn lookup(&self, p: Vec2, t_s: f64) -> Option<Lookup> {
+        self.interval?;
+        let o = self.grid.origin_m;
+        let gx = ((p.x - o.x) * self.inverse_spacing.x).clamp(0.0, self.last_index.x);
+        let gy = ((p.y - o.y) * self.inverse_spacing.y).clamp(0.0, self.last_index.y);
+        // `as` saturates (NaN to 0): never out of bounds.
+        let i = (gx as usize).min(self.grid.nx - 2);
+        let j = (gy as usize).min(self.grid.ny - 2);
+        let w = if t_s == self.blended_time_s {
+            f64::NAN
+        } else {
+            self.weight(t_s)
+        };
+        Some(Lookup {
+            node: j * self.grid.nx + i,
+            fx: gx - i as f64,
+            fy: gy - j as f64,
+            w,
+        })
+    }
+
+    /// The time weight of the upper slice at `t_s` (away from the step's time).
+    #[cold]
+    fn weight(&self, t_s: f64) -> f64 {
+        if self.has_upper {
+            ((t_s - self.lower_time_s) * self.inverse_interval_s).clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// The four corner values of component `comp`, interpolated in time:
+    /// `[v00, v10, v01, v11]` (from the blended slices at the step's time).
+    #[inline(always)]
+    fn corners(&self, l: &Lookup, comp: usize) -> [f64; 4] {
         let (c, nx) = (self.components, self.grid.nx);
-        let at = |k: usize| values[k * c + comp];
-        let k = cell.node;
-        let (v00, v10, v01, v11) = (at(k), at(k + 1), at(k + nx), at(k + nx + 1));
-        let (fx, fy) = (cell.fx, cell.fy);
-        let value = (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11);
-        let dx = ((1.0 - fy) * (v10 - v00) + fy * (v11 - v01)) / self.grid.spacing_m.x;
-        let dy = ((1.0 - fx) * (v01 - v00) + fx * (v11 - v10)) / self.grid.spacing_m.y;
-        (value, Vec2::new(dx, dy))
+        let k = l.node * c + comp;
+        let row = nx * c;
+        let at = [k, k + c, k + row, k + row + c];
+        if l.w.is_nan() {
+            let b = &self.blended;
+            return at.map(|i| b[i]);
+        }
+        self.corners_between_slices(at, l.w)
+    }
+
+    #[cold]
+    fn corners_between_slices(&self, at: [usize; 4], w: f64) -> [f64; 4] {
+        let lo = &self.slots[self.lower].values;
+        let mut v = at.map(|i| lo[i]);
+        if w != 0.0 {
+            let hi = &self.slots[1 - self.lower].values;
+            for (x, &i) in v.iter_mut().zip(&at) {
+                *x += w * (hi[i] - *x);
+            }
+        }
+        v
     }
 
     /// The vector at `p` and `t_s` (a two-component field; the first
     /// component alone otherwise).
     #[inline]
     pub fn vector(&self, p: Vec2, t_s: f64) -> Vec2 {
-        let (u, _) = self.value_and_gradient(0, p, t_s);
+        let Some(l) = self.lookup(p, t_s) else {
+            return Vec2::ZERO;
+        };
+        let u = l.value(&self.corners(&l, 0));
         if self.components < 2 {
             return Vec2::new(u, 0.0);
         }
-        let (v, _) = self.value_and_gradient(1, p, t_s);
-        Vec2::new(u, v)
+        Vec2::new(u, l.value(&self.corners(&l, 1)))
     }
 
     /// The vertical vorticity `∂v/∂x − ∂u/∂y` of a vector field at `p`
@@ -448,12 +507,50 @@ impl GriddedField {
     /// cell's edges).
     #[inline]
     pub fn vorticity(&self, p: Vec2, t_s: f64) -> f64 {
+        self.vector_and_vorticity(p, t_s).1
+    }
+
+    /// [`GriddedField::vector`] and [`GriddedField::vorticity`] from one
+    /// cell lookup.
+    #[inline]
+    pub fn vector_and_vorticity(&self, p: Vec2, t_s: f64) -> (Vec2, f64) {
         if self.components < 2 {
-            return 0.0;
+            return (self.vector(p, t_s), 0.0);
         }
-        let (_, gu) = self.value_and_gradient(0, p, t_s);
-        let (_, gv) = self.value_and_gradient(1, p, t_s);
-        gv.x - gu.y
+        let Some(l) = self.lookup(p, t_s) else {
+            return (Vec2::ZERO, 0.0);
+        };
+        let (cu, cv) = (self.corners(&l, 0), self.corners(&l, 1));
+        let (gu, gv) = (
+            l.gradient(&cu, self.inverse_spacing),
+            l.gradient(&cv, self.inverse_spacing),
+        );
+        (Vec2::new(l.value(&cu), l.value(&cv)), gv.x - gu.y)
+    }
+}
+
+/// A point's cell and the time weight of the upper slice.
+struct Lookup {
+    node: usize,
+    fx: f64,
+    fy: f64,
+    w: f64,
+}
+
+impl Lookup {
+    #[inline(always)]
+    fn value(&self, [v00, v10, v01, v11]: &[f64; 4]) -> f64 {
+        let (fx, fy) = (self.fx, self.fy);
+        (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11)
+    }
+
+    #[inline(always)]
+    fn gradient(&self, [v00, v10, v01, v11]: &[f64; 4], inverse_spacing: Vec2) -> Vec2 {
+        let (fx, fy) = (self.fx, self.fy);
+        Vec2::new(
+            ((1.0 - fy) * (v10 - v00) + fy * (v11 - v01)) * inverse_spacing.x,
+            ((1.0 - fx) * (v01 - v00) + fx * (v11 - v10)) * inverse_spacing.y,
+        )
     }
 }
 

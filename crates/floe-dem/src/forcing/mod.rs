@@ -148,8 +148,17 @@ impl Forcing {
     /// velocity and angular velocity (drag and Coriolis depend on them).
     #[inline]
     pub fn force_torque_and_rates(&self, t_s: f64, floe: &FloeDynamics) -> (Vec2, f64, ForceRates) {
-        let wind = self.wind.velocity(floe.position, t_s);
-        let current = self.current.velocity(floe.position, t_s);
+        // Vorticity only where the rotational drag will use it.
+        let spin = |relative: bool| self.rotational_drag && relative;
+        let field = |f: &VelocityField, with_vorticity: bool| {
+            if with_vorticity {
+                f.velocity_and_vorticity(floe.position, t_s)
+            } else {
+                (f.velocity(floe.position, t_s), 0.0)
+            }
+        };
+        let (wind, wind_zeta) = field(&self.wind, spin(self.air.relative_to_ice));
+        let (current, current_zeta) = field(&self.current, spin(self.ocean.relative_to_ice));
         let stress =
             self.air.stress(wind, floe.velocity) + self.ocean.stress(current, floe.velocity);
         let mut force = floe.area_m2 * stress;
@@ -180,9 +189,9 @@ impl Forcing {
         }
         let mut torque = 0.0;
         if self.rotational_drag {
-            for (drag, field) in [(&self.ocean, &self.current), (&self.air, &self.wind)] {
+            for (drag, zeta) in [(&self.ocean, current_zeta), (&self.air, wind_zeta)] {
                 if drag.relative_to_ice {
-                    let w_rel = floe.angular_velocity - 0.5 * field.vorticity(floe.position, t_s);
+                    let w_rel = floe.angular_velocity - 0.5 * zeta;
                     torque += drag.rotational_torque(w_rel, floe.r3_moment_m5);
                     rates.torque_per_angular_velocity +=
                         drag.rotational_torque_rate(w_rel, floe.r3_moment_m5);

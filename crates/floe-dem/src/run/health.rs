@@ -10,7 +10,10 @@ use crate::world::World;
 /// Overlap, as a fraction of the smaller floe's area, beyond which a contact
 /// is taken as a blow-up. Elastic overlaps in a sea-ice pack are a tiny
 /// fraction of a floe (the contact stiffness is set for that); a quarter of
-/// a floe means the contact force cannot stop the approach.
+/// a floe means the contact force cannot stop the approach. Against a
+/// prescribed body (a wall segment, a piece of land) the fraction is of the
+/// free floe: a land piece may be far smaller than a floe (a 100 m spit),
+/// and a floe pressing on it normally covers much of it.
 pub const MAX_OVERLAP_FRACTION: f64 = 0.25;
 
 /// What went wrong, where and when.
@@ -48,7 +51,8 @@ pub enum Fault {
     Overlap {
         /// Global ids of the two floes.
         floe_ids: (u64, u64),
-        /// Overlap area over the smaller floe's area.
+        /// Overlap area over the smaller floe's area (the free floe's
+        /// against a prescribed body).
         fraction: f64,
     },
 }
@@ -83,7 +87,7 @@ impl fmt::Display for BlowUp {
             )?,
             Fault::Overlap { floe_ids, fraction } => write!(
                 f,
-                "floes {} and {} overlap by {:.0} % of the smaller one (limit {:.0} %)",
+                "floes {} and {} overlap by {:.0} % of the smaller one (of the free one against a wall or land; limit {:.0} %)",
                 floe_ids.0,
                 floe_ids.1,
                 100.0 * fraction,
@@ -126,7 +130,12 @@ pub fn check_health<F: ExternalForces>(world: &World<F>) -> Option<BlowUp> {
         .or_else(|| {
             world.contacts().iter().find_map(|c| {
                 let (a, b) = (c.a as usize, c.b as usize);
-                let fraction = c.overlap_m2 / f.area_m2[a].min(f.area_m2[b]);
+                let area = match (f.is_free(a), f.is_free(b)) {
+                    (true, false) => f.area_m2[a],
+                    (false, true) => f.area_m2[b],
+                    _ => f.area_m2[a].min(f.area_m2[b]),
+                };
+                let fraction = c.overlap_m2 / area;
                 (fraction > MAX_OVERLAP_FRACTION).then_some(Fault::Overlap {
                     floe_ids: (f.id[a], f.id[b]),
                     fraction,

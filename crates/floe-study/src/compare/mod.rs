@@ -69,7 +69,7 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
             "--amontons-mu applies to the amontons law, which --laws does not include".into(),
         ));
     }
-    let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
+    let text = crate::run_file::read_anchored(&args.scenario)?;
     let origin = args.scenario.as_path();
     // Checks and builds the user's file as written first, so its errors
     // (time step, step limit, floes) point into it; only friction differs

@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::colour::ColourScale;
@@ -11,6 +12,8 @@ use crate::plot::register_font;
 /// Grey of floes that have no value (no contacts) and of walls.
 const NO_VALUE: RGBColor = RGBColor(200, 200, 200);
 const WALL: RGBColor = RGBColor(110, 110, 110);
+/// Grey-brown of land (`[[land]]` pieces), distinct from walls and ice.
+pub const LAND: RGBColor = RGBColor(158, 134, 100);
 
 /// What to draw.
 #[derive(Debug, Clone, Copy)]
@@ -23,6 +26,9 @@ pub struct FloeMap<'a> {
     pub values: &'a [Option<f64>],
     /// Walls and other prescribed floes (drawn dark grey).
     pub prescribed: &'a [bool],
+    /// Land pieces (prescribed too; drawn in [`LAND`], without outlines,
+    /// so that the pieces read as one coast).
+    pub land: &'a [bool],
     /// Value to colour.
     pub scale: ColourScale,
     /// Colour-bar title, with unit.
@@ -31,20 +37,51 @@ pub struct FloeMap<'a> {
     pub view: ((f64, f64), (f64, f64)),
 }
 
-/// Draws `map` into a PNG at `path`; axes in km.
+/// Width of a map, pixels.
+const WIDTH: u32 = 1400;
+
+/// The size in pixels of a map of `view` (width, height): 1400 wide, the
+/// plot as tall as the view's aspect asks (within 260 to 1400 pixels).
+pub fn frame_size(view: ((f64, f64), (f64, f64))) -> (u32, u32) {
+    let ((x0, x1), (y0, y1)) = view;
+    let aspect = (y1 - y0) / (x1 - x0);
+    let plot_height = ((WIDTH - 160) as f64 * aspect).clamp(260.0, 1400.0) as u32;
+    (WIDTH, plot_height + 90)
+}
+
+/// Draws `map` into a PNG at `path`, of [`frame_size`]; axes in km.
 pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
     register_font();
-    let err = |e: String| Error::Plot {
+    let root = BitMapBackend::new(path, frame_size(map.view)).into_drawing_area();
+    draw_on(&root, map).map_err(|e| Error::Plot {
         path: path.to_path_buf(),
         message: e,
-    };
+    })
+}
+
+/// Draws `map` into `rgb`, an image of `size` pixels (3 bytes each, rows
+/// from the top), for a frame of a movie named `movie`.
+pub fn draw_rgb(
+    map: &FloeMap,
+    size: (u32, u32),
+    rgb: &mut [u8],
+    movie: &Path,
+) -> Result<(), Error> {
+    register_font();
+    let root = BitMapBackend::with_buffer(rgb, size).into_drawing_area();
+    draw_on(&root, map).map_err(|e| Error::Plot {
+        path: movie.to_path_buf(),
+        message: e,
+    })
+}
+
+/// Draws `map` on `root`: the floes on the left, the colour bar on the right.
+fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, map: &FloeMap) -> Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let ((x0, x1), (y0, y1)) = map.view;
-    let aspect = (y1 - y0) / (x1 - x0);
-    let width = 1400u32;
-    let plot_height = ((width - 160) as f64 * aspect).clamp(260.0, 1400.0) as u32;
-    let root = BitMapBackend::new(path, (width, plot_height + 90)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-    let (left, right) = root.split_horizontally(width - 150);
+    let width = root.dim_in_pixel().0;
+    root.fill(&WHITE).map_err(err)?;
+    let (left, right) = root.split_horizontally(width.saturating_sub(150));
     let km = 1e-3;
     let mut chart = ChartBuilder::on(&left)
         .caption(map.title, ("sans-serif", 20))
@@ -52,7 +89,7 @@ pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
         .x_label_area_size(40)
         .y_label_area_size(60)
         .build_cartesian_2d(x0 * km..x1 * km, y0 * km..y1 * km)
-        .map_err(|e| err(e.to_string()))?;
+        .map_err(err)?;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -60,34 +97,54 @@ pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
         .y_desc("y (km)")
         .label_style(("sans-serif", 14))
         .draw()
-        .map_err(|e| err(e.to_string()))?;
+        .map_err(err)?;
     let inside = |&(x, y): &(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
     let fills = map.polygons.iter().enumerate().filter_map(|(i, poly)| {
-        // plotters does not clip to the plot area: skip floes entirely
-        // outside it and clamp the rest (walls reach beyond the view).
-        if !poly.iter().any(inside) && !map.prescribed[i] {
+        // plotters does not clip to the plot area: clip every outline to
+        // it (walls and land reach beyond the view; clamping the vertices
+        // instead would distort a piece that crosses a corner).
+        let clipped = clip_to_view(poly, map.view);
+        if clipped.len() < 3 {
             return None;
         }
-        let colour = if map.prescribed[i] {
+        let colour = if map.land[i] {
+            LAND
+        } else if map.prescribed[i] {
             WALL
         } else {
             map.values[i].map_or(NO_VALUE, |v| map.scale.colour(v))
         };
-        let pts: Vec<(f64, f64)> = poly
-            .iter()
-            .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
-            .collect();
+        let pts: Vec<(f64, f64)> = clipped.iter().map(|&(x, y)| (x * km, y * km)).collect();
         Some(Polygon::new(pts, colour.filled()))
     });
-    chart.draw_series(fills).map_err(|e| err(e.to_string()))?;
+    chart.draw_series(fills).map_err(err)?;
+    // Land pieces' edges in the land colour: the fills alone leave
+    // hairline seams between pieces that share an edge.
+    let seams = map
+        .polygons
+        .iter()
+        .zip(map.land)
+        .filter(|(_, &land)| land)
+        .filter_map(|(poly, _)| {
+            let mut pts: Vec<(f64, f64)> = clip_to_view(poly, map.view)
+                .iter()
+                .map(|&(x, y)| (x * km, y * km))
+                .collect();
+            let first = *pts.first()?;
+            pts.push(first);
+            Some(PathElement::new(pts, LAND.stroke_width(1)))
+        });
+    chart.draw_series(seams).map_err(err)?;
     // Outlines only when floes are big enough on screen to show them.
-    let pixels_per_floe = (width as f64 - 220.0) / (map.polygons.len() as f64).sqrt().max(1.0);
+    let bodies = map.land.iter().filter(|&&l| !l).count();
+    let pixels_per_floe = (width as f64 - 220.0) / (bodies as f64).sqrt().max(1.0);
     if pixels_per_floe > 6.0 {
         let outlines = map
             .polygons
             .iter()
-            .filter(|p| p.iter().any(inside))
-            .map(|poly| {
+            .zip(map.land)
+            .filter(|(p, &land)| !land && p.iter().any(inside))
+            .map(|(poly, _)| {
                 let mut pts: Vec<(f64, f64)> = poly
                     .iter()
                     .map(|&(x, y)| (x.clamp(x0, x1) * km, y.clamp(y0, y1) * km))
@@ -95,17 +152,54 @@ pub fn draw(path: &Path, map: &FloeMap) -> Result<(), Error> {
                 pts.push(pts[0]);
                 PathElement::new(pts, BLACK.mix(0.35).stroke_width(1))
             });
-        chart
-            .draw_series(outlines)
-            .map_err(|e| err(e.to_string()))?;
+        chart.draw_series(outlines).map_err(err)?;
     }
-    colour_bar(&right, map.scale, map.label).map_err(err)?;
-    root.present().map_err(|e| err(e.to_string()))
+    colour_bar(&right, map.scale, map.label)?;
+    root.present().map_err(err)
 }
 
-type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+/// The convex outline `poly` clipped to the rectangle `view` (one
+/// Sutherland-Hodgman pass per side).
+fn clip_to_view(
+    poly: &[(f64, f64)],
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = poly.to_vec();
+    // Each side as (coordinate index, bound, keep at or above the bound).
+    for (axis, bound, above) in [(0, x0, true), (0, x1, false), (1, y0, true), (1, y1, false)] {
+        let value = |p: (f64, f64)| if axis == 0 { p.0 } else { p.1 };
+        let keep = |p: (f64, f64)| {
+            if above {
+                value(p) >= bound
+            } else {
+                value(p) <= bound
+            }
+        };
+        let n = out.len();
+        let mut next = Vec::with_capacity(n + 2);
+        for k in 0..n {
+            let (p, q) = (out[k], out[(k + 1) % n]);
+            if keep(p) {
+                next.push(p);
+            }
+            if keep(p) != keep(q) {
+                let t = (bound - value(p)) / (value(q) - value(p));
+                next.push((p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)));
+            }
+        }
+        out = next;
+        if out.len() < 3 {
+            break;
+        }
+    }
+    out
+}
 
-fn colour_bar(area: &Area, scale: ColourScale, label: &str) -> Result<(), String> {
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    scale: ColourScale,
+    label: &str,
+) -> Result<(), String> {
     let mut bar = ChartBuilder::on(area)
         .margin_top(40)
         .margin_bottom(50)

@@ -1,73 +1,36 @@
 //! `floe render FIELDS.nc`: maps of the gridded fields `floe grid` wrote,
-//! one PNG per field and record, cells coloured by value (grey without ice).
+//! one PNG per field and record, or a movie of one field, cells coloured
+//! by value (grey without ice).
 
 use std::path::{Path, PathBuf};
 
-use netcdf3::{DataVector, FileReader, NC_FILL_F64};
-
 use super::colour::ColourScale;
 use super::floe_map::{self, FloeMap};
+use super::grid_file::GridFile;
+use super::movie::{self, Movie, MovieArgs, MovieWritten};
 use super::{select, Snapshots};
 use crate::error::Error;
 use crate::grid_output::FIELDS;
 use floe_dem::run::format_sim_time;
 
-/// Whether `file` starts with the NetCDF-3 signature.
-pub fn is_netcdf(file: &Path) -> bool {
-    use std::io::Read;
-    let mut magic = [0u8; 3];
-    std::fs::File::open(file)
-        .and_then(|mut f| f.read_exact(&mut magic))
-        .is_ok()
-        && &magic == b"CDF"
-}
+pub use super::grid_file::is_grid_file;
+
+/// Most values a movie's colour scale is fitted to.
+const SCALE_SAMPLE: usize = 4_000_000;
 
 /// Draws every field of the selected records into `out_dir` as
-/// `grid_<field>_<record>.png`; returns the files written.
+/// `grid_<field>_<record>.png` (each map on a scale of its own); returns
+/// the files written. `progress` hears (maps drawn, maps in all).
 pub fn render_grid(
     file: &Path,
     which: Snapshots,
     out_dir: &Path,
     force: bool,
+    progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Vec<PathBuf>, Error> {
-    let bad = |why: String| {
-        Error::Usage(format!(
-            "{}: not a gridded-fields file of `floe grid` ({why})",
-            file.display()
-        ))
-    };
-    let mut reader = FileReader::open(file).map_err(|e| bad(format!("{e:?}")))?;
-    let mut f64s = |name: &str, record: Option<usize>| -> Result<Vec<f64>, Error> {
-        let data = match record {
-            Some(k) => reader.read_record(name, k),
-            None => reader.read_var(name),
-        }
-        .map_err(|e| bad(format!("{name}: {e:?}")))?;
-        match data {
-            DataVector::F64(v) => Ok(v),
-            _ => Err(bad(format!("{name} is not f64"))),
-        }
-    };
-    let (x, y, time) = (f64s("x", None)?, f64s("y", None)?, f64s("time", None)?);
-    if x.len() < 2 || y.len() < 2 {
-        return Err(bad("fewer than 2 cells along an axis".into()));
-    }
-    let (dx, dy) = (x[1] - x[0], y[1] - y[0]);
-    let cells: Vec<Vec<(f64, f64)>> = y
-        .iter()
-        .flat_map(|&yc| {
-            x.iter().map(move |&xc| {
-                let (a, b) = (0.5 * dx, 0.5 * dy);
-                vec![
-                    (xc - a, yc - b),
-                    (xc + a, yc - b),
-                    (xc + a, yc + b),
-                    (xc - a, yc + b),
-                ]
-            })
-        })
-        .collect();
-    let frames = select(which, time.len())?;
+    let grid = GridFile::open(file)?;
+    let (cells, view) = grid.cells();
+    let frames = select(which, grid.time.len())?;
     let mut targets = Vec::new();
     for &k in &frames {
         for (name, ..) in FIELDS {
@@ -80,47 +43,92 @@ pub fn render_grid(
         }
     }
     std::fs::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
-    let view = (
-        (x[0] - 0.5 * dx, x[x.len() - 1] + 0.5 * dx),
-        (y[0] - 0.5 * dy, y[y.len() - 1] + 0.5 * dy),
-    );
-    let stem = file
-        .file_name()
-        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
     let prescribed = vec![false; cells.len()];
     let mut target = targets.iter();
+    let mut drawn = 0;
     for &k in &frames {
         for (name, _, units, _) in FIELDS {
-            let values: Vec<Option<f64>> = f64s(name, Some(k))?
-                .into_iter()
-                .map(|v| (v.is_finite() && v != NC_FILL_F64).then_some(v))
-                .collect();
-            if values.len() != cells.len() {
-                return Err(bad(format!(
-                    "{name} has {} values for {} cells",
-                    values.len(),
-                    cells.len()
-                )));
-            }
-            let diverging =
-                name.starts_with("stress") || name == "divergence" || name == "u" || name == "v";
-            let scale = ColourScale::fit(values.iter().flatten().copied(), diverging);
-            let title = format!("{stem}: {name}, t = {}", format_sim_time(time[k]));
-            let label = format!("{name} ({units})");
+            let values = grid.field(name, k)?;
+            let scale = ColourScale::fit(values.iter().flatten().copied(), diverging(name));
             let path = target.next().expect("one target per field and frame");
             floe_map::draw(
                 path,
                 &FloeMap {
-                    title: &title,
+                    title: &title(file, name, grid.time[k]),
                     polygons: &cells,
                     values: &values,
                     prescribed: &prescribed,
+                    land: &prescribed,
                     scale,
-                    label: &label,
+                    label: &format!("{name} ({units})"),
                     view,
                 },
             )?;
+            drawn += 1;
+            progress(drawn, targets.len());
         }
     }
     Ok(targets)
+}
+
+/// A movie of field `field` over the selected records, on one colour
+/// scale for all of them.
+pub fn render_grid_movie(
+    file: &Path,
+    which: Snapshots,
+    field: &str,
+    args: &MovieArgs,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<MovieWritten, Error> {
+    let Some(&(name, _, units, _)) = FIELDS.iter().find(|f| f.0 == field) else {
+        return Err(Error::Usage(format!(
+            "--field {field}: one of {}",
+            FIELDS.map(|f| f.0).join(", ")
+        )));
+    };
+    let (target, encoding) = movie::plan(args, file)?;
+    let grid = GridFile::open(file)?;
+    let (cells, view) = grid.cells();
+    let frames = select(which, grid.time.len())?;
+    // The scale from every record (an even sample of each past
+    // SCALE_SAMPLE values in all).
+    let stride = (cells.len() * frames.len()).div_ceil(SCALE_SAMPLE).max(1);
+    let mut sample = Vec::new();
+    for &k in &frames {
+        sample.extend(grid.field(name, k)?.into_iter().flatten().step_by(stride));
+    }
+    let scale = ColourScale::fit(sample.into_iter(), diverging(name));
+    let size = encoding.frame_size(floe_map::frame_size(view));
+    let mut out = Movie::create(&target, encoding, size, args.fps)?;
+    let mut rgb = vec![0u8; size.0 as usize * size.1 as usize * 3];
+    let prescribed = vec![false; cells.len()];
+    for (i, &k) in frames.iter().enumerate() {
+        let values = grid.field(name, k)?;
+        let map = FloeMap {
+            title: &title(file, name, grid.time[k]),
+            polygons: &cells,
+            values: &values,
+            prescribed: &prescribed,
+            land: &prescribed,
+            scale,
+            label: &format!("{name} ({units})"),
+            view,
+        };
+        floe_map::draw_rgb(&map, size, &mut rgb, &target)?;
+        out.push(&rgb)?;
+        progress(i + 1, frames.len());
+    }
+    out.finish()
+}
+
+/// Signed fields get a scale centred on zero.
+fn diverging(name: &str) -> bool {
+    name.starts_with("stress") || name == "divergence" || name == "u" || name == "v"
+}
+
+fn title(file: &Path, name: &str, time_s: f64) -> String {
+    let stem = file
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    format!("{stem}: {name}, t = {}", format_sim_time(time_s))
 }

@@ -87,7 +87,7 @@ pub struct CellRun {
 pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     let budget = thread_count(args.threads)?;
     check_args(args)?;
-    let text = floe_scenario::SourceFile::read(&args.scenario)?.text;
+    let text = crate::run_file::read_anchored(&args.scenario)?;
     let origin = args.scenario.as_path();
     let scenario = Scenario::from_text_with(&text, origin, &args.registry)?;
     let domain = scenario.domain();

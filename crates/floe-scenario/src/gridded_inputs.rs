@@ -1,0 +1,166 @@
+//! The scenario's basin inputs: `[map] projection`, `start_time`, and wind,
+//! current and sea-surface height read from CF NetCDF files (`file` and
+//! `variables` in `[wind]` and `[ocean]`). Files are opened here, so a
+//! missing variable or a grid that misses the domain is reported at the
+//! key, with the file's own message.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use floe_basin::{FieldRequest, MapProjection, NetcdfSource};
+use floe_dem::forcing::{GriddedField, VelocityField};
+
+use crate::domain::Domain;
+use crate::error::ScenarioError;
+use crate::source_file::SourceFile;
+use crate::spec::RawFluid;
+
+/// How far beyond the domain, as a fraction of its larger side, gridded
+/// fields reach where their files have data: floes that stray out of an
+/// open domain stay on the grid.
+pub const PLANE_MARGIN_FRACTION: f64 = 0.25;
+
+/// A file the run reads besides the scenario: what it is for and where it is.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct InputFile {
+    /// What it gives (`wind`, `ocean`, `ocean.sea_surface_height`...).
+    pub role: String,
+    /// Its path (relative ones resolved against the scenario's directory).
+    pub path: PathBuf,
+}
+
+/// What the gridded fields of a scenario need to know.
+pub(crate) struct GridContext {
+    pub projection: Option<MapProjection>,
+    pub start_time: Option<String>,
+    pub region: Domain,
+    /// Where relative paths start.
+    pub base_dir: PathBuf,
+    /// The files opened so far.
+    pub inputs: Vec<InputFile>,
+}
+
+/// A path as written, relative to `base_dir` (the scenario's directory).
+pub(crate) fn input_path(base_dir: &Path, written: &str) -> PathBuf {
+    let p = Path::new(written);
+    if p.is_absolute() {
+        p.to_path_buf()
+    } else {
+        base_dir.join(p)
+    }
+}
+
+fn open_field(
+    f: &SourceFile,
+    ctx: &mut GridContext,
+    (path, span, key): (PathBuf, Range<usize>, String),
+    variables: &[&str],
+    plane_spacing_m: Option<f64>,
+) -> Result<GriddedField, ScenarioError> {
+    let d = ctx.region;
+    let request = FieldRequest {
+        path: &path,
+        variables,
+        projection: ctx.projection.as_ref(),
+        start_time: ctx.start_time.as_deref(),
+        region: (d.min_m, d.min_m + d.size_m),
+        plane_spacing_m,
+        margin_m: PLANE_MARGIN_FRACTION * d.size_m.x.max(d.size_m.y),
+    };
+    let source =
+        NetcdfSource::open(request).map_err(|e| f.error(span.clone(), &key, e.to_string()))?;
+    let field =
+        GriddedField::new(Arc::new(source)).map_err(|e| f.error(span, &key, e.to_string()))?;
+    ctx.inputs.push(InputFile {
+        role: key.trim_end_matches(".file").to_string(),
+        path,
+    });
+    Ok(field)
+}
+
+/// The gridded velocity of `[table]` if it names a `file`.
+pub(crate) fn resolve_gridded_velocity(
+    f: &SourceFile,
+    raw: &RawFluid,
+    table: &str,
+    ctx: &mut GridContext,
+) -> Result<Option<VelocityField>, ScenarioError> {
+    let Some(file) = &raw.file else {
+        if let Some(v) = &raw.variables {
+            return Err(f.error(
+                v.span(),
+                format!("{table}.variables"),
+                "needs `file`, the NetCDF file they are in",
+            ));
+        }
+        return Ok(None);
+    };
+    let Some(vars) = &raw.variables else {
+        return Err(f.error(
+            file.span(),
+            format!("{table}.file"),
+            "needs `variables = [\"u\", \"v\"]`: the x (or eastward) and y (or northward) \
+             components in the file, m/s",
+        ));
+    };
+    if vars.get_ref().len() != 2 {
+        return Err(f.error(
+            vars.span(),
+            format!("{table}.variables"),
+            format!(
+                "give two variables (x or east, y or north), got {}",
+                vars.get_ref().len()
+            ),
+        ));
+    }
+    let spacing = match &raw.plane_spacing_m {
+        Some(s) => Some(f.positive(s, &format!("{table}.plane_spacing_m"))?),
+        None => None,
+    };
+    let names: Vec<&str> = vars.get_ref().iter().map(String::as_str).collect();
+    let path = input_path(&ctx.base_dir, file.get_ref());
+    let field = open_field(
+        f,
+        ctx,
+        (path, file.span(), format!("{table}.file")),
+        &names,
+        spacing,
+    )?;
+    Ok(Some(VelocityField::Gridded(Box::new(field))))
+}
+
+/// `[ocean] sea_surface_height = { variable, file }`.
+pub(crate) fn resolve_sea_surface_height(
+    f: &SourceFile,
+    raw: &RawFluid,
+    ctx: &mut GridContext,
+) -> Result<Option<GriddedField>, ScenarioError> {
+    let Some(eta) = &raw.sea_surface_height else {
+        return Ok(None);
+    };
+    let r = eta.get_ref();
+    let written =
+        match (&r.file, &raw.file) {
+            (Some(p), _) => p.clone(),
+            (None, Some(p)) => p.get_ref().clone(),
+            (None, None) => return Err(f.error(
+                eta.span(),
+                "ocean.sea_surface_height",
+                "needs `file` (or the [ocean] table's `file`): the NetCDF file of the height, m",
+            )),
+        };
+    let spacing = match &raw.plane_spacing_m {
+        Some(s) => Some(f.positive(s, "ocean.plane_spacing_m")?),
+        None => None,
+    };
+    let path = input_path(&ctx.base_dir, &written);
+    open_field(
+        f,
+        ctx,
+        (path, eta.span(), "ocean.sea_surface_height".to_string()),
+        &[r.variable.as_str()],
+        spacing,
+    )
+    .map(Some)
+}
