@@ -421,6 +421,30 @@ fn grid_info_and_render_refuse_missing_or_foreign_files_and_grid_a_bad_cell_size
 }
 
 #[test]
+fn a_run_refuses_a_missing_ice_grid_and_a_bad_size_distribution_at_their_keys() {
+    let ice = format!(
+        "{GRID}\n[ice]\nconcentration_grid = {{ file = \"siconc.nc\", variable = \"siconc\" }}\n"
+    );
+    run_refused(
+        &ice,
+        &[],
+        ("{ file", 0),
+        &["`ice.concentration_grid`", "siconc.nc", "no such file"],
+    );
+    let fsd = GRID.replacen(
+        "kind = \"grid\"\ncolumns = 2\nrows = 2\ngap_m = 100.0",
+        "kind = \"voronoi\"\nsize_distribution = { kind = \"power_law\", exponent = 2.0, min_m = 500.0, max_m = 400.0 }",
+        1,
+    );
+    run_refused(
+        &fsd,
+        &[],
+        ("400.0", 0),
+        &["`tessellation.size_distribution.max_m`", "above min_m"],
+    );
+}
+
+#[test]
 fn bad_land_files_stop_floe_run_with_one_located_message() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = dir.path().join("coast.toml");

@@ -61,7 +61,7 @@ fn the_fitted_exponent_is_the_requested_one() {
         let largest = sizes.iter().copied().fold(0.0, f64::max);
         println!(
             "alpha {alpha}: {} floes in {:.1} km^2 ({took:.2} s): fitted {:.4} +- {:.4}; \
-             {} passes, area error max {:.2e} rms {:.2e}; {} forced placements; sizes {:.1} to {:.1} m (scale {:.5})",
+             {} passes, area error max {:.2e} rms {:.2e}; {} forced placements; sizes {:.1} to {:.1} m (scale {:.5}); {} cut to 32 vertices",
             t.len(),
             region.area_m2() / 1e6,
             fit.exponent,
@@ -73,6 +73,7 @@ fn the_fitted_exponent_is_the_requested_one() {
             smallest,
             largest,
             report.size_scale,
+            report.simplified,
         );
         assert!(t.len() > 3000, "{}", t.len());
         assert_eq!(report.empty_cells, 0);
@@ -82,8 +83,11 @@ fn the_fitted_exponent_is_the_requested_one() {
             "alpha {alpha}: fitted {fit:?}"
         );
         assert!(fit.std_error < 0.045, "{fit:?}");
-        // The floes tile the region.
-        assert!((t.total_area_m2() / region.area_m2() - 1.0).abs() < 1e-9);
+        // The floes tile the region, but for corners cut off floes of more
+        // than 32 vertices.
+        let covered = t.total_area_m2() + report.simplified_area_m2;
+        assert!((covered / region.area_m2() - 1.0).abs() < 1e-9);
+        assert!(report.simplified_area_m2 < 1e-4 * region.area_m2());
         // Sizes within the law's bounds, up to the scaling.
         assert!(smallest >= 100.0 * report.size_scale * (1.0 - 1e-3));
         assert!(largest <= 2000.0 * (1.0 + 1e-3));
@@ -241,4 +245,32 @@ fn thinning_to_a_concentration_keeps_the_size_distribution() {
         assert!(shift.abs() < 0.04, "c {c}: {shift}");
         assert!(cells < cells_drawn, "c {c}: {cells} {cells_drawn}");
     }
+}
+
+/// Sizes over a factor of 100: a 2 km floe among 20 m ones touches more
+/// neighbours than a floe may have vertices (32); such cells are cut down
+/// (the smallest corners first), losing little area.
+#[test]
+fn a_wide_range_of_sizes_keeps_floes_within_the_vertex_limit() {
+    let law = PowerLawSizes {
+        exponent: 1.5,
+        min_m: 20.0,
+        max_m: 2000.0,
+    };
+    let region = region_for(law, 3000.0);
+    let (t, report) = floes(law, region, 9).build().unwrap();
+    t.validate().unwrap();
+    let most = t.polygons.iter().map(|p| p.len()).max().unwrap();
+    let lost = report.simplified_area_m2 / region.area_m2();
+    println!(
+        "{} floes, {} cut down to 32 vertices, {:.3} % of the area lost; fitted {:.3} +- {:.3}",
+        t.len(),
+        report.simplified,
+        100.0 * lost,
+        report.fit.unwrap().exponent,
+        report.fit.unwrap().std_error
+    );
+    assert!(most <= floe_dem::geometry::MAX_VERTICES, "{most}");
+    assert!(report.simplified > 0);
+    assert!(lost < 0.01, "{lost}");
 }

@@ -3,9 +3,13 @@
 //! library (`Scenario::from_text`); `floe run` passes the same error on
 //! with exit code 2.
 
+#[path = "grid_support/mod.rs"]
+mod grid_support;
+
 use std::path::Path;
 
 use floe_scenario::{Scenario, ScenarioError};
+use grid_support::{axis, Grid};
 
 /// A small valid scenario that the cases below break one way each.
 const BASE: &str = r#"title = "base"
@@ -1089,4 +1093,312 @@ fn ice_on_land_is_dropped_and_explicit_floes_on_land_are_refused() {
         msg.contains("overlaps") && msg.contains("floe[1]") && msg.contains("land[0]"),
         "{msg}"
     );
+}
+
+/// `BASE` with the `[ice]` table's body replaced by `ice`.
+fn with_ice(ice: &str) -> String {
+    edit("thickness_m = 1.0\n", &format!("{ice}\n"))
+}
+
+#[test]
+fn ice_grids_are_checked_where_they_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |name: &str| dir.path().join(name).display().to_string();
+    // 500 m nodes over [-500, 4500] m: the base's 4 km domain and a margin.
+    let grid = |variable, units| Grid {
+        x: axis(-500.0, 500.0, 11),
+        y: axis(-500.0, 500.0, 11),
+        times: None,
+        variable,
+        units,
+    };
+    grid("siconc", Some("1")).write(Path::new(&file("conc.nc")), |_, _, _| 0.5);
+    grid("siconc", Some("1")).write(Path::new(&file("open.nc")), |_, _, _| 0.0);
+    grid("siconc", Some("1")).write(Path::new(&file("high.nc")), |x, y, _| {
+        if x > 2000.0 && y > 2000.0 {
+            1.3
+        } else {
+            0.5
+        }
+    });
+    grid("siconc", Some("%")).write(Path::new(&file("pct.nc")), |_, _, _| 150.0);
+    grid("siconc", Some("1")).write(Path::new(&file("ambiguous.nc")), |_, _, _| 80.0);
+    grid("siconc", Some("K")).write(Path::new(&file("kelvin.nc")), |_, _, _| 0.5);
+    grid("sithick", Some("m")).write(Path::new(&file("thick.nc")), |_, _, _| 2e4);
+    grid("sithick", Some("kg m-2")).write(Path::new(&file("mass.nc")), |_, _, _| 900.0);
+    Grid {
+        x: axis(0.0, 500.0, 5),
+        y: axis(0.0, 500.0, 5),
+        times: None,
+        variable: "siconc",
+        units: Some("1"),
+    }
+    .write(Path::new(&file("small.nc")), |_, _, _| 0.5);
+    Grid {
+        times: Some(3),
+        ..grid("siconc", Some("1"))
+    }
+    .write(Path::new(&file("timed.nc")), |_, _, _| 0.5);
+
+    let conc = |name: &str, extra: &str| {
+        with_ice(&format!(
+            "concentration_grid = {{ file = \"{}\", variable = \"siconc\"{extra} }}",
+            file(name)
+        ))
+    };
+    let key = "ice.concentration_grid";
+    // The file and its variable.
+    check(
+        &conc("missing.nc", ""),
+        "{ file",
+        0,
+        key,
+        &["missing.nc", "no such file"],
+    );
+    let t = with_ice(&format!(
+        "concentration_grid = {{ file = \"{}\", variable = \"ice\" }}",
+        file("conc.nc")
+    ));
+    check(
+        &t,
+        "{ file",
+        0,
+        key,
+        &["conc.nc", "no variable \"ice\"", "siconc"],
+    );
+    let t = with_ice(&format!(
+        "concentration_grid = {{ file = \"{}\" }}",
+        file("conc.nc")
+    ));
+    check(
+        &t,
+        "{ file",
+        0,
+        "ice.concentration_grid.variable",
+        &["missing"],
+    );
+    let t = with_ice(&format!(
+        "concentration_grid = {{ file = \"{}\", varible = \"siconc\" }}",
+        file("conc.nc")
+    ));
+    check(&t, "varible", 0, "varible", &["unknown field"]);
+    // A grid that does not cover the domain.
+    check(
+        &conc("small.nc", ""),
+        "{ file",
+        0,
+        key,
+        &["small.nc", "covers the domain"],
+    );
+    // No ice at all.
+    check(&conc("open.nc", ""), "{ file", 0, key, &["leaves no floe"]);
+    // Values and units.
+    check(
+        &conc("high.nc", ""),
+        "{ file",
+        0,
+        key,
+        &["concentration 1.3", "outside [0, 1]"],
+    );
+    check(
+        &conc("pct.nc", ""),
+        "{ file",
+        0,
+        key,
+        &["concentration 150", "[0, 100] %"],
+    );
+    check(
+        &conc("ambiguous.nc", ""),
+        "{ file",
+        0,
+        key,
+        &["values reach 80", "ambiguous", "units = "],
+    );
+    check(
+        &conc("kelvin.nc", ""),
+        "{ file",
+        0,
+        key,
+        &["units \"K\"", "not a concentration"],
+    );
+    // Stating the units settles the ambiguity: 80 % is read as 0.8.
+    let s = Scenario::from_text(
+        &conc("ambiguous.nc", ", units = \"percent\""),
+        Path::new("ok.toml"),
+    )
+    .unwrap()
+    .build()
+    .unwrap();
+    assert!(s
+        .report
+        .iter()
+        .any(|l| l.contains("percent as stated in the scenario")));
+    check(
+        &conc("conc.nc", ", units = \"permille\""),
+        "\"permille\"",
+        0,
+        "ice.concentration_grid.units",
+        &["unknown value `permille`"],
+    );
+    // Time records.
+    check(
+        &conc("timed.nc", ""),
+        "{ file",
+        0,
+        key,
+        &["3 time records", "time index"],
+    );
+    check(
+        &conc("timed.nc", ", time_index = 3"),
+        "{ file",
+        0,
+        key,
+        &["time index 3 is beyond the last, 2"],
+    );
+    check(
+        &conc("timed.nc", ", time_index = -1"),
+        "-1",
+        0,
+        "ice.concentration_grid.time_index",
+        &["integer from 0"],
+    );
+    // Thickness.
+    let thick = |name: &str, extra: &str| {
+        with_ice(&format!(
+            "thickness_grid = {{ file = \"{}\", variable = \"sithick\"{extra} }}",
+            file(name)
+        ))
+    };
+    check(
+        &thick("thick.nc", ""),
+        "{ file",
+        0,
+        "ice.thickness_grid",
+        &["20000 m", "thickest"],
+    );
+    check(
+        &thick("mass.nc", ""),
+        "{ file",
+        0,
+        "ice.thickness_grid",
+        &["units \"kg m-2\"", "m or cm"],
+    );
+    check(
+        &thick("thick.nc", ", units = \"percent\""),
+        "\"percent\"",
+        0,
+        "ice.thickness_grid.units",
+        &["concentration_grid only"],
+    );
+    let t = edit(
+        "thickness_m = 1.0\n",
+        &format!(
+            "thickness_m = 1.0\nthickness_grid = {{ file = \"{}\", variable = \"sithick\" }}\n",
+            file("thick.nc")
+        ),
+    );
+    check(&t, "[ice]", 0, "ice", &["give one of", "thickness_grid"]);
+    // Only generated floes are placed from a grid.
+    let t = format!(
+        "duration_s = 10.0\n[domain]\nsize_m = [100.0, 100.0]\n[[floe]]\nbox_m = [0.0, 0.0, 10.0, 10.0]\n\
+         [ice]\nconcentration_grid = {{ file = \"{}\", variable = \"siconc\" }}\n",
+        file("conc.nc")
+    );
+    check(
+        &t,
+        "{ file",
+        0,
+        key,
+        &["[tessellation]", "not explicit [[floe]] tables"],
+    );
+}
+
+#[test]
+fn size_distributions_are_checked_where_they_are_written() {
+    let voronoi = |fsd: &str| {
+        edit(
+            "kind = \"grid\"\ncolumns = 2\nrows = 2\ngap_m = 100.0",
+            &format!("kind = \"voronoi\"\nsize_distribution = {{ {fsd} }}"),
+        )
+    };
+    let key = "tessellation.size_distribution";
+    let t = voronoi("kind = \"power_law\", exponent = 2.0, min_m = 300.0, max_m = 300.0");
+    check(
+        &t,
+        "max_m = 300.0",
+        8,
+        &format!("{key}.max_m"),
+        &["must be above min_m"],
+    );
+    let t = voronoi("kind = \"power_law\", exponent = 0.0, min_m = 100.0, max_m = 300.0");
+    check(
+        &t,
+        "0.0, min_m",
+        0,
+        &format!("{key}.exponent"),
+        &["(0, 20]"],
+    );
+    let t = voronoi("kind = \"power_law\", exponent = -1.5, min_m = 100.0, max_m = 300.0");
+    check(&t, "-1.5", 0, &format!("{key}.exponent"), &["(0, 20]"]);
+    let t = voronoi("kind = \"lognormal\", exponent = 2.0, min_m = 100.0, max_m = 300.0");
+    check(
+        &t,
+        "\"lognormal\"",
+        0,
+        &format!("{key}.kind"),
+        &["unknown kind", "power_law"],
+    );
+    let t = voronoi("kind = \"power_law\", exponent = 2.0, max_m = 300.0");
+    check(&t, "{ kind", 0, &format!("{key}.min_m"), &["missing"]);
+    let t = voronoi("kind = \"power_law\", exponent = 2.0, min_m = -5.0, max_m = 300.0");
+    check(&t, "-5.0", 0, &format!("{key}.min_m"), &["> 0"]);
+    // What the 4 km ice region allows.
+    let t = voronoi("kind = \"power_law\", exponent = 2.0, min_m = 100.0, max_m = 5000.0");
+    check(
+        &t,
+        "5000.0",
+        0,
+        &format!("{key}.max_m"),
+        &["wider than the ice region's shorter side, 4000 m"],
+    );
+    let t = voronoi("kind = \"power_law\", exponent = 3.0, min_m = 0.5, max_m = 300.0");
+    check(
+        &t,
+        "0.5, max_m",
+        0,
+        &format!("{key}.min_m"),
+        &["above the limit of 200,000", "allows min_m of at least"],
+    );
+    let t = voronoi("kind = \"power_law\", exponent = 2.0, min_m = 20.0, max_m = 300.0").replace(
+        "kind = \"voronoi\"",
+        "kind = \"voronoi\"\nrelax_iterations = 500",
+    );
+    check(
+        &t,
+        "500",
+        0,
+        "tessellation.relax_iterations",
+        &["above the limit", "iterations"],
+    );
+    // With the floes' count or scale, or on another kind.
+    let t = voronoi("kind = \"power_law\", exponent = 2.0, min_m = 100.0, max_m = 300.0")
+        .replace("kind = \"voronoi\"", "kind = \"voronoi\"\ncount = 10");
+    check(&t, "10\n", 0, "tessellation.count", &["not both"]);
+    let t = edit(
+        "kind = \"grid\"\ncolumns = 2\nrows = 2\ngap_m = 100.0",
+        "kind = \"diamond\"\nside_m = 500.0\nsize_distribution = { kind = \"power_law\", exponent = 2.0, min_m = 100.0, max_m = 300.0 }",
+    );
+    check(&t, "{ kind", 0, key, &["does not apply to kind `diamond`"]);
+    // A valid one builds, and says what it made.
+    let t = voronoi("kind = \"power_law\", exponent = 2.0, min_m = 100.0, max_m = 800.0");
+    let s = Scenario::from_text(&t, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert!(
+        s.report.iter().any(|l| l.contains("Laguerre cells")),
+        "{:?}",
+        s.report
+    );
+    assert!(s.report.iter().any(|l| l.contains("fitted exponent")));
 }

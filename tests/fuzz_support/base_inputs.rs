@@ -22,6 +22,7 @@ pub const SCENARIOS: &[(&str, &str)] = &[
     ("grid", base!("scenarios/grid.toml")),
     ("double-shear", base!("scenarios/double_shear.toml")),
     ("scheduled", base!("scenarios/scheduled.toml")),
+    ("power-law", base!("scenarios/power_law.toml")),
 ];
 
 /// Amontons friction on the lab apparatus; also the `p.toml` of the

@@ -231,14 +231,23 @@ fn generate(
                 relax_iterations
             ));
             report.push(format!(
-                "  cell areas within {} % of the drawn sizes' (rms {} %) after {} power diagrams; sizes scaled by {} to fill the region; {} disks placed overlapping",
+                "  cell areas within {} % of the drawn sizes' (rms {} %) after {} power diagrams; sizes scaled by {:.6} to fill the region; {} disks placed overlapping",
                 sig(100.0 * pr.max_area_error),
                 sig(100.0 * pr.rms_area_error),
                 pr.passes,
-                sig(pr.size_scale),
+                pr.size_scale,
                 pr.forced_placements
             ));
             report.push(describe_fit("  fitted exponent", fit_sizes(&t, law), law));
+            if pr.simplified > 0 {
+                report.push(format!(
+                    "  {} large floes among many small ones cut down to {} vertices ({} m^2 of open water, {} % of the region)",
+                    thousands(pr.simplified),
+                    floe_dem::geometry::MAX_VERTICES,
+                    sig(pr.simplified_area_m2),
+                    sig(100.0 * pr.simplified_area_m2 / region.area_m2())
+                ));
+            }
             if pr.empty_cells + drop.dropped > 0 {
                 report.push(format!(
                     "  {} empty cells and {} cells below {} of min_m^2 dropped ({} m^2)",

@@ -140,6 +140,19 @@ pub(crate) fn place_from_grids(
         .as_ref()
         .map(|g| per_cell(&g.field, &centroids, &areas, &c, &keep));
     t.retain(&keep);
+    if t.is_empty() && n > 0 {
+        let g = grids.first().expect("a grid is given");
+        return Err(f.error(
+            g.span.clone(),
+            g.key,
+            format!(
+                "leaves no floe: none of the {} floes has its centroid where the grids give ice \
+                 (a concentration above 0 and, with a thickness grid, a thickness of at least \
+                 {MIN_THICKNESS_M} m); check that the grid is the one for this domain and time",
+                thousands(n)
+            ),
+        ));
+    }
 
     let region_area = region.area_m2();
     let mut line = format!(

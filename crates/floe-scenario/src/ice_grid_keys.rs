@@ -1,7 +1,7 @@
 //! `[ice] concentration_grid` and `thickness_grid`: which NetCDF file and
 //! variable give the initial ice, checked where they are written. The
-//! files are opened only when the scenario is built ([`crate::ice_grid`]),
-//! so that a run resumes from its checkpoint without them.
+//! files are opened when the scenario is built (`ice_grid.rs`); a resumed
+//! run takes its floes from the checkpoint.
 
 use std::ops::Range;
 use std::path::PathBuf;

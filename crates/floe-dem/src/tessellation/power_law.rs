@@ -56,20 +56,20 @@ impl PowerLawSizes {
         Ok(())
     }
 
-    /// `(min/max)^α`: the probability mass the untruncated law puts above
-    /// `max`.
-    fn tail(&self) -> f64 {
-        (self.min_m / self.max_m).powf(self.exponent)
+    /// `1 − (min/max)^α`: the probability mass the untruncated law puts
+    /// between `min` and `max` (accurate for small `α` too).
+    fn mass(&self) -> f64 {
+        -(-self.exponent * (self.max_m / self.min_m).ln()).exp_m1()
     }
 
     /// The size with exceedance probability `1 − u` (inverse distribution
     /// function), for `u ∈ [0, 1]`: `min` at `u = 0`, `max` at `u = 1`.
     pub fn quantile(&self, u: f64) -> f64 {
         let u = u.clamp(0.0, 1.0);
-        // P(D > d) = ((min/d)^α − r) / (1 − r), r = (min/max)^α.
-        let r = self.tail();
-        let exceed = 1.0 - u * (1.0 - r);
-        (self.min_m * exceed.powf(-1.0 / self.exponent)).clamp(self.min_m, self.max_m)
+        // P(D > d) = ((min/d)^α − r) / (1 − r), r = (min/max)^α, so
+        // d = min (1 − u (1 − r))^(−1/α), in logarithms for small α.
+        let log_exceed = (-u * self.mass()).ln_1p();
+        (self.min_m * (-log_exceed / self.exponent).exp()).clamp(self.min_m, self.max_m)
     }
 
     /// The mean of `d²` (the mean floe area, m²).
@@ -84,7 +84,7 @@ impl PowerLawSizes {
         } else {
             x.exp_m1() / (2.0 - alpha)
         };
-        alpha * a * a * integral / (1.0 - self.tail())
+        alpha * a * a * integral / self.mass()
     }
 
     /// The expected number of floes of this law that cover `area_m2`.
@@ -180,6 +180,15 @@ mod tests {
         assert!((law.quantile(1.0) - 2000.0).abs() < 1e-9);
         // P(D > d) at d = quantile(u) is 1 − u.
         let r = (0.05f64).powf(1.5);
+        // A vanishing exponent is log-uniform: the median is the geometric mean.
+        let flat = PowerLawSizes {
+            exponent: 1e-300,
+            ..law
+        };
+        assert!((flat.quantile(0.5) - (100.0f64 * 2000.0).sqrt()).abs() < 1e-9);
+        assert!(
+            (flat.mean_square_m2() - (2000.0f64.powi(2) - 1e4) / (2.0 * 20f64.ln())).abs() < 1e-3
+        );
         for u in [0.1, 0.5, 0.9] {
             let d = law.quantile(u);
             let exceed = ((100.0 / d).powf(1.5) - r) / (1.0 - r);

@@ -33,6 +33,7 @@ use super::{
     ThicknessDistribution, MAX_FLOES,
 };
 use crate::error::DemError;
+use crate::geometry::MAX_VERTICES;
 use crate::Vec2;
 
 /// The disks' share of the region when they are placed (below the 0.547
@@ -90,6 +91,11 @@ pub struct PowerLawReport {
     pub rms_area_error: f64,
     /// Cells left empty (dropped; only if the passes did not converge).
     pub empty_cells: usize,
+    /// Cells of more than [`MAX_VERTICES`] vertices (a large floe among
+    /// many small ones) cut down to that many.
+    pub simplified: usize,
+    /// The area those cuts removed (open water), m².
+    pub simplified_area_m2: f64,
     /// The maximum-likelihood exponent of the floes made (`sqrt(area)`),
     /// between the law's bounds widened to the smallest and largest floe.
     pub fit: Option<PowerLawFit>,
@@ -215,14 +221,20 @@ impl PowerLawFloes {
 
         let mut polygons = Vec::with_capacity(n);
         let mut empty = 0;
+        let (mut simplified, mut simplified_area) = (0, 0.0);
         for (c, &s) in cells.iter().zip(&sites) {
             if c.polygon.len() < 3 || polygon_area(&c.polygon) <= 0.0 {
                 empty += 1;
                 continue;
             }
+            let mut local = c.polygon.clone();
+            if local.len() > MAX_VERTICES {
+                simplified += 1;
+                simplified_area += simplify(&mut local, MAX_VERTICES);
+            }
             // Clamping only removes rounding of the boundary vertices.
             polygons.push(
-                c.polygon
+                local
                     .iter()
                     .map(|&v| (dom.min + (s + v)).clamp(dom.min, dom.max))
                     .collect::<Vec<Vec2>>(),
@@ -246,10 +258,33 @@ impl PowerLawFloes {
                 max_area_error: areas.max_error,
                 rms_area_error: areas.rms_error,
                 empty_cells: empty,
+                simplified,
+                simplified_area_m2: simplified_area,
                 fit,
             },
         ))
     }
+}
+
+/// Removes vertices of the convex polygon `poly`, each time the one whose
+/// triangle with its neighbours is smallest, until it has `max`; returns
+/// the area removed. The polygon stays convex and inside the original.
+fn simplify(poly: &mut Vec<Vec2>, max: usize) -> f64 {
+    let mut removed = 0.0;
+    while poly.len() > max {
+        let n = poly.len();
+        let triangle = |k: usize| {
+            let (a, b, c) = (poly[(k + n - 1) % n], poly[k], poly[(k + 1) % n]);
+            0.5 * (b - a).perp_dot(c - a)
+        };
+        let (k, area) = (0..n)
+            .map(|k| (k, triangle(k)))
+            .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
+            .expect("more than max >= 3 vertices");
+        removed += area.max(0.0);
+        poly.remove(k);
+    }
+    removed
 }
 
 /// The fitted exponent of a tessellation's floe sizes `sqrt(area)` under
