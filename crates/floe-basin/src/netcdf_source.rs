@@ -106,7 +106,17 @@ impl NetcdfSource {
     /// components on different kinds of grid, a region the grid does not
     /// cover, a longitude-latitude file without a projection, bad times.
     pub fn open(request: FieldRequest<'_>) -> Result<Self, BasinError> {
-        let file = CfFile::open(request.path)?;
+        Self::open_located(request, "")
+    }
+
+    /// [`NetcdfSource::open`], with `context` (`scenario.toml:12:8:
+    /// \`wind.file\`: `) beginning the message printed if the NetCDF
+    /// library crashes or hangs on the file ([`CfFile::open_located`]).
+    ///
+    /// # Errors
+    /// As [`NetcdfSource::open`].
+    pub fn open_located(request: FieldRequest<'_>, context: &str) -> Result<Self, BasinError> {
+        let file = CfFile::open_located(request.path, context)?;
         let err = |why: String| BasinError::File {
             path: request.path.to_path_buf(),
             why,
@@ -458,8 +468,11 @@ impl SliceSource for NetcdfSource {
             .map_err(|_| ForcingFailure(format!("{}: reader poisoned", self.describe)))?;
         let c = self.components.len();
         for (k, comp) in self.components.iter().enumerate() {
-            comp.sample(&file, index, out, c, k)
-                .map_err(|e| ForcingFailure(e.to_string()))?;
+            comp.sample(&file, index, out, c, k).map_err(|e| match e {
+                // Named as the field's other failures are.
+                BasinError::File { why, .. } => ForcingFailure(format!("{}: {why}", self.describe)),
+                e => ForcingFailure(e.to_string()),
+            })?;
         }
         if !self.east_north.is_empty() {
             for (k, (east, north)) in self.east_north.iter().enumerate() {
