@@ -10,9 +10,11 @@
 //! - a sea-surface height sloping at `s` accelerates a floe at `−g s`;
 //! - the run file records each input's path and SHA-256, and a resume with
 //!   a changed file is refused;
-//! - a file that misses a variable, the run's times or the domain, and a
-//!   floe that drifts off the grid or onto missing values, each end in one
-//!   message naming the file, with exit code 2.
+//! - a file that misses a variable, the run's times or the domain, or
+//!   that has missing values under a floe at the start, ends in one message
+//!   located at the key naming the file, with exit code 2, before the run
+//!   starts; a floe that drifts off the grid during the run stops it, as a
+//!   blow-up does, with exit code 1 and the message located at the key.
 
 use std::path::{Path, PathBuf};
 
@@ -423,7 +425,13 @@ fn files_that_do_not_fit_the_run_end_in_one_message_naming_them() {
         &wind("[\"u\", \"v\"]").replace("duration_s = 7200.0", "duration_s = 10800.0"),
     );
     assert_eq!(code, 2);
-    assert!(msg.contains("w.nc") && msg.contains("cover"), "{msg}");
+    assert!(
+        msg.contains("short.toml:")
+            && msg.contains("wind.file")
+            && msg.contains("w.nc")
+            && msg.contains("cover"),
+        "{msg}"
+    );
     // A domain wider than the grid.
     let (code, msg) = error_of(
         d,
@@ -445,7 +453,10 @@ fn files_that_do_not_fit_the_run_end_in_one_message_naming_them() {
     );
     assert_eq!(code, 2);
     assert!(
-        msg.contains("w.nc") && msg.contains("missing values"),
+        msg.contains("hole.toml:")
+            && msg.contains("wind.file")
+            && msg.contains("w.nc")
+            && msg.contains("missing values"),
         "{msg}"
     );
     // No start_time for a file with dates.
@@ -499,9 +510,13 @@ fn a_floe_blown_off_the_grid_stops_the_run_with_its_checkpoint_intact_and_resume
         "[output]\nsnapshot_every_s = 600.0\ncheckpoint_every_s = 600.0",
     );
     let (code, msg) = error_of(d, "gale", &text);
-    assert_eq!(code, 2, "{msg}");
+    assert_eq!(code, 1, "{msg}");
     assert!(
-        msg.contains("gale.nc") && msg.contains("outside the grid") && msg.contains("checkpoint"),
+        msg.contains("gale.toml:")
+            && msg.contains("wind.file")
+            && msg.contains("gale.nc")
+            && msg.contains("outside the grid")
+            && msg.contains("checkpoint"),
         "{msg}"
     );
     // The file stays a valid run whose checkpoint is resumable; changing

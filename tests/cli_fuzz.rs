@@ -9,6 +9,14 @@
 //! - mutated command lines of `run`, `info`, `render`, `compare`, `sweep`
 //!   and `slider hold|step|run` (bad flag values, unknown flags, a flag given
 //!   twice, a required argument dropped, a bad file argument);
+//! - the basin scenario (`[map]`, `start_time`, `[[land]]` from GeoJSON,
+//!   gridded `[wind]` and `[ocean] sea_surface_height` from NetCDF-4 and
+//!   NetCDF-3 files) with one of its files mutated: missing, a directory,
+//!   empty, cut short, garbage, another kind of file, bytes changed at
+//!   random; a GeoJSON with broken JSON, NaN or huge coordinates, other
+//!   geometry types, no features, holes, crossing edges; and its `file`,
+//!   `variables`, `projection` and `start_time` values changed. An exit 2
+//!   must also name the file or key;
 //! - and, first, every unmutated base input, which must run (exit 0).
 //!
 //! File mutations: a number replaced (0, -0.0, -1, 1e300, -1e300, 1e-300,

@@ -14,15 +14,38 @@ macro_rules! base {
     };
 }
 
-/// The scenarios mutated into `floe run` cases.
-pub const SCENARIOS: &[(&str, &str)] = &[
-    ("boxes", base!("scenarios/boxes.toml")),
-    ("diamonds", base!("scenarios/diamonds.toml")),
-    ("voronoi", base!("scenarios/voronoi.toml")),
-    ("grid", base!("scenarios/grid.toml")),
-    ("double-shear", base!("scenarios/double_shear.toml")),
-    ("scheduled", base!("scenarios/scheduled.toml")),
-    ("power-law", base!("scenarios/power_law.toml")),
+/// Files a scenario reads besides itself: name in the case's directory and
+/// bytes.
+pub type AuxFiles = &'static [(&'static str, &'static [u8])];
+
+/// The basin scenario's inputs, from `tests/data/fuzz/basin/` (written by
+/// `cargo run --release -p floe-basin --example make_fuzz_basin`): a
+/// longitude-latitude island (GeoJSON), an hourly longitude-latitude wind
+/// (NetCDF-4, that is HDF5) and a steady sea-surface height on the plane's
+/// x/y grid (NetCDF-3 classic).
+pub const BASIN_FILES: AuxFiles = &[
+    (
+        "coast.geojson",
+        include_bytes!("../data/fuzz/basin/coast.geojson"),
+    ),
+    ("wind.nc", include_bytes!("../data/fuzz/basin/wind.nc")),
+    ("ssh.nc", include_bytes!("../data/fuzz/basin/ssh.nc")),
+];
+
+/// The basin scenario (`[map]`, `start_time`, `[[land]]`, gridded `[wind]`,
+/// `[ocean] sea_surface_height`); its files are [`BASIN_FILES`].
+pub const BASIN_SCENARIO: &str = base!("scenarios/basin.toml");
+
+/// The scenarios mutated into `floe run` cases, with the files each reads.
+pub const SCENARIOS: &[(&str, &str, AuxFiles)] = &[
+    ("boxes", base!("scenarios/boxes.toml"), &[]),
+    ("diamonds", base!("scenarios/diamonds.toml"), &[]),
+    ("voronoi", base!("scenarios/voronoi.toml"), &[]),
+    ("grid", base!("scenarios/grid.toml"), &[]),
+    ("double-shear", base!("scenarios/double_shear.toml"), &[]),
+    ("scheduled", base!("scenarios/scheduled.toml"), &[]),
+    ("power-law", base!("scenarios/power_law.toml"), &[]),
+    ("basin", BASIN_SCENARIO, BASIN_FILES),
 ];
 
 /// Amontons friction on the lab apparatus; also the `p.toml` of the

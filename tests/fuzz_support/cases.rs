@@ -1,6 +1,6 @@
 //! The cases of a seed: every base input unmutated, then mutated scenarios,
-//! protocols and command lines. Each case depends only on the seed and its
-//! index.
+//! protocols, command lines and the basin scenario's own files. Each case
+//! depends only on the seed and its index.
 
 use std::sync::OnceLock;
 
@@ -8,7 +8,10 @@ use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use super::base_inputs::{AMONTONS_PROTOCOL, PROTOCOLS, SCENARIOS, SMALL_SCENARIO};
+use super::base_inputs::{
+    AuxFiles, AMONTONS_PROTOCOL, BASIN_FILES, PROTOCOLS, SCENARIOS, SMALL_SCENARIO,
+};
+use super::basin_files::{fixed_mutants, random_mutant, BasinMutant, Content};
 use super::command_lines::{bad_value_of, mutate_command, valued_flags};
 use super::file_mutations::mutate_file;
 use super::templates::{Line, Template, TEMPLATES};
@@ -18,10 +21,12 @@ use super::Expect;
 /// The seed of every case (`FLOE_FUZZ_SEED=N` explores other cases).
 const SEED: u64 = 0xF10E_2026;
 
-/// Mutated cases of each family, after the base inputs.
-const SCENARIO_CASES: usize = 300;
+/// Mutated cases of each family, after the base inputs (the basin files
+/// also get every fixed mutation of `basin_files`).
+const SCENARIO_CASES: usize = 350;
 const PROTOCOL_CASES: usize = 100;
 const COMMAND_CASES: usize = 100;
+const RANDOM_BASIN_FILE_CASES: usize = 40;
 
 /// What a case mutates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -30,6 +35,9 @@ pub enum Family {
     Scenario,
     Protocol,
     CommandLine,
+    /// The basin scenario's NetCDF and GeoJSON files, and its keys naming
+    /// them.
+    BasinFile,
 }
 
 /// One run of floe: its input files, its command line, what it must do.
@@ -40,10 +48,15 @@ pub struct Case {
     pub what: String,
     /// Files written into the working directory; none may change.
     pub files: Vec<(String, Vec<u8>)>,
+    /// Directories made in the working directory (where a file is expected).
+    pub dirs: Vec<String>,
     /// The file the mutation changed, printed on failure.
     pub mutated: Option<usize>,
     pub args: Vec<String>,
     pub expect: Expect,
+    /// Text an exit-2 message must hold besides its location: the file or
+    /// key the mutation is about.
+    pub names: Option<String>,
 }
 
 /// The fixtures every command-line case gets: a scenario, a finished run of
@@ -105,8 +118,10 @@ pub fn all_cases(fixtures: &Fixtures) -> Vec<Case> {
     let mut cases = base_cases(fixtures);
     for _ in 0..SCENARIO_CASES {
         let index = cases.len();
-        let (name, text) = SCENARIOS[index % SCENARIOS.len()];
-        cases.push(file_case(index, Family::Scenario, name, text, "case.toml"));
+        let (name, text, files) = SCENARIOS[index % SCENARIOS.len()];
+        let mut case = file_case(index, Family::Scenario, name, text, "case.toml");
+        case.files.extend(aux(files));
+        cases.push(case);
     }
     for _ in 0..PROTOCOL_CASES {
         let index = cases.len();
@@ -117,7 +132,21 @@ pub fn all_cases(fixtures: &Fixtures) -> Vec<Case> {
         let index = cases.len();
         cases.push(command_case(index, k, fixtures));
     }
+    for mutant in fixed_mutants() {
+        let index = cases.len();
+        cases.push(basin_case(index, mutant));
+    }
+    for _ in 0..RANDOM_BASIN_FILE_CASES {
+        let index = cases.len();
+        let mutant = random_mutant(&mut case_rng(index));
+        cases.push(basin_case(index, mutant));
+    }
     cases
+}
+
+/// A scenario's auxiliary files as case files.
+fn aux(files: AuxFiles) -> impl Iterator<Item = (String, Vec<u8>)> {
+    files.iter().map(|(n, b)| (n.to_string(), b.to_vec()))
 }
 
 /// Every base input and command line unmutated: they must run, or the
@@ -131,14 +160,17 @@ fn base_cases(fixtures: &Fixtures) -> Vec<Case> {
             family: Family::Base,
             what,
             files,
+            dirs: Vec::new(),
             mutated: None,
             args,
             expect: Expect::Success,
+            names: None,
         });
     };
-    for (name, text) in SCENARIOS {
-        let files = vec![("case.toml".into(), text.as_bytes().to_vec())];
-        push(format!("scenario `{name}` unmutated"), files, run_args());
+    for (name, text, files) in SCENARIOS {
+        let mut all = vec![("case.toml".into(), text.as_bytes().to_vec())];
+        all.extend(aux(files));
+        push(format!("scenario `{name}` unmutated"), all, run_args());
     }
     for (name, text) in PROTOCOLS {
         let files = vec![("proto.toml".into(), text.as_bytes().to_vec())];
@@ -167,9 +199,42 @@ fn file_case(index: usize, family: Family, base: &str, text: &str, file: &str) -
         family,
         what: format!("{noun} `{base}`: {}", mutant.what),
         files: vec![(file.into(), mutant.bytes)],
+        dirs: Vec::new(),
         mutated: Some(0),
         args,
         expect: mutant.expect,
+        names: None,
+    }
+}
+
+/// The basin scenario run with one of its files (or the key naming it)
+/// mutated; an exit 2 must also name that file or key.
+fn basin_case(index: usize, mutant: BasinMutant) -> Case {
+    let mut files = vec![("case.toml".to_string(), mutant.scenario.into_bytes())];
+    let (mut dirs, mut mutated) = (Vec::new(), None);
+    for (name, bytes) in BASIN_FILES {
+        match &mutant.change {
+            Some((changed, content)) if changed == name => match content {
+                Content::Bytes(b) => {
+                    mutated = Some(files.len());
+                    files.push((name.to_string(), b.clone()));
+                }
+                Content::Missing => {}
+                Content::Directory => dirs.push(name.to_string()),
+            },
+            _ => files.push((name.to_string(), bytes.to_vec())),
+        }
+    }
+    Case {
+        index,
+        family: Family::BasinFile,
+        what: format!("basin {}", mutant.what),
+        files,
+        dirs,
+        mutated: mutated.or(mutant.change.is_none().then_some(0)),
+        args: run_args(),
+        expect: mutant.expect,
+        names: (!mutant.names.is_empty()).then_some(mutant.names),
     }
 }
 
@@ -193,8 +258,10 @@ fn command_case(index: usize, k: usize, fixtures: &Fixtures) -> Case {
         family: Family::CommandLine,
         what: format!("`{}`: {what}", template.words.join(" ")),
         files: fixtures.files(),
+        dirs: Vec::new(),
         mutated: None,
         args: line.args(template),
         expect,
+        names: None,
     }
 }

@@ -7,6 +7,8 @@
 //! - `base_inputs`: the valid inputs, from `tests/data/fuzz/`;
 //! - `toml_scan`: statements, numbers and arrays of an input found by scanning;
 //! - `file_mutations`: mutations of an input file;
+//! - `basin_files`: mutations of the basin scenario's NetCDF and GeoJSON
+//!   files and of the keys naming them;
 //! - `templates`: the valid command lines;
 //! - `command_lines`: mutations of a command line;
 //! - `cases`: the cases of a seed;
@@ -16,6 +18,7 @@
 //! - `pool`: running all cases, a few at a time.
 
 mod base_inputs;
+mod basin_files;
 mod cases;
 mod command_lines;
 mod file_mutations;

@@ -66,6 +66,17 @@ fn check_stderr(case: &Case, out: &Outcome, found: &mut Vec<String>) {
             Family::CommandLine => "exit 2 message names no flag, argument or FILE:LINE:COL".into(),
             _ => "exit 2 message has no FILE:LINE:COL".into(),
         }),
+        Some(2)
+            if case
+                .names
+                .as_ref()
+                .is_some_and(|n| !lines[0].contains(n.as_str())) =>
+        {
+            Some(format!(
+                "exit 2 message does not name `{}`",
+                case.names.as_deref().unwrap_or_default()
+            ))
+        }
         Some(1) if !last_is_error || errors != 1 => Some(format!(
             "exit 1 must end stderr with its only `error: ` line ({errors} such lines)"
         )),

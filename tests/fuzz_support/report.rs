@@ -49,7 +49,7 @@ pub fn failure(case: &Case, out: &Outcome, found: &[String]) -> Failure {
     let _ = writeln!(report, "stderr:\n{}", show(out.stderr.as_bytes()));
     if let Some(k) = case.mutated {
         let (name, bytes) = &case.files[k];
-        let _ = writeln!(report, "input {name}:\n{}", show(bytes));
+        let _ = writeln!(report, "input {name}:\n{}", show_file(bytes));
     }
     let last = out.stderr.lines().last().unwrap_or("");
     let summary = format!(
@@ -79,6 +79,17 @@ fn shell_words(args: &[String]) -> String {
         }
     };
     args.iter().map(quote).collect::<Vec<_>>().join(" ")
+}
+
+/// A text file as [`show`] gives it; a binary one (a NetCDF file) as its
+/// length and first bytes.
+fn show_file(bytes: &[u8]) -> String {
+    let text = std::str::from_utf8(bytes).is_ok_and(|t| !t.contains('\0'));
+    if text || bytes.is_empty() {
+        return show(bytes);
+    }
+    let head: Vec<String> = bytes.iter().take(32).map(|b| format!("{b:02x}")).collect();
+    format!("({} bytes, binary) {} ...", bytes.len(), head.join(" "))
 }
 
 /// Bytes as text: control bytes and bytes that are not UTF-8 as `\xNN`,
@@ -144,13 +155,14 @@ impl Results {
     pub fn print_summary(&self, cases: &[&Case], wall: Duration) {
         let count = |family| cases.iter().filter(|c| c.family == family).count();
         println!(
-            "cli_fuzz: seed {:#x}; {} base inputs, {} scenario, {} protocol and {} command-line cases; \
-             {} failed; slowest case {:.2} s; wall time {:.1} s",
+            "cli_fuzz: seed {:#x}; {} base inputs, {} scenario, {} protocol, {} command-line \
+             and {} basin-file cases; {} failed; slowest case {:.2} s; wall time {:.1} s",
             seed(),
             count(Family::Base),
             count(Family::Scenario),
             count(Family::Protocol),
             count(Family::CommandLine),
+            count(Family::BasinFile),
             self.failures.len(),
             self.slowest.as_secs_f64(),
             wall.as_secs_f64()

@@ -29,6 +29,9 @@ pub fn execute(case: &Case) -> Outcome {
     let dir = tempfile::tempdir().expect("temporary directory");
     let work = dir.path().join("work");
     fs::create_dir(&work).expect("work directory");
+    for name in &case.dirs {
+        fs::create_dir(work.join(name)).expect("input directory");
+    }
     for (name, bytes) in &case.files {
         fs::write(work.join(name), bytes).expect("input file");
     }
@@ -112,6 +115,9 @@ pub fn run_with_timeout(
         .args(args)
         .current_dir(work)
         .env("RUST_BACKTRACE", "1")
+        // A NetCDF call looping on a damaged file is cut short after 2 s of
+        // processor time (5 s by default), well within the timeout.
+        .env("FLOE_NETCDF_CPU_LIMIT_S", "2")
         .stdin(Stdio::null())
         .stdout(stdout)
         .stderr(stderr)

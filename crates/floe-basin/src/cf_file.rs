@@ -11,12 +11,20 @@
 //! (degrees_east, degrees_north, `<unit> since <date>`). Horizontal axes
 //! must be regular (uniform spacing, either direction). Any other
 //! dimension (a depth level) must have length one.
+//!
+//! A damaged file ends in an error naming it, never a crash: a NetCDF-3
+//! file cut short is refused from its header ([`crate::classic_header`]),
+//! and every call into the library is guarded ([`crate::native_guard`]:
+//! the `netcdf` crate's panics on the library's errors are caught; a crash
+//! or a hang of HDF5 prints the file's message and ends the process).
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use crate::cf_time::offset_and_unit;
+use crate::classic_header::{extent, Extent};
 use crate::error::BasinError;
+use crate::native_guard::{guarded, CrashReport};
 
 /// Relative tolerance of a regular axis's spacing.
 const REGULAR_TOLERANCE: f64 = 1e-6;
@@ -86,10 +94,17 @@ pub struct VariableLayout {
     pub missing: Vec<f64>,
 }
 
+/// Longest variable name of a NetCDF file, bytes (`NC_MAX_NAME`).
+const MAX_NAME_BYTES: usize = 256;
+
 /// An open CF NetCDF file.
 pub struct CfFile {
     path: PathBuf,
     file: netcdf::File,
+    /// What a crash or hang of the library prints while reading metadata
+    /// (exit code 2: before the run) and slices (exit code 1: during it).
+    metadata_crash: CrashReport,
+    read_crash: CrashReport,
 }
 
 impl std::fmt::Debug for CfFile {
@@ -129,27 +144,82 @@ impl CfFile {
     /// Opens `path`.
     ///
     /// # Errors
-    /// [`BasinError::File`] when it is missing or not NetCDF.
+    /// [`BasinError::File`] when it is missing, not a regular file, cut
+    /// short or not NetCDF.
     pub fn open(path: &Path) -> Result<Self, BasinError> {
-        if !path.is_file() {
-            return Err(BasinError::File {
-                path: path.to_path_buf(),
-                why: "no such file".to_string(),
-            });
-        }
-        // NetCDF-C turns HDF5's error printing off only in the thread that
-        // opens its first file; HDF5 keeps that setting per thread, and
-        // NetCDF-C's probes of attributes a file lacks (`_Quantize...`)
-        // would print pages of HDF5-DIAG from any other thread.
-        hdf5::silence_errors(true);
-        let file = netcdf::open(path).map_err(|e| BasinError::File {
+        Self::open_located(path, "")
+    }
+
+    /// Opens `path`; `context` (`scenario.toml:12:8: \`wind.file\`: `)
+    /// begins the message printed if the library crashes or hangs on the
+    /// file, which names the file after it.
+    ///
+    /// # Errors
+    /// As [`CfFile::open`].
+    pub fn open_located(path: &Path, context: &str) -> Result<Self, BasinError> {
+        let error = |why: String| BasinError::File {
             path: path.to_path_buf(),
-            why: format!("not a NetCDF file that can be read ({e})"),
-        })?;
+            why,
+        };
+        match std::fs::metadata(path) {
+            Ok(m) if m.is_file() => {
+                let len = m.len();
+                match extent(path) {
+                    Ok(Extent::HeaderCut) => {
+                        return Err(error(
+                            "is cut short: its NetCDF-3 header ends before it is complete \
+                             (an interrupted copy or download?)"
+                                .to_string(),
+                        ))
+                    }
+                    Ok(Extent::AtLeast(need)) if need > len => {
+                        return Err(error(format!(
+                            "is cut short: its NetCDF-3 header places data up to byte {need}, \
+                             but the file has {len} bytes (an interrupted copy or download?)"
+                        )))
+                    }
+                    Ok(_) => {}
+                    Err(e) => return Err(error(format!("cannot read it: {e}"))),
+                }
+            }
+            Ok(_) => {
+                return Err(error(
+                    "is not a regular file (a directory or a device); name a NetCDF file"
+                        .to_string(),
+                ))
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Err(error("no such file".to_string()))
+            }
+            Err(e) => return Err(error(format!("cannot read it: {e}"))),
+        }
+        let head = format!("error: {context}{}: the NetCDF library", path.display());
+        let metadata_crash = CrashReport {
+            head: head.clone(),
+            exit_code: 2,
+        };
+        // NetCDF-4 files are HDF5: the library's own failed probes (an
+        // attribute that is not there) must not print HDF5 diagnostics.
+        hdf5::silence_errors(true);
+        let file = guarded(&metadata_crash, || netcdf::open(path))
+            .map_err(|panic| error(library_failure(&panic)))?
+            .map_err(|e| error(format!("not a NetCDF file that can be read ({e})")))?;
         Ok(CfFile {
             path: path.to_path_buf(),
             file,
+            metadata_crash,
+            read_crash: CrashReport { head, exit_code: 1 },
         })
+    }
+
+    /// Runs `f` (calls into the library) guarded: a panic of the `netcdf`
+    /// crate becomes an error naming the file.
+    fn guard<R>(
+        &self,
+        crash: &CrashReport,
+        f: impl FnOnce() -> Result<R, BasinError>,
+    ) -> Result<R, BasinError> {
+        guarded(crash, f).map_err(|panic| self.error(library_failure(&panic)))?
     }
 
     /// The file's path.
@@ -165,12 +235,20 @@ impl CfFile {
     }
 
     fn variable(&self, name: &str) -> Result<netcdf::Variable<'_>, BasinError> {
+        // The `netcdf` crate panics on such names.
+        if name.contains('\0') || name.len() > MAX_NAME_BYTES {
+            return Err(self.error(format!(
+                "no variable \"{}\" (a NetCDF name has at most {MAX_NAME_BYTES} bytes and no NUL)",
+                crate::error::shown(name)
+            )));
+        }
         self.file.variable(name).ok_or_else(|| {
             let mut names: Vec<String> = self.file.variables().map(|v| v.name()).collect();
             names.sort();
             self.error(format!(
-                "no variable \"{name}\"; the file has: {}",
-                names.join(", ")
+                "no variable \"{}\"; the file has: {}",
+                crate::error::shown(name),
+                crate::error::shown(&names.join(", "))
             ))
         })
     }
@@ -202,6 +280,10 @@ impl CfFile {
     /// irregular horizontal axis, two time dimensions, another dimension
     /// longer than one.
     pub fn layout(&self, name: &str) -> Result<VariableLayout, BasinError> {
+        self.guard(&self.metadata_crash, || self.layout_unguarded(name))
+    }
+
+    fn layout_unguarded(&self, name: &str) -> Result<VariableLayout, BasinError> {
         let v = self.variable(name)?;
         let dims: Vec<(String, usize)> =
             v.dimensions().iter().map(|d| (d.name(), d.len())).collect();
@@ -315,7 +397,15 @@ impl CfFile {
     /// Time units that are not `<unit> since <date>`, an unknown calendar,
     /// a missing `start` for a file with dates, times not increasing.
     pub fn times_s(&self, name: &str, start: Option<&str>) -> Result<Option<Vec<f64>>, BasinError> {
-        let layout = self.layout(name)?;
+        self.guard(&self.metadata_crash, || self.times_unguarded(name, start))
+    }
+
+    fn times_unguarded(
+        &self,
+        name: &str,
+        start: Option<&str>,
+    ) -> Result<Option<Vec<f64>>, BasinError> {
+        let layout = self.layout_unguarded(name)?;
         let Some(k) = layout.time_dim else {
             return Ok(None);
         };
@@ -365,6 +455,18 @@ impl CfFile {
         rows: Range<usize>,
         cols: Range<usize>,
     ) -> Result<Vec<f64>, BasinError> {
+        self.guard(&self.read_crash, || {
+            self.read_unguarded(layout, time, rows, cols)
+        })
+    }
+
+    fn read_unguarded(
+        &self,
+        layout: &VariableLayout,
+        time: usize,
+        rows: Range<usize>,
+        cols: Range<usize>,
+    ) -> Result<Vec<f64>, BasinError> {
         let v = self.variable(&layout.name)?;
         let mut extents: Vec<Range<usize>> = Vec::with_capacity(layout.rank);
         for k in 0..layout.rank - 2 {
@@ -400,10 +502,32 @@ impl CfFile {
             .collect())
     }
 
-    /// A text attribute of variable `name` (`standard_name`, `units`).
+    /// A text attribute of variable `name` (`standard_name`, `units`);
+    /// `None` also when the library cannot give it back.
     pub fn text_attribute(&self, name: &str, attribute: &str) -> Option<String> {
-        attr_str(&self.file.variable(name)?, attribute)
+        self.guard(&self.metadata_crash, || {
+            Ok(self
+                .variable(name)
+                .ok()
+                .and_then(|v| attr_str(&v, attribute)))
+        })
+        .ok()
+        .flatten()
     }
+}
+
+/// Why the library failed, from the `netcdf` crate's panic (which unwraps
+/// the library's error code).
+fn library_failure(panic: &str) -> String {
+    let code = panic
+        .find("Netcdf(")
+        .and_then(|i| panic[i + "Netcdf(".len()..].split(')').next())
+        .and_then(|c| c.trim().parse::<i32>().ok());
+    let detail = match code {
+        Some(c) => netcdf::Error::Netcdf(c).to_string(),
+        None => crate::error::shown(panic),
+    };
+    format!("the NetCDF library failed reading it ({detail}): the file is damaged")
 }
 
 fn is_time_coordinate(c: &netcdf::Variable<'_>) -> bool {

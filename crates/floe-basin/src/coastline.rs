@@ -155,15 +155,21 @@ pub fn parse_land(
                 }
                 let (a, b) = (c[0], c[1]);
                 if !(a.is_finite() && b.is_finite()) {
-                    return Err(at(format!("has vertex {v} at ({a}, {b}), not finite")));
+                    return Err(at(format!(
+                        "has vertex {v} at ({}, {}), not finite",
+                        number(a),
+                        number(b)
+                    )));
                 }
                 let p = match projection {
                     Some(proj) => {
                         if !((-180.0..=360.0).contains(&a) && (-90.0..=90.0).contains(&b)) {
                             return Err(at(format!(
-                                "has vertex {v} at longitude {a}, latitude {b}: not a longitude \
+                                "has vertex {v} at longitude {}, latitude {}: not a longitude \
                                  and latitude in degrees (are the coordinates x and y? then \
-                                 coordinates = \"xy\")"
+                                 coordinates = \"xy\")",
+                                number(a),
+                                number(b)
                             )));
                         }
                         proj.forward(a, b)
@@ -178,6 +184,17 @@ pub fn parse_land(
         }
     }
     Ok(out)
+}
+
+/// A coordinate as written in a message: as is, or in exponent form when
+/// plain digits would run long (`1e300`, not three hundred digits).
+fn number(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() > 24 {
+        format!("{x:e}")
+    } else {
+        plain
+    }
 }
 
 #[cfg(test)]

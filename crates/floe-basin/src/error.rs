@@ -23,3 +23,27 @@ pub enum BasinError {
         why: String,
     },
 }
+
+/// Longest text from a file or the library quoted in a message, characters.
+const MAX_SHOWN_CHARS: usize = 200;
+
+/// `text` as a message may quote it: control characters escaped (a NUL
+/// must not reach the terminal), cut to [`MAX_SHOWN_CHARS`].
+pub(crate) fn shown(text: &str) -> String {
+    let escaped: String = text
+        .chars()
+        .flat_map(|c| {
+            let e: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            e
+        })
+        .collect();
+    if escaped.chars().count() <= MAX_SHOWN_CHARS {
+        return escaped;
+    }
+    let head: String = escaped.chars().take(MAX_SHOWN_CHARS).collect();
+    format!("{head}...")
+}

@@ -10,6 +10,10 @@
 //! plane, checked simple by [`simple_ring`]; [`convex_pieces`] cuts each
 //! exactly into convex pieces of at most a given size; [`land`] holds the
 //! pieces with a grid for overlap queries.
+//!
+//! Forcing: [`cf_file`] reads CF NetCDF (a damaged file is an error naming
+//! it, never a crash: [`classic_header`], [`native_guard`]);
+//! [`netcdf_source`] samples its variables onto the model plane.
 #![deny(missing_docs)]
 
 pub mod coastline;
@@ -27,7 +31,9 @@ pub use projection::MapProjection;
 pub mod cf_file;
 pub mod cf_time;
 pub mod checksum;
+pub mod classic_header;
 pub mod ice_fields;
+pub mod native_guard;
 pub mod netcdf_source;
 pub mod scalar_grid;
 

@@ -109,7 +109,17 @@ impl NetcdfSource {
     /// components on different kinds of grid, a region the grid does not
     /// cover, a longitude-latitude file without a projection, bad times.
     pub fn open(request: FieldRequest<'_>) -> Result<Self, BasinError> {
-        Self::open_with(request, None)
+        Self::open_located(request, "")
+    }
+
+    /// [`NetcdfSource::open`], with `context` (`scenario.toml:12:8:
+    /// \`wind.file\`: `) beginning the message printed if the NetCDF
+    /// library crashes or hangs on the file ([`CfFile::open_located`]).
+    ///
+    /// # Errors
+    /// As [`NetcdfSource::open`].
+    pub fn open_located(request: FieldRequest<'_>, context: &str) -> Result<Self, BasinError> {
+        Self::open_with(request, None, context)
     }
 
     /// Like [`NetcdfSource::open`], but one slice only, at time 0: the
@@ -120,11 +130,15 @@ impl NetcdfSource {
     /// # Errors
     /// As [`NetcdfSource::open`], and a record beyond the file's.
     pub fn open_record(request: FieldRequest<'_>, record: usize) -> Result<Self, BasinError> {
-        Self::open_with(request, Some(record))
+        Self::open_with(request, Some(record), "")
     }
 
-    fn open_with(request: FieldRequest<'_>, record: Option<usize>) -> Result<Self, BasinError> {
-        let file = CfFile::open(request.path)?;
+    fn open_with(
+        request: FieldRequest<'_>,
+        record: Option<usize>,
+        context: &str,
+    ) -> Result<Self, BasinError> {
+        let file = CfFile::open_located(request.path, context)?;
         let err = |why: String| BasinError::File {
             path: request.path.to_path_buf(),
             why,
@@ -495,8 +509,11 @@ impl SliceSource for NetcdfSource {
         let c = self.components.len();
         let index = self.record.unwrap_or(index);
         for (k, comp) in self.components.iter().enumerate() {
-            comp.sample(&file, index, out, c, k)
-                .map_err(|e| ForcingFailure(e.to_string()))?;
+            comp.sample(&file, index, out, c, k).map_err(|e| match e {
+                // Named as the field's other failures are.
+                BasinError::File { why, .. } => ForcingFailure(format!("{}: {why}", self.describe)),
+                e => ForcingFailure(e.to_string()),
+            })?;
         }
         if !self.east_north.is_empty() {
             for (k, (east, north)) in self.east_north.iter().enumerate() {

@@ -2,7 +2,11 @@
 //! current and sea-surface height read from CF NetCDF files (`file` and
 //! `variables` in `[wind]` and `[ocean]`). Files are opened here, so a
 //! missing variable or a grid that misses the domain is reported at the
-//! key, with the file's own message.
+//! key, with the file's own message. Each field keeps its key
+//! ([`GriddedOrigin`]): times that do not cover the run are refused at it
+//! once the time step is known, and a field's failures at the start or
+//! during the run are located at it too (as is the message printed if the
+//! NetCDF library crashes on the file).
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -30,6 +34,9 @@ pub struct InputFile {
     pub path: PathBuf,
 }
 
+/// Longest input path (`file` value) accepted, bytes: messages quote it.
+pub const MAX_INPUT_PATH_BYTES: usize = 512;
+
 /// What the gridded fields of a scenario need to know.
 pub(crate) struct GridContext {
     pub projection: Option<MapProjection>,
@@ -39,6 +46,20 @@ pub(crate) struct GridContext {
     pub base_dir: PathBuf,
     /// The files opened so far.
     pub inputs: Vec<InputFile>,
+    /// The fields opened so far, with their keys.
+    pub origins: Vec<GriddedOrigin>,
+}
+
+/// Where a gridded field came from, to locate its failures at its key.
+#[derive(Debug, Clone)]
+pub(crate) struct GriddedOrigin {
+    /// The field's description, which begins each of its failures.
+    pub describe: String,
+    /// The key naming its file, and where it is.
+    pub key: String,
+    pub span: Range<usize>,
+    /// The field's times, s of model time (one for a steady field).
+    pub times_s: Vec<f64>,
 }
 
 /// A path as written, relative to `base_dir` (the scenario's directory).
@@ -49,6 +70,88 @@ pub(crate) fn input_path(base_dir: &Path, written: &str) -> PathBuf {
     } else {
         base_dir.join(p)
     }
+}
+
+/// A `file` value (`kind`: "NetCDF", "GeoJSON") that can name a file:
+/// not blank, without a NUL, at most [`MAX_INPUT_PATH_BYTES`] long.
+pub(crate) fn check_file_value(
+    f: &SourceFile,
+    written: &str,
+    span: Range<usize>,
+    key: &str,
+    kind: &str,
+) -> Result<(), ScenarioError> {
+    let why = if written.trim().is_empty() {
+        format!("is empty: name a {kind} file")
+    } else if written.contains('\0') {
+        "holds a NUL character, which no file name can".to_string()
+    } else if written.len() > MAX_INPUT_PATH_BYTES {
+        format!(
+            "is a path of {} bytes; input paths may have at most {MAX_INPUT_PATH_BYTES}",
+            written.len()
+        )
+    } else {
+        return Ok(());
+    };
+    Err(f.error(span, key, why))
+}
+
+/// The end of a located message for `key` at `span`
+/// (`scenario.toml:12:8: \`wind.file\`: `), to begin another with.
+fn location(f: &SourceFile, span: Range<usize>, key: &str) -> String {
+    f.error(span, key, "").to_string()
+}
+
+/// Refuses fields whose times do not cover the run, from model time 0 to
+/// `end_s`, at their keys (the run would stop when it got there).
+pub(crate) fn check_times_cover_run(
+    f: &SourceFile,
+    origins: &[GriddedOrigin],
+    end_s: f64,
+) -> Result<(), ScenarioError> {
+    for o in origins {
+        let (Some(&first), Some(&last)) = (o.times_s.first(), o.times_s.last()) else {
+            continue;
+        };
+        if o.times_s.len() < 2 || (first <= 0.0 && end_s <= last) {
+            continue;
+        }
+        // Whole seconds once they are long (a date decades from start_time).
+        let s = |t: f64| {
+            if t.abs() >= 1e4 {
+                format!("{t:.0}")
+            } else {
+                crate::numbers::sig(t)
+            }
+        };
+        return Err(f.error(
+            o.span.clone(),
+            &o.key,
+            format!(
+                "{}: the run goes from 0 to {} s of model time (seconds after start_time) but \
+                 the file's times cover {} s to {} s; give a file that covers the run, or a \
+                 shorter duration_s",
+                o.describe,
+                s(end_s),
+                s(first),
+                s(last)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// `message` (a forcing failure) located at the key of the field it is
+/// about, when it begins with one's description.
+pub(crate) fn locate_failure(
+    f: &SourceFile,
+    origins: &[GriddedOrigin],
+    message: &str,
+) -> Option<ScenarioError> {
+    let o = origins
+        .iter()
+        .find(|o| message.starts_with(&format!("{}: ", o.describe)))?;
+    Some(f.error(o.span.clone(), &o.key, message))
 }
 
 fn open_field(
@@ -68,13 +171,20 @@ fn open_field(
         plane_spacing_m,
         margin_m: PLANE_MARGIN_FRACTION * d.size_m.x.max(d.size_m.y),
     };
-    let source =
-        NetcdfSource::open(request).map_err(|e| f.error(span.clone(), &key, e.to_string()))?;
-    let field =
-        GriddedField::new(Arc::new(source)).map_err(|e| f.error(span, &key, e.to_string()))?;
+    let context = location(f, span.clone(), &key);
+    let source = NetcdfSource::open_located(request, &context)
+        .map_err(|e| f.error(span.clone(), &key, e.to_string()))?;
+    let field = GriddedField::new(Arc::new(source))
+        .map_err(|e| f.error(span.clone(), &key, e.to_string()))?;
     ctx.inputs.push(InputFile {
         role: key.trim_end_matches(".file").to_string(),
         path,
+    });
+    ctx.origins.push(GriddedOrigin {
+        describe: field.describe().to_string(),
+        key,
+        span,
+        times_s: field.times_s().to_vec(),
     });
     Ok(field)
 }
@@ -119,6 +229,13 @@ pub(crate) fn resolve_gridded_velocity(
         None => None,
     };
     let names: Vec<&str> = vars.get_ref().iter().map(String::as_str).collect();
+    check_file_value(
+        f,
+        file.get_ref(),
+        file.span(),
+        &format!("{table}.file"),
+        "NetCDF",
+    )?;
     let path = input_path(&ctx.base_dir, file.get_ref());
     let field = open_field(
         f,
@@ -154,6 +271,13 @@ pub(crate) fn resolve_sea_surface_height(
         Some(s) => Some(f.positive(s, "ocean.plane_spacing_m")?),
         None => None,
     };
+    check_file_value(
+        f,
+        &written,
+        eta.span(),
+        "ocean.sea_surface_height",
+        "NetCDF",
+    )?;
     let path = input_path(&ctx.base_dir, &written);
     open_field(
         f,

@@ -66,9 +66,13 @@ pub(crate) fn resolve_land(
                 "missing: the GeoJSON file of the land polygons (relative to the scenario's directory)",
             ));
         };
-        if file.get_ref().trim().is_empty() {
-            return Err(f.error(file.span(), key("file"), "is empty: name a GeoJSON file"));
-        }
+        crate::gridded_inputs::check_file_value(
+            f,
+            file.get_ref(),
+            file.span(),
+            &key("file"),
+            "GeoJSON",
+        )?;
         let coordinates = f.keyword(
             &r.coordinates,
             &key("coordinates"),

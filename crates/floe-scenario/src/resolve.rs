@@ -224,6 +224,8 @@ pub(crate) struct Resolved {
     pub start_time: Option<String>,
     /// Files read besides the scenario.
     pub inputs: Vec<InputFile>,
+    /// The gridded fields, with their keys.
+    pub(crate) gridded: Vec<crate::gridded_inputs::GriddedOrigin>,
 }
 
 /// What a table allows, for refusing keys that do not apply.
@@ -554,6 +556,7 @@ pub(crate) fn resolve(
         region: domain,
         base_dir: base_dir.to_path_buf(),
         inputs: Vec::new(),
+        origins: Vec::new(),
     };
     let forcing = resolve_forcing(
         f,
@@ -616,6 +619,7 @@ pub(crate) fn resolve(
         window_spans,
         start_time: grids.start_time,
         inputs: grids.inputs,
+        gridded: grids.origins,
     })
 }
 

@@ -207,6 +207,14 @@ impl Scenario {
         &self.resolved.inputs
     }
 
+    /// A forcing failure of the run (a floe off a gridded field's grid,
+    /// a slice that cannot be read) located at the key of the field's file
+    /// (`scenario.toml:12:8: \`wind.file\`: ...`), or as it is.
+    pub fn locate_forcing_failure(&self, message: &str) -> String {
+        crate::gridded_inputs::locate_failure(&self.source, &self.resolved.gridded, message)
+            .map_or_else(|| message.to_string(), |e| e.to_string())
+    }
+
     /// Builds the world: floes, walls, contact model, forcing, time step.
     /// Refuses (located at the key) a time step above the stable limit, a
     /// run of more than [`Scenario::with_max_steps`] steps,
@@ -217,6 +225,9 @@ impl Scenario {
         let r = &self.resolved;
         let built = build::build_floes(f, r)?;
         let (dt_s, stable_limit_s, dt_line) = build::time_step(f, r, &built, self.max_steps)?;
+        // Gridded fields must cover the whole run (its last step's time).
+        let steps = ((r.duration_s / dt_s).round()).max(1.0);
+        crate::gridded_inputs::check_times_cover_run(f, &r.gridded, steps * dt_s)?;
         let mut report = built.report.clone();
         let land_floe_ids = built.land_ids.clone();
         report.push(format!(
@@ -239,7 +250,10 @@ impl Scenario {
         )
         .map_err(|e| match e {
             // A floe off a forcing grid: the files do not fit the ice.
-            DemError::Forcing(failure) => f.error_in_file(failure.to_string()),
+            DemError::Forcing(failure) => {
+                crate::gridded_inputs::locate_failure(f, &r.gridded, &failure.0)
+                    .unwrap_or_else(|| f.error_in_file(failure.to_string()))
+            }
             e => e.into(),
         })?;
         for (id, schedule) in built.schedules {

@@ -79,8 +79,10 @@ pub enum Error {
         /// What happened, where, and the suggested time step.
         message: String,
     },
-    /// The gridded forcing does not fit the run (its times end, a floe
-    /// left its grid or reached missing values): an input problem.
+    /// The gridded forcing stopped the run (a floe left its grid or
+    /// reached missing values, a slice could not be read): the run had
+    /// started, so, as a blow-up, exit code 1 (what the files are seen not
+    /// to fit before the first step is a located scenario error, exit 2).
     #[error("{message}; the run stopped after step {step} of {}, whose checkpoint holds the last good state", output.display())]
     Forcing {
         /// The run's output file.
@@ -110,7 +112,7 @@ impl Error {
     pub fn exit_code(&self) -> u8 {
         match self {
             Error::Scenario(e) if e.is_input() => 2,
-            Error::Usage(_) | Error::WouldOverwrite(_) | Error::Forcing { .. } => 2,
+            Error::Usage(_) | Error::WouldOverwrite(_) => 2,
             // A run file that is not there, or not a floe run file: bad input.
             Error::Output(
                 floe_io::IoError::NotFound { .. }

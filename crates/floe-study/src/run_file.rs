@@ -326,6 +326,8 @@ fn advance(
         Ending::ForcingFailed { step, message } => {
             writer.set_status(&format!("stopped after step {step}: {message}"))?;
             writer.flush()?;
+            // Located at the key of the field's file.
+            let message = scenario.locate_forcing_failure(&message);
             Err(Error::Forcing {
                 output: args.output.clone(),
                 step,
