@@ -3,7 +3,7 @@
 //! `variables` in `[wind]` and `[ocean]`). Files are opened here, so a
 //! missing variable or a grid that misses the domain is reported at the
 //! key, with the file's own message. Each field keeps its key
-//! ([`GriddedOrigin`]): times that do not cover the run are refused at it
+//! (`GriddedOrigin`): times that do not cover the run are refused at it
 //! once the time step is known, and a field's failures at the start or
 //! during the run are located at it too (as is the message printed if the
 //! NetCDF library crashes on the file).
