@@ -8,9 +8,10 @@ use floe_dem::Vec2;
 use crate::checks::OVERLAP_TOLERANCE;
 use crate::error::ScenarioError;
 use crate::land_spec::LandFile;
+use crate::length_limit::MAX_LENGTH_M;
 use crate::numbers::{sig, thousands};
 use crate::piece::Piece;
-use crate::resolve::{Resolved, MAX_LENGTH_M};
+use crate::resolve::Resolved;
 use crate::source_file::SourceFile;
 
 /// The land of one `[[land]]` table.

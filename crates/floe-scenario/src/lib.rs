@@ -34,6 +34,7 @@ mod land_build;
 mod land_spec;
 pub mod law_table;
 pub mod law_variants;
+mod length_limit;
 mod motion_segments;
 pub mod numbers;
 pub mod output_cadence;

@@ -285,10 +285,7 @@ pub const MAX_THREADS: u64 = 1024;
 /// Most Lloyd iterations of a Voronoi tessellation (it converges in tens).
 pub const MAX_RELAX_ITERATIONS: u64 = 10_000;
 
-/// Largest length or coordinate a file may give, m: beyond any basin (the
-/// Earth's circumference is 4e7 m), and small enough that areas, masses
-/// and the broad phase's cells stay finite.
-pub const MAX_LENGTH_M: f64 = 1e8;
+pub use crate::length_limit::MAX_LENGTH_M;
 
 /// Thinnest ice a file may give, m: new ice (nilas) is centimetres thick;
 /// far thinner floes have a time-step limit that underflows.

@@ -8,8 +8,8 @@ use floe_dem::tessellation::{PowerLawSizes, Rect, MAX_POWER_LAW_EXPONENT, MAX_PO
 use toml::Spanned;
 
 use crate::error::ScenarioError;
+use crate::length_limit::MAX_LENGTH_M;
 use crate::numbers::{sig, thousands};
-use crate::resolve::MAX_LENGTH_M;
 use crate::source_file::SourceFile;
 use crate::spec::RawSizeDistribution;
 

@@ -372,7 +372,8 @@ fn check_inputs_unchanged(
     for (was, is) in recorded.iter().zip(&now) {
         if was.sha256 != is.sha256 {
             return Err(Error::Usage(format!(
-                "{}: input {} ({}) has changed since the run began (sha256 {} then, {} now);                  a run resumes only with the files it started with",
+                "{}: input {} ({}) has changed since the run began (sha256 {} then, {} now); \
+                 a run resumes only with the files it started with",
                 output.display(),
                 is.role,
                 is.path,
