@@ -24,6 +24,7 @@
 pub mod contact_kernel;
 pub mod contact_model;
 pub mod contacts;
+pub mod decomposition;
 pub mod energy_ledger;
 pub mod error;
 pub mod floes;
