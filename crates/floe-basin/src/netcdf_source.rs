@@ -22,6 +22,7 @@ use std::ops::Range;
 use std::path::Path;
 use std::sync::Mutex;
 
+use floe_dem::forcing::gridded::CellPosition;
 use floe_dem::forcing::{ForcingFailure, PlaneGrid, SliceSource};
 use floe_dem::Vec2;
 
@@ -221,7 +222,7 @@ impl NetcdfSource {
         if geographic || rotate {
             let p = projection.expect("checked above");
             for k in 0..grid.nodes() {
-                let node = node_position(&grid, k);
+                let node = grid.node_position(k);
                 let (lon, lat) = p.inverse(node)?;
                 plane_lonlat.push((lon, lat));
                 if rotate {
@@ -236,7 +237,7 @@ impl NetcdfSource {
                     if geographic {
                         plane_lonlat[k]
                     } else {
-                        let n = node_position(&grid, k);
+                        let n = grid.node_position(k);
                         (n.x, n.y)
                     }
                 };
@@ -257,11 +258,6 @@ impl NetcdfSource {
             record,
         })
     }
-}
-
-fn node_position(grid: &PlaneGrid, k: usize) -> Vec2 {
-    let (i, j) = (k % grid.nx, k / grid.nx);
-    grid.origin_m + Vec2::new(i as f64 * grid.spacing_m.x, j as f64 * grid.spacing_m.y)
 }
 
 /// The file's own x/y grid cut to the region and its margin (as far as
@@ -376,7 +372,7 @@ fn component(
             (x.len - 1) as f64
         };
         let inside = fi >= 0.0 && fi <= last_i && fj >= 0.0 && fj <= (y.len - 1) as f64;
-        let node = node_position(grid, k);
+        let node = grid.node_position(k);
         let in_region = node.x >= lo.x && node.x <= hi.x && node.y >= lo.y && node.y <= hi.y;
         if !inside && in_region {
             let (xmin, xmax) = x.bounds();
@@ -467,12 +463,15 @@ impl Component {
                 // Only corners with weight: a node on a file node copies it
                 // exactly, and a missing neighbour does not leak into it.
                 let mut sum = 0.0;
-                for (di, dj, w) in [
-                    (0, 0, (1.0 - s.fx) * (1.0 - s.fy)),
-                    (1, 0, s.fx * (1.0 - s.fy)),
-                    (0, 1, (1.0 - s.fx) * s.fy),
-                    (1, 1, s.fx * s.fy),
-                ] {
+                let at = CellPosition {
+                    node: 0,
+                    fx: s.fx,
+                    fy: s.fy,
+                };
+                for ((di, dj), w) in [(0, 0), (1, 0), (0, 1), (1, 1)]
+                    .into_iter()
+                    .zip(at.weights())
+                {
                     if w != 0.0 {
                         sum += w * value(i + di, j + dj);
                     }

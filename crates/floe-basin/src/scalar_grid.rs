@@ -189,9 +189,7 @@ impl ScalarGrid {
 
     /// The plane position of node `k`, m.
     pub fn node_position(&self, k: usize) -> Vec2 {
-        let g = &self.grid;
-        let (i, j) = (k % g.nx, k / g.nx);
-        g.origin_m + Vec2::new(i as f64 * g.spacing_m.x, j as f64 * g.spacing_m.y)
+        self.grid.node_position(k)
     }
 
     /// The node nearest `p`, or `None` off the grid.
@@ -206,7 +204,6 @@ impl ScalarGrid {
     pub fn at(&self, p: Vec2) -> Option<f64> {
         let c = self.grid.cell(p)?;
         let (k, nx) = (c.node, self.grid.nx);
-        let (fx, fy) = (c.fx, c.fy);
         let v = [
             self.values[k],
             self.values[k + 1],
@@ -214,23 +211,15 @@ impl ScalarGrid {
             self.values[k + nx + 1],
         ];
         if v.iter().all(|x| x.is_finite()) {
-            // The engine's bilinear form (GriddedField), term for term.
-            return Some(
-                (1.0 - fy) * ((1.0 - fx) * v[0] + fx * v[1]) + fy * ((1.0 - fx) * v[2] + fx * v[3]),
-            );
+            // The engine's bilinear form (GriddedField).
+            return Some(c.interpolate(&v));
         }
-        let nearest = usize::from(fx >= 0.5) + 2 * usize::from(fy >= 0.5);
+        let nearest = usize::from(c.fx >= 0.5) + 2 * usize::from(c.fy >= 0.5);
         if !v[nearest].is_finite() {
             return None;
         }
-        let w = [
-            (1.0 - fx) * (1.0 - fy),
-            fx * (1.0 - fy),
-            (1.0 - fx) * fy,
-            fx * fy,
-        ];
         let (mut sum, mut weight) = (0.0, 0.0);
-        for (x, w) in v.iter().zip(w) {
+        for (x, w) in v.iter().zip(c.weights()) {
             if x.is_finite() {
                 sum += w * x;
                 weight += w;

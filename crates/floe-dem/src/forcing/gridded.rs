@@ -51,6 +51,39 @@ pub struct CellPosition {
     pub fy: f64,
 }
 
+impl CellPosition {
+    /// The bilinear interpolant of the corner values `[v00, v10, v01, v11]`
+    /// at this position.
+    #[inline(always)]
+    pub fn interpolate(&self, [v00, v10, v01, v11]: &[f64; 4]) -> f64 {
+        let (fx, fy) = (self.fx, self.fy);
+        (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11)
+    }
+
+    /// The corners' weights in [`CellPosition::interpolate`], in the same
+    /// order.
+    pub fn weights(&self) -> [f64; 4] {
+        let (fx, fy) = (self.fx, self.fy);
+        [
+            (1.0 - fx) * (1.0 - fy),
+            fx * (1.0 - fy),
+            (1.0 - fx) * fy,
+            fx * fy,
+        ]
+    }
+
+    /// The interpolant's gradient `(∂/∂x, ∂/∂y)` on a grid of spacing
+    /// `1 / inverse_spacing`.
+    #[inline(always)]
+    pub fn gradient(&self, [v00, v10, v01, v11]: &[f64; 4], inverse_spacing: Vec2) -> Vec2 {
+        let (fx, fy) = (self.fx, self.fy);
+        Vec2::new(
+            ((1.0 - fy) * (v10 - v00) + fy * (v11 - v01)) * inverse_spacing.x,
+            ((1.0 - fx) * (v01 - v00) + fx * (v11 - v10)) * inverse_spacing.y,
+        )
+    }
+}
+
 impl PlaneGrid {
     /// Checks the sizes and spacings.
     ///
@@ -95,6 +128,12 @@ impl PlaneGrid {
                 (self.nx - 1) as f64 * self.spacing_m.x,
                 (self.ny - 1) as f64 * self.spacing_m.y,
             )
+    }
+
+    /// The position of node `k` (`j nx + i`), m.
+    pub fn node_position(&self, k: usize) -> Vec2 {
+        let (i, j) = (k % self.nx, k / self.nx);
+        self.origin_m + Vec2::new(i as f64 * self.spacing_m.x, j as f64 * self.spacing_m.y)
     }
 
     /// The cell of `p`, or `None` outside the grid (or not finite).
@@ -419,7 +458,10 @@ impl GriddedField {
         match self.lookup(p, t_s) {
             Some(l) => {
                 let c = self.corners(&l, comp);
-                (l.value(&c), l.gradient(&c, self.inverse_spacing))
+                (
+                    l.cell.interpolate(&c),
+                    l.cell.gradient(&c, self.inverse_spacing),
+                )
             }
             None => (0.0, Vec2::ZERO),
         }
@@ -443,9 +485,11 @@ impl GriddedField {
             self.weight(t_s)
         };
         Some(Lookup {
-            node: j * self.grid.nx + i,
-            fx: gx - i as f64,
-            fy: gy - j as f64,
+            cell: CellPosition {
+                node: j * self.grid.nx + i,
+                fx: gx - i as f64,
+                fy: gy - j as f64,
+            },
             w,
         })
     }
@@ -465,7 +509,7 @@ impl GriddedField {
     #[inline(always)]
     fn corners(&self, l: &Lookup, comp: usize) -> [f64; 4] {
         let (c, nx) = (self.components, self.grid.nx);
-        let k = l.node * c + comp;
+        let k = l.cell.node * c + comp;
         let row = nx * c;
         let at = [k, k + c, k + row, k + row + c];
         if l.w.is_nan() {
@@ -495,11 +539,11 @@ impl GriddedField {
         let Some(l) = self.lookup(p, t_s) else {
             return Vec2::ZERO;
         };
-        let u = l.value(&self.corners(&l, 0));
+        let u = l.cell.interpolate(&self.corners(&l, 0));
         if self.components < 2 {
             return Vec2::new(u, 0.0);
         }
-        Vec2::new(u, l.value(&self.corners(&l, 1)))
+        Vec2::new(u, l.cell.interpolate(&self.corners(&l, 1)))
     }
 
     /// The vertical vorticity `∂v/∂x − ∂u/∂y` of a vector field at `p`
@@ -522,36 +566,20 @@ impl GriddedField {
         };
         let (cu, cv) = (self.corners(&l, 0), self.corners(&l, 1));
         let (gu, gv) = (
-            l.gradient(&cu, self.inverse_spacing),
-            l.gradient(&cv, self.inverse_spacing),
+            l.cell.gradient(&cu, self.inverse_spacing),
+            l.cell.gradient(&cv, self.inverse_spacing),
         );
-        (Vec2::new(l.value(&cu), l.value(&cv)), gv.x - gu.y)
+        (
+            Vec2::new(l.cell.interpolate(&cu), l.cell.interpolate(&cv)),
+            gv.x - gu.y,
+        )
     }
 }
 
 /// A point's cell and the time weight of the upper slice.
 struct Lookup {
-    node: usize,
-    fx: f64,
-    fy: f64,
+    cell: CellPosition,
     w: f64,
-}
-
-impl Lookup {
-    #[inline(always)]
-    fn value(&self, [v00, v10, v01, v11]: &[f64; 4]) -> f64 {
-        let (fx, fy) = (self.fx, self.fy);
-        (1.0 - fy) * ((1.0 - fx) * v00 + fx * v10) + fy * ((1.0 - fx) * v01 + fx * v11)
-    }
-
-    #[inline(always)]
-    fn gradient(&self, [v00, v10, v01, v11]: &[f64; 4], inverse_spacing: Vec2) -> Vec2 {
-        let (fx, fy) = (self.fx, self.fy);
-        Vec2::new(
-            ((1.0 - fy) * (v10 - v00) + fy * (v11 - v01)) * inverse_spacing.x,
-            ((1.0 - fx) * (v01 - v00) + fx * (v11 - v10)) * inverse_spacing.y,
-        )
-    }
 }
 
 #[cfg(test)]
