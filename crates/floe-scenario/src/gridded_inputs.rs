@@ -38,8 +38,8 @@ pub struct InputFile {
 pub const MAX_INPUT_PATH_BYTES: usize = 512;
 
 /// What the gridded fields of a scenario need to know.
-pub(crate) struct GridContext {
-    pub projection: Option<MapProjection>,
+pub(crate) struct GridContext<'a> {
+    pub projection: Option<&'a MapProjection>,
     pub start_time: Option<String>,
     pub region: Domain,
     /// Where relative paths start.
@@ -156,7 +156,7 @@ pub(crate) fn locate_failure(
 
 fn open_field(
     f: &SourceFile,
-    ctx: &mut GridContext,
+    ctx: &mut GridContext<'_>,
     (path, span, key): (PathBuf, Range<usize>, String),
     variables: &[&str],
     plane_spacing_m: Option<f64>,
@@ -165,7 +165,7 @@ fn open_field(
     let request = FieldRequest {
         path: &path,
         variables,
-        projection: ctx.projection.as_ref(),
+        projection: ctx.projection,
         start_time: ctx.start_time.as_deref(),
         region: (d.min_m, d.min_m + d.size_m),
         plane_spacing_m,
@@ -194,7 +194,7 @@ pub(crate) fn resolve_gridded_velocity(
     f: &SourceFile,
     raw: &RawFluid,
     table: &str,
-    ctx: &mut GridContext,
+    ctx: &mut GridContext<'_>,
 ) -> Result<Option<VelocityField>, ScenarioError> {
     let Some(file) = &raw.file else {
         if let Some(v) = &raw.variables {
@@ -251,7 +251,7 @@ pub(crate) fn resolve_gridded_velocity(
 pub(crate) fn resolve_sea_surface_height(
     f: &SourceFile,
     raw: &RawFluid,
-    ctx: &mut GridContext,
+    ctx: &mut GridContext<'_>,
 ) -> Result<Option<GriddedField>, ScenarioError> {
     let Some(eta) = &raw.sea_surface_height else {
         return Ok(None);

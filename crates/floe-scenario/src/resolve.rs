@@ -548,7 +548,7 @@ pub(crate) fn resolve(
     let model = resolve_contact(f, raw.contact.as_ref(), raw.friction.as_ref(), registry)?;
     let map = crate::land_spec::resolve_map(f, raw.map.as_ref())?;
     let mut grids = GridContext {
-        projection: map.clone(),
+        projection: map.as_ref(),
         start_time: resolve_start_time(f, raw.start_time.as_ref())?,
         region: domain,
         base_dir: base_dir.to_path_buf(),
@@ -592,6 +592,12 @@ pub(crate) fn resolve(
         ));
     }
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
+    let GridContext {
+        start_time,
+        inputs,
+        origins,
+        ..
+    } = grids;
     Ok(Resolved {
         title,
         seed,
@@ -614,9 +620,9 @@ pub(crate) fn resolve(
         land,
         output,
         window_spans,
-        start_time: grids.start_time,
-        inputs: grids.inputs,
-        gridded: grids.origins,
+        start_time,
+        inputs,
+        gridded: origins,
     })
 }
 
@@ -1510,7 +1516,7 @@ fn resolve_field(
     f: &SourceFile,
     raw: &RawFluid,
     table: &str,
-    grids: &mut GridContext,
+    grids: &mut GridContext<'_>,
 ) -> Result<VelocityField, ScenarioError> {
     let ways = [
         raw.velocity_m_per_s.is_some(),
@@ -1643,7 +1649,7 @@ fn resolve_forcing(
     wind: Option<&Spanned<RawFluid>>,
     ocean: Option<&Spanned<RawFluid>>,
     coriolis: Option<&Spanned<RawCoriolis>>,
-    grids: &mut GridContext,
+    grids: &mut GridContext<'_>,
 ) -> Result<Forcing, ScenarioError> {
     let mut forcing = Forcing::default();
     if let Some(w) = wind {
