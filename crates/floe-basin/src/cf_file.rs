@@ -389,23 +389,28 @@ impl CfFile {
             })
     }
 
-    /// The times of variable `name`'s time dimension as seconds after
+    /// The times of the time dimension of the variable laid out as
+    /// `layout` ([`CfFile::layout`]) as seconds after
     /// `start` (`"YYYY-MM-DD HH:MM:SS"`, read in the file's calendar), or
     /// `None` for a variable without time.
     ///
     /// # Errors
     /// Time units that are not `<unit> since <date>`, an unknown calendar,
     /// a missing `start` for a file with dates, times not increasing.
-    pub fn times_s(&self, name: &str, start: Option<&str>) -> Result<Option<Vec<f64>>, BasinError> {
-        self.guard(&self.metadata_crash, || self.times_unguarded(name, start))
+    pub fn times_s(
+        &self,
+        layout: &VariableLayout,
+        start: Option<&str>,
+    ) -> Result<Option<Vec<f64>>, BasinError> {
+        self.guard(&self.metadata_crash, || self.times_unguarded(layout, start))
     }
 
     fn times_unguarded(
         &self,
-        name: &str,
+        layout: &VariableLayout,
         start: Option<&str>,
     ) -> Result<Option<Vec<f64>>, BasinError> {
-        let layout = self.layout_unguarded(name)?;
+        let name = layout.name.as_str();
         let Some(k) = layout.time_dim else {
             return Ok(None);
         };
@@ -429,17 +434,16 @@ impl CfFile {
         Ok(Some(out))
     }
 
-    /// The number of time records of variable `name`: the length of its
-    /// time dimension, 1 without one.
+    /// The number of time records of the variable laid out as `layout`:
+    /// the length of its time dimension, 1 without one.
     ///
     /// # Errors
-    /// As [`CfFile::layout`].
-    pub fn records(&self, name: &str) -> Result<usize, BasinError> {
-        let layout = self.layout(name)?;
+    /// The variable no longer readable.
+    pub fn records(&self, layout: &VariableLayout) -> Result<usize, BasinError> {
         let Some(k) = layout.time_dim else {
             return Ok(1);
         };
-        Ok(self.variable(name)?.dimensions()[k].len())
+        Ok(self.variable(&layout.name)?.dimensions()[k].len())
     }
 
     /// The values of `layout` at time index `time` (ignored without a time

@@ -160,12 +160,13 @@ impl NetcdfSource {
             )));
         }
         if let Some(k) = record {
-            for v in request.variables {
-                let records = file.records(v)?;
+            for l in &layouts {
+                let records = file.records(l)?;
                 if k >= records {
                     return Err(err(format!(
-                        "variable \"{v}\" has {records} time record(s): time index {k} is \
+                        "variable \"{}\" has {records} time record(s): time index {k} is \
                          beyond the last, {}",
+                        l.name,
                         records - 1
                     )));
                 }
@@ -173,24 +174,24 @@ impl NetcdfSource {
         }
         let times = match record {
             Some(_) => vec![0.0],
-            None => file
-                .times_s(request.variables[0], request.start_time)?
-                .unwrap_or_else(|| vec![0.0]),
+            None => {
+                let times = file
+                    .times_s(&layouts[0], request.start_time)?
+                    .unwrap_or_else(|| vec![0.0]);
+                for l in &layouts[1..] {
+                    let other = file
+                        .times_s(l, request.start_time)?
+                        .unwrap_or_else(|| vec![0.0]);
+                    if other != times {
+                        return Err(err(format!(
+                            "variables {} and {} have different times",
+                            request.variables[0], l.name
+                        )));
+                    }
+                }
+                times
+            }
         };
-        for v in &request.variables[1..] {
-            if record.is_some() {
-                break;
-            }
-            let other = file
-                .times_s(v, request.start_time)?
-                .unwrap_or_else(|| vec![0.0]);
-            if other != times {
-                return Err(err(format!(
-                    "variables {} and {v} have different times",
-                    request.variables[0]
-                )));
-            }
-        }
         let eastward = request.variables.len() == 2
             && file
                 .text_attribute(request.variables[0], "standard_name")

@@ -77,7 +77,8 @@ impl ScalarGrid {
         let record = match request.time_index {
             Some(k) => Some(k),
             None => {
-                let records = CfFile::open(request.path)?.records(request.variable)?;
+                let file = CfFile::open(request.path)?;
+                let records = file.records(&file.layout(request.variable)?)?;
                 match (records, request.start_time) {
                     (1, _) => Some(0),
                     (_, Some(_)) => None,
