@@ -4,11 +4,20 @@
 CARGO ?= cargo
 FLOE  := target/release/floe
 DEMO  := out/demo
+# MPI (`mpirun -np K floe run`, docs/hpc.md) is on unless MPI=0: then no MPI
+# library is needed and floe runs as one process.
+MPI ?= 1
+ifeq ($(MPI),0)
+FEATURES :=
+else
+FEATURES := --features floe-cli/mpi
+endif
 
-.PHONY: demo slider-demo test deps check-tools system-deps python-deps validation bench clean
+.PHONY: demo slider-demo test build deps check-tools system-deps python-deps validation bench clean
 
-## Tools and system packages: Rust's tools, HDF5, NetCDF-C and pkg-config (apt-installed
-## when missing), and optionally h5py for the Python example of docs/output.md.
+## Tools and system packages: Rust's tools, HDF5, NetCDF-C, pkg-config and (unless
+## MPI=0) Open MPI with libclang for its bindings (apt-installed when missing), and
+## optionally h5py for the Python example of docs/output.md.
 deps: check-tools system-deps python-deps
 
 check-tools:
@@ -33,8 +42,17 @@ system-deps:
 	  if ! dpkg -s libnetcdf-dev >/dev/null 2>&1 && ! pkg-config --exists netcdf 2>/dev/null; then \
 	    missing="$$missing libnetcdf-dev"; \
 	  fi; \
+	  if [ "$(MPI)" != 0 ]; then \
+	    command -v mpirun >/dev/null 2>&1 || missing="$$missing openmpi-bin"; \
+	    if ! dpkg -s libopenmpi-dev >/dev/null 2>&1 && ! command -v mpicc >/dev/null 2>&1; then \
+	      missing="$$missing libopenmpi-dev"; \
+	    fi; \
+	    if ! dpkg -s libclang-dev >/dev/null 2>&1 && [ -z "$$LIBCLANG_PATH" ]; then \
+	      missing="$$missing libclang-dev"; \
+	    fi; \
+	  fi; \
 	  if [ -n "$$missing" ]; then \
-	    command -v apt-get >/dev/null 2>&1 || { echo "error: missing$$missing and no apt-get: install HDF5 >= 1.10.7, NetCDF-C >= 4.7 and pkg-config, or set HDF5_DIR and NETCDF_DIR (see README.md)" >&2; exit 1; }; \
+	    command -v apt-get >/dev/null 2>&1 || { echo "error: missing$$missing and no apt-get: install HDF5 >= 1.10.7, NetCDF-C >= 4.7, pkg-config and an MPI-3 library with libclang (or build with MPI=0), or set HDF5_DIR and NETCDF_DIR (see README.md, docs/hpc.md)" >&2; exit 1; }; \
 	    sudo=""; [ "$$(id -u)" = 0 ] || sudo="sudo"; \
 	    echo "installing$$missing"; \
 	    $$sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq $$missing; \
@@ -62,7 +80,7 @@ python-deps:
 ## friction side by side. Writes $(DEMO)/demo.h5, $(DEMO)/pictures/*.png and
 ## $(DEMO)/compare/report.md.
 demo: deps
-	$(CARGO) build --release -p floe-cli
+	$(CARGO) build --release -p floe-cli $(FEATURES)
 	$(FLOE) run scenarios/demo.toml -o $(DEMO)/demo.h5 --force
 	$(FLOE) render $(DEMO)/demo.h5 --every 5 -o $(DEMO)/pictures --force
 	$(FLOE) info $(DEMO)/demo.h5 | head -20
@@ -72,16 +90,21 @@ demo: deps
 ## The spring-slider experiments of the paper: the lab slide-hold-slide and
 ## the hold-time table. Writes $(DEMO)/slider/{series.csv,summary.json,friction.png}.
 slider-demo: deps
-	$(CARGO) build --release -p floe-cli
+	$(CARGO) build --release -p floe-cli $(FEATURES) $(FEATURES)
 	$(FLOE) slider run scenarios/slider/lab_slide_hold_slide.toml --out $(DEMO)/slider --force
 	$(FLOE) slider hold --preset lab --hold 1,10,100,1000
 
 ## The whole test suite: formatting, lints, and every test (release mode: the
-## physics tests run spring-sliders for millions of steps).
+## physics tests run spring-sliders for millions of steps), with MPI: the
+## tests/mpi_*.rs run `mpirun -np K floe run`.
 test: deps
 	$(CARGO) fmt --all --check
-	$(CARGO) clippy --workspace --all-targets --release -- -D warnings
-	$(CARGO) test --workspace --release
+	$(CARGO) clippy --workspace --all-targets --release $(FEATURES) -- -D warnings
+	$(CARGO) test --workspace --release $(FEATURES)
+
+## The release binary, with MPI unless MPI=0.
+build: deps
+	$(CARGO) build --release -p floe-cli $(FEATURES)
 
 ## Regenerate the validation section of docs/friction.md and docs/validation/*.png.
 validation: deps

@@ -4,10 +4,16 @@
 //! interrupt or `kill -9`) is bitwise the uninterrupted one.
 
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
+use std::time::Duration;
 
 use floe_io::RunFile;
+
+#[path = "run_support/mod.rs"]
+mod run_support;
+use run_support::{
+    assert_no_panic, assert_same_run, bits, bits2, code, text, wait_for_progress, Case, Launch,
+};
 
 /// A sheared channel of small diamonds: a few hundred steps, snapshots,
 /// observables and checkpoints at different cadences, none of which
@@ -21,28 +27,11 @@ const LONG: &str = include_str!("data/run_long.toml");
 const BLOW_UP: &str = include_str!("data/run_blow_up.toml");
 
 fn floe() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_floe"));
-    c.env("RUST_BACKTRACE", "1");
-    c
+    Launch::Alone.command()
 }
 
 fn run(args: &[&str]) -> Output {
     floe().args(args).output().expect("floe starts")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-fn code(out: &Output) -> i32 {
-    out.status.code().unwrap_or(-1)
-}
-
-fn assert_no_panic(stderr: &str) {
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
-        "{stderr}"
-    );
 }
 
 /// Runs to completion; panics with floe's stderr if it fails.
@@ -53,105 +42,10 @@ fn run_ok(args: &[&str]) -> String {
     text(&out.stdout)
 }
 
-struct Case {
-    dir: tempfile::TempDir,
-}
-
-impl Case {
-    fn new(scenario: &str) -> Self {
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::write(dir.path().join("scenario.toml"), scenario).unwrap();
-        Self { dir }
-    }
-    fn scenario(&self) -> String {
-        self.path("scenario.toml")
-    }
-    fn path(&self, name: &str) -> String {
-        self.dir.path().join(name).to_string_lossy().into_owned()
-    }
-    /// `floe run` of the scenario into `name`.
-    fn run(&self, name: &str, extra: &[&str]) -> Output {
-        let (scenario, out) = (self.scenario(), self.path(name));
-        let mut args = vec!["run", &scenario, "-o", &out, "-q"];
-        args.extend_from_slice(extra);
-        run(&args)
-    }
-    fn run_ok(&self, name: &str, extra: &[&str]) {
-        let out = self.run(name, extra);
-        assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    }
-    fn resume(&self, name: &str, extra: &[&str]) -> Output {
-        let out = self.path(name);
-        let mut args = vec!["run", "--resume", "-o", &out, "-q"];
-        args.extend_from_slice(extra);
-        run(&args)
-    }
-    fn spawn(&self, name: &str, extra: &[&str]) -> Child {
-        floe()
-            .args(["run", &self.scenario(), "-o", &self.path(name), "-q"])
-            .args(extra)
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap()
-    }
-}
-
 /// `tests/data/run_small_format2_paused.h5`: `run_small.toml` paused at
 /// step 37 by floe at commit 676b801, whose checkpoints were of format 2
 /// (no time step, three friction slots per contact).
 const FORMAT_2_PAUSED: &[u8] = include_bytes!("data/run_small_format2_paused.h5");
-
-/// Everything a run writes, compared bitwise: every snapshot, every contact
-/// list, every observable, and the final checkpointed state.
-fn assert_same_run(a: &Path, b: &Path) {
-    let (fa, fb) = (RunFile::open(a).unwrap(), RunFile::open(b).unwrap());
-    let n = fa.snapshot_count().unwrap();
-    assert!(
-        n > 2,
-        "a run worth comparing has several snapshots, got {n}"
-    );
-    assert_eq!(n, fb.snapshot_count().unwrap(), "snapshot count");
-    for k in 0..n {
-        let (sa, sb) = (fa.snapshot(k).unwrap(), fb.snapshot(k).unwrap());
-        assert_eq!(sa.step, sb.step, "snapshot {k}");
-        assert_eq!(bits2(&sa.position), bits2(&sb.position), "positions {k}");
-        assert_eq!(bits2(&sa.velocity), bits2(&sb.velocity), "velocities {k}");
-        assert_eq!(bits(&sa.angle), bits(&sb.angle), "angles {k}");
-        assert_eq!(
-            bits(&sa.angular_velocity),
-            bits(&sb.angular_velocity),
-            "spins {k}"
-        );
-        let (ca, cb) = (fa.contacts(k).unwrap(), fb.contacts(k).unwrap());
-        assert_eq!(ca.pair, cb.pair, "contact pairs {k}");
-        assert_eq!(bits(&ca.theta), bits(&cb.theta), "theta {k}");
-        assert_eq!(
-            bits(&ca.tangential_force_n),
-            bits(&cb.tangential_force_n),
-            "tangential force {k}"
-        );
-    }
-    let names = fa.observable_names().unwrap();
-    assert_eq!(names, fb.observable_names().unwrap());
-    for name in &names {
-        let (oa, ob) = (fa.observable(name).unwrap(), fb.observable(name).unwrap());
-        assert_eq!(oa.step, ob.step, "{name} steps");
-        assert_eq!(bits(&oa.value), bits(&ob.value), "{name} values");
-    }
-    assert!(
-        fa.checkpoint_state(|| None).unwrap() == fb.checkpoint_state(|| None).unwrap(),
-        "final checkpointed states differ"
-    );
-}
-
-fn bits(v: &[f64]) -> Vec<u64> {
-    v.iter().map(|x| x.to_bits()).collect()
-}
-
-fn bits2(v: &[[f64; 2]]) -> Vec<(u64, u64)> {
-    v.iter().map(|p| (p[0].to_bits(), p[1].to_bits())).collect()
-}
 
 #[test]
 fn a_run_writes_a_file_that_info_describes() {
@@ -262,28 +156,6 @@ fn a_run_paused_in_the_middle_of_a_wall_schedule_resumes_bitwise() {
         (dx + 5.0).abs() < 1e-9 && (dy + 0.14).abs() < 1e-9,
         "{dx}, {dy}"
     );
-}
-
-/// Waits until the run has written a checkpoint past step 0, so that a
-/// signal lands in the middle of stepping rather than in start-up.
-fn wait_for_progress(child: &mut Child, file: &Path) {
-    let deadline = Instant::now() + Duration::from_secs(60);
-    loop {
-        assert!(Instant::now() < deadline, "the run made no progress");
-        if let Some(status) = child.try_wait().unwrap() {
-            panic!("the run ended before it could be interrupted: {status}");
-        }
-        // The writer holds the file open; reading it may fail until it
-        // flushes, which is fine: try again.
-        let step = RunFile::open(file)
-            .ok()
-            .and_then(|f| f.checkpoint().ok().flatten())
-            .map_or(0, |c| c.step);
-        if step > 0 {
-            return;
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
 }
 
 #[test]

@@ -22,6 +22,7 @@ use crate::hooks::{provenance, TerminalHooks};
 use crate::progress_bar::CountProgress;
 use crate::slider::{self, ExperimentOptions};
 use crate::{info, CliError};
+use floe_parallel::Settings;
 
 /// floe: sea-ice floes with rate-and-state friction.
 #[derive(Debug, Parser)]
@@ -70,6 +71,15 @@ pub enum Command {
         /// No progress bar or progress lines.
         #[arg(long, short)]
         quiet: bool,
+        /// Under mpirun: cut the domain anew when the busiest process's
+        /// work (floes plus contacts) exceeds the mean by this fraction.
+        #[arg(long, value_name = "FRACTION", default_value_t = Settings::default().rebalance_threshold, value_parser = positive_fraction)]
+        rebalance_threshold: f64,
+        /// Under mpirun: the ghosts' reach beyond contact, as a fraction of
+        /// the largest floe's bounding radius; floes migrate when one has
+        /// moved half of it.
+        #[arg(long, value_name = "FRACTION", default_value_t = Settings::default().skin_fraction, value_parser = positive_fraction)]
+        halo_skin: f64,
     },
     /// Describe a run's output file: scenario, snapshots, floes, contacts, observables.
     #[command(allow_negative_numbers = true)]
@@ -525,6 +535,14 @@ fn step_count(text: &str) -> Result<f64, String> {
     }
 }
 
+/// A fraction > 0 (the halo's skin, the rebalance threshold).
+fn positive_fraction(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
+        _ => Err(format!("expected a fraction > 0, e.g. 0.2, got `{text}`")),
+    }
+}
+
 fn json<T: serde::Serialize>(value: &T) -> String {
     serde_json::to_string_pretty(value).expect("plain data serialises")
 }
@@ -541,6 +559,8 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             max_steps,
             step_limit,
             quiet,
+            rebalance_threshold,
+            halo_skin,
         } => {
             let args = RunArgs {
                 scenario,
@@ -553,7 +573,27 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
                 provenance: provenance(),
                 laws: LawRegistry::builtin(),
             };
-            let summary = run::run(&args, &TerminalHooks { progress: !quiet })?;
+            let hooks = TerminalHooks { progress: !quiet };
+            let settings = Settings {
+                skin_fraction: halo_skin,
+                rebalance_threshold,
+            };
+            let mpi = crate::processes::start()?;
+            #[cfg(feature = "mpi")]
+            if let Some(mpi) = &mpi {
+                let comm = mpi.world();
+                if floe_parallel::Communicator::size(&comm) > 1 {
+                    let summary =
+                        floe_study::run_parallel::run_parallel(&args, &hooks, &comm, settings)?;
+                    return Ok(if floe_parallel::Communicator::rank(&comm) == 0 {
+                        summary.describe(&args.output)
+                    } else {
+                        String::new()
+                    });
+                }
+            }
+            let _ = (mpi, settings);
+            let summary = run::run(&args, &hooks)?;
             Ok(summary.describe(&args.output))
         }
         Command::Info { file } => info::describe(&file),

@@ -21,10 +21,13 @@ pub fn flag() -> &'static AtomicBool {
                 );
                 stop_now();
             }
-            crate::stderr::line(
-                "\ninterrupt: finishing this step and writing a final snapshot and checkpoint \
-                 (interrupt again to stop at once)",
-            );
+            // Under mpirun every process is signalled; process 0 speaks.
+            if !crate::processes::is_other_than_first() {
+                crate::stderr::line(
+                    "\ninterrupt: finishing this step and writing a final snapshot and checkpoint \
+                     (interrupt again to stop at once)",
+                );
+            }
         });
         if let Err(e) = installed {
             crate::stderr::line(&format!(

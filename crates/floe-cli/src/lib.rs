@@ -1,6 +1,6 @@
 //! The `floe` command line: the grammar ([`cli`]), what it prints ([`info`],
 //! [`slider`] tables, [`progress_bar`]) and the process's signals
-//! ([`interrupt`]). The work is done by the libraries: floe-scenario (files),
+//! ([`interrupt`]), and MPI when run under `mpirun` ([`processes`]). The work is done by the libraries: floe-scenario (files),
 //! floe-dem (the engine and its run loop), floe-io (run files), floe-study
 //! (runs, comparisons, sweeps, pictures).
 #![deny(missing_docs)]
@@ -9,6 +9,7 @@ pub mod cli;
 pub mod hooks;
 pub mod info;
 pub mod interrupt;
+pub mod processes;
 pub mod progress_bar;
 pub mod series_csv;
 pub mod slider;

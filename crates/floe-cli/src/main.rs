@@ -29,7 +29,11 @@ fn main() -> ExitCode {
             }
         }
         Err(e) => {
-            floe_cli::stderr::line(&format!("error: {e}"));
+            // Empty: process 0 of an MPI job reports it.
+            let message = e.to_string();
+            if !message.is_empty() {
+                floe_cli::stderr::line(&format!("error: {message}"));
+            }
             ExitCode::from(e.exit_code())
         }
     }

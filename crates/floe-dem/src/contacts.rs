@@ -23,7 +23,7 @@ use floe_friction::ContactState;
 use crate::Vec2;
 
 /// One touching pair and what the contact did over the last step.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactRecord {
     /// First floe (handle into the floe arrays; the smaller global id).
     pub a: u32,
@@ -86,7 +86,7 @@ impl ContactRecord {
 }
 
 /// The state of a contact that broke, kept for [`ContactModel::memory_s`](crate::contact_model::ContactModel::memory_s).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BrokenContact {
     /// First floe.
     pub a: u32,

@@ -22,7 +22,7 @@ use crate::geometry::{Placed, MAX_VERTICES};
 use crate::Vec2;
 
 /// How a floe moves.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Motion {
     /// Moved by forces (the usual case).
     Free,
@@ -40,7 +40,7 @@ pub const MAX_FLOES: usize = u32::MAX as usize - 1;
 
 /// One floe, outside a set: what [`Floes::insert`] takes and
 /// [`Floes::get`] returns.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Floe {
     /// Global identifier, unique in a set.
     pub id: u64,

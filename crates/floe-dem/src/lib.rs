@@ -18,7 +18,9 @@
 //!   floes driven through a spring from a moving point; [`stress_control`]:
 //!   walls that hold a normal stress; [`geometry`], [`tessellation`]: floe
 //!   shapes and how to make a pack of them; [`observables`]: assembly
-//!   diagnostics; [`run`]: the stepping loop with its observer and cadences.
+//!   diagnostics; [`run`]: the stepping loop with its observer and cadences;
+//!   [`exact_sum`]: sums of `f64` that do not depend on the order of the
+//!   terms nor on how threads or ranks split them.
 #![deny(missing_docs)]
 
 pub mod contact_kernel;
@@ -27,6 +29,7 @@ pub mod contacts;
 pub mod decomposition;
 pub mod energy_ledger;
 pub mod error;
+pub mod exact_sum;
 pub mod floes;
 pub mod forcing;
 pub mod geometry;

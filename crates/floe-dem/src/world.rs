@@ -62,6 +62,7 @@ use crate::motion_schedule::{MotionSchedule, ScheduledMotion};
 use crate::periodicity::Periodicity;
 use crate::pipeline::boundary_motion;
 use crate::pipeline::broad_phase::BroadPhase;
+use crate::pipeline::energy_accounting::{book_step, StepSums};
 use crate::pipeline::force_gathering::ForceBuffers;
 use crate::pipeline::integrator::{self, floe_stable_step, KickForces};
 use crate::pipeline::narrow_phase::{ContactSet, DetectionInput};
@@ -72,6 +73,24 @@ use crate::Vec2;
 use floe_friction::{FrictionLaw, LAW_STATE_SLOTS};
 
 pub use crate::pipeline::integrator::{stable_time_step, STABILITY_SAFETY};
+
+/// A floe's motion and the forces on it at the end of a step: what a
+/// ghost copies from its owner ([`World::set_kinematics`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinematics {
+    /// Centroid position, m.
+    pub position: Vec2,
+    /// Orientation, rad.
+    pub angle: f64,
+    /// Centroid velocity, m/s.
+    pub velocity: Vec2,
+    /// Angular velocity, rad/s.
+    pub angular_velocity: f64,
+    /// Total force, N.
+    pub force: Vec2,
+    /// Total torque, N m.
+    pub torque: f64,
+}
 
 /// The simulation state and what steps it.
 pub struct World<F: ExternalForces> {
@@ -410,11 +429,12 @@ impl<F: ExternalForces> World<F> {
             periodicity: self.periodicity,
             dt,
             time_s: s.time_s,
+            ghost: &p.ghost,
         };
         let set = ContactSet {
             contacts: &mut s.contacts,
             broken: &mut s.broken,
-            released_at_break_j: &mut s.energy.released_at_break_j,
+            released_at_break_j: &mut p.accounting.released_j,
         };
         let changed = p
             .narrow_phase
@@ -445,9 +465,10 @@ impl<F: ExternalForces> World<F> {
             external_torque: &mut s.external_torque,
             rates: &mut p.rates,
         };
+        let ghost = &p.ghost;
         p.gathering
             .gather(floes, contacts, &self.forcing, s.time_s, out, || {
-                accounting.sum_contact_power(contacts, floes)
+                accounting.sum_contact_power(contacts, floes, ghost)
             });
         boundary_motion::add_load_point_forces(
             &s.floes,
@@ -461,6 +482,14 @@ impl<F: ExternalForces> World<F> {
     /// Last stage: the second half kick, and the step's work and
     /// dissipation into the energy ledger.
     pub fn kick(&mut self) {
+        self.kick_with(|_| {});
+    }
+
+    /// [`World::kick`], handing the step's energy sums of this process's
+    /// floes and contacts to `combine` before they are booked: a
+    /// distributed run adds every process's sums there, so that each
+    /// books the whole.
+    pub fn kick_with(&mut self, combine: impl FnOnce(&mut StepSums)) {
         self.pipeline.enter(Stage::Kick);
         let s = &mut self.state;
         let p = &mut self.pipeline;
@@ -475,10 +504,76 @@ impl<F: ExternalForces> World<F> {
                 rates: &p.rates,
             },
             (&a.previous_external_force, &a.previous_external_torque),
-            &mut a.forcing_partials,
+            (&mut a.forcing_partials, &p.ghost),
             s.dt_s,
         );
-        a.finish_step(&mut s.energy, s.dt_s);
+        let mut sums = a.take_step_sums();
+        combine(&mut sums);
+        book_step(&sums, &mut s.energy, s.dt_s);
+    }
+
+    /// Marks which floes are ghosts: copies of floes another process owns,
+    /// stepped here for the contacts of this process's floes but left out
+    /// of the energy sums (`ghost`, one per floe; empty: none). Adding or
+    /// removing a floe clears the marks.
+    pub fn set_ghosts(&mut self, ghost: Vec<bool>) -> Result<(), DemError> {
+        if !ghost.is_empty() && ghost.len() != self.state.floes.len() {
+            return Err(DemError::InvalidParameter {
+                name: "ghost",
+                value: ghost.len() as f64,
+                reason: "one mark per floe expected",
+            });
+        }
+        self.pipeline.ghost = ghost;
+        Ok(())
+    }
+
+    /// Per floe, whether it is a ghost ([`World::set_ghosts`]; empty: none is).
+    pub fn ghosts(&self) -> &[bool] {
+        &self.pipeline.ghost
+    }
+
+    /// Floe `h`'s motion and the forces the next drift reads.
+    pub fn kinematics(&self, h: usize) -> Kinematics {
+        let s = &self.state;
+        let f = s.floes.columns();
+        Kinematics {
+            position: f.position[h],
+            angle: f.angle[h],
+            velocity: f.velocity[h],
+            angular_velocity: f.angular_velocity[h],
+            force: s.force[h],
+            torque: s.torque[h],
+        }
+    }
+
+    /// Overwrites floe `h`'s motion and forces between steps with its
+    /// owner's ([`World::kinematics`] there): a ghost then drifts as the
+    /// owner's floe does. Refused inside a step.
+    pub fn set_kinematics(&mut self, h: usize, k: &Kinematics) -> Result<(), DemError> {
+        self.between_steps(self.state.floes.columns().id[h])?;
+        let s = &mut self.state;
+        let f = s.floes.columns_mut();
+        f.position[h] = k.position;
+        f.angle[h] = k.angle;
+        f.velocity[h] = k.velocity;
+        f.angular_velocity[h] = k.angular_velocity;
+        s.force[h] = k.force;
+        s.torque[h] = k.torque;
+        let p = &mut self.pipeline;
+        if p.trig.len() == s.floes.len() {
+            p.trig[h] = k.angle.sin_cos();
+        }
+        p.moved_far |=
+            p.broad_phase
+                .moved_beyond_allowance(h, k.position, k.angle, self.periodicity);
+        Ok(())
+    }
+
+    /// The world taken apart: its state and what came from the scenario,
+    /// to be put together again (`World::resume`) with other floes.
+    pub fn into_parts(self) -> (WorldState, ContactModel, F, Periodicity) {
+        (self.state, self.model, self.forcing, self.periodicity)
     }
 
     /// The handle of floe `id`, or an error naming it.

@@ -63,6 +63,28 @@ pub enum Error {
     /// A metric could not be computed from a run's output.
     #[error("{0}")]
     Analysis(#[from] floe_analysis::AnalysisError),
+    /// A distributed run could not be spread over its processes.
+    #[error("{0}")]
+    Parallel(#[from] floe_parallel::ParallelError),
+    /// Another process of a distributed run failed; process 0 reports it.
+    #[error("process {rank} of {processes}: {message}")]
+    OnProcess {
+        /// The process that failed.
+        rank: usize,
+        /// The number of processes.
+        processes: usize,
+        /// Its exit code.
+        code: u8,
+        /// What it said.
+        message: String,
+    },
+    /// Process 0 of a distributed run reports this error; this process
+    /// says nothing and exits with `code`.
+    #[error("")]
+    ReportedByRoot {
+        /// The exit code.
+        code: u8,
+    },
     /// The run was interrupted (Ctrl-C, SIGTERM) and stopped cleanly.
     #[error("interrupted at step {step}; final snapshot and checkpoint written to {}; continue with `floe run --resume {}`", output.display(), output.display())]
     Interrupted {
@@ -122,6 +144,13 @@ impl Error {
             ) => 2,
             // 128 + SIGINT, as a shell reports a process stopped by Ctrl-C.
             Error::Interrupted { .. } => 130,
+            Error::OnProcess { code, .. } | Error::ReportedByRoot { code } => *code,
+            // More processes than floes, subdomains narrower than a floe:
+            // the command line asked for it.
+            Error::Parallel(
+                floe_parallel::ParallelError::MoreProcessesThanFloes { .. }
+                | floe_parallel::ParallelError::SubdomainTooSmall { .. },
+            ) => 2,
             _ => 1,
         }
     }

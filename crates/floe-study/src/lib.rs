@@ -19,6 +19,7 @@ pub mod plot;
 pub mod render;
 pub mod rheology;
 pub mod run_file;
+pub mod run_parallel;
 pub mod same_file;
 mod side_by_side;
 pub mod sweep;

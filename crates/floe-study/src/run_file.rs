@@ -9,11 +9,13 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use floe_dem::forcing::Forcing;
-use floe_dem::run::{self, format_sim_time, Ending, Progress, Silent};
+use floe_dem::forcing::ExternalForces;
+use floe_dem::observables::Observables;
+use floe_dem::run::{self, format_sim_time, Ending, Progress, RunObserver, Silent, Stepper};
+use floe_dem::state::WorldState;
 use floe_dem::world::World;
 use floe_friction::{FrictionLaw, LawRegistry};
-use floe_io::{DomainBox, InputRecord, OutputOptions, RunFile, RunMetadata, RunWriter};
+use floe_io::{DomainBox, InputRecord, IoError, OutputOptions, RunFile, RunMetadata, RunWriter};
 use floe_scenario::Scenario;
 
 use crate::error::Error;
@@ -115,8 +117,10 @@ pub struct RunSummary {
     pub final_time_s: f64,
     /// Wall-clock time of the stepping loop, s.
     pub wall_s: f64,
-    /// Threads used.
+    /// Threads used (per process).
     pub threads: usize,
+    /// Processes (1 unless under `mpirun`).
+    pub processes: usize,
 }
 
 impl RunSummary {
@@ -131,7 +135,7 @@ impl RunSummary {
             )
         };
         format!(
-            "{}: {state} at step {}/{} (t = {}), {} steps in {:.1} s ({:.1} steps/s, {} threads)",
+            "{}: {state} at step {}/{} (t = {}), {} steps in {:.1} s ({:.1} steps/s, {})",
             output.display(),
             self.final_step,
             self.total_steps,
@@ -139,7 +143,11 @@ impl RunSummary {
             self.steps_taken,
             self.wall_s,
             self.steps_taken as f64 / self.wall_s.max(1e-9),
-            self.threads
+            if self.processes > 1 {
+                format!("{} processes x {} threads", self.processes, self.threads)
+            } else {
+                format!("{} threads", self.threads)
+            }
         )
     }
 }
@@ -159,17 +167,7 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
     })?;
     refuse_overwriting_input(path, "scenario file", [args.output.as_path()])?;
     let scenario = Scenario::load_with(path, &args.laws)?.with_max_steps(args.step_limit);
-    if args.output.exists() && !args.force {
-        return Err(Error::WouldOverwrite(args.output.clone()));
-    }
-    // --force replaces a run file, never a device, a directory or a pipe.
-    if args.output.exists() && !args.output.is_file() {
-        return Err(Error::Usage(format!(
-            "-o {}: exists and is not a regular file; a run is written to a new file \
-             or replaces a regular one",
-            args.output.display()
-        )));
-    }
+    check_output(args)?;
     let threads = thread_count(args.threads.or(scenario.threads()))?;
     let pool = pool(threads)?;
     pool.install(|| {
@@ -177,64 +175,115 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         for line in &setup.report {
             hooks.say(line);
         }
-        if args.force && args.output.exists() {
-            std::fs::remove_file(&args.output).map_err(|e| Error::io(&args.output, e))?;
-        }
-        let domain = scenario.domain();
-        let p = &args.provenance;
-        let metadata = RunMetadata {
-            scenario_toml: scenario.text().to_string(),
-            // Absolute: a resume finds relative input files from it.
-            scenario_path: std::path::absolute(path)
-                .unwrap_or_else(|_| path.clone())
-                .display()
-                .to_string(),
-            floe_version: p.floe_version.clone(),
-            git_commit: p.git_commit.clone(),
-            command_line: p.command_line.clone(),
-            threads,
-            author: p.author.clone(),
-            domain: DomainBox {
-                min_m: [domain.min_m.x, domain.min_m.y],
-                size_m: [domain.size_m.x, domain.size_m.y],
-                periodic: domain.periodic,
-            },
-            inputs: input_records(&scenario)?,
-        };
-        // The output's directory is made if missing, as `-o out/run.h5` suggests.
-        if let Some(parent) = args.output.parent().filter(|p| !p.as_os_str().is_empty()) {
-            std::fs::create_dir_all(parent).map_err(|e| Error::io(&args.output, e))?;
-        }
-        let mut writer = RunWriter::create(
-            &args.output,
-            &metadata,
-            setup.world.floes(),
-            &OutputOptions::default(),
-        )?;
-        if !setup.land_floe_ids.is_empty() {
-            writer.mark_land(&setup.land_floe_ids)?;
-        }
-        writer.set_status(&floe_io::run_status::running())?;
+        let mut writer = create_writer(args, path, &scenario, &setup, threads)?;
         let mut world = setup.world;
-        run::start(&world, &mut writer, domain.area_m2())?;
-        advance(&scenario, &mut world, &mut writer, args, threads, hooks)
+        run::start(&mut world, &mut writer, scenario.domain().area_m2())?;
+        advance(
+            &scenario,
+            &mut world,
+            Some(&mut writer),
+            args,
+            (threads, 1),
+            hooks,
+        )
     })
 }
 
 fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
+    let scenario = stored_scenario(args)?.1;
+    let threads = thread_count(args.threads.or(scenario.threads()))?;
+    let pool = pool(threads)?;
+    pool.install(|| {
+        let parts = scenario.engine_parts();
+        let (mut writer, state) = reopen(args, &scenario, hooks)?;
+        let mut world = World::resume(state, parts.model, parts.forcing, parts.periodicity)?;
+        advance(
+            &scenario,
+            &mut world,
+            Some(&mut writer),
+            args,
+            (threads, 1),
+            hooks,
+        )
+    })
+}
+
+/// Refuses an output file that exists (without `--force`) or is not a
+/// regular file: `--force` replaces a run file, never a device, a
+/// directory or a pipe.
+pub(crate) fn check_output(args: &RunArgs) -> Result<(), Error> {
+    if args.output.exists() && !args.force {
+        return Err(Error::WouldOverwrite(args.output.clone()));
+    }
+    if args.output.exists() && !args.output.is_file() {
+        return Err(Error::Usage(format!(
+            "-o {}: exists and is not a regular file; a run is written to a new file \
+             or replaces a regular one",
+            args.output.display()
+        )));
+    }
+    Ok(())
+}
+
+/// A fresh run's file: its metadata (scenario, provenance, inputs), the
+/// floes, the land marks, status running.
+pub(crate) fn create_writer(
+    args: &RunArgs,
+    path: &Path,
+    scenario: &Scenario,
+    setup: &floe_scenario::Setup,
+    threads: usize,
+) -> Result<RunWriter, Error> {
+    if args.force && args.output.exists() {
+        std::fs::remove_file(&args.output).map_err(|e| Error::io(&args.output, e))?;
+    }
+    let domain = scenario.domain();
+    let p = &args.provenance;
+    let metadata = RunMetadata {
+        scenario_toml: scenario.text().to_string(),
+        // Absolute: a resume finds relative input files from it.
+        scenario_path: std::path::absolute(path)
+            .unwrap_or_else(|_| path.to_path_buf())
+            .display()
+            .to_string(),
+        floe_version: p.floe_version.clone(),
+        git_commit: p.git_commit.clone(),
+        command_line: p.command_line.clone(),
+        threads,
+        author: p.author.clone(),
+        domain: DomainBox {
+            min_m: [domain.min_m.x, domain.min_m.y],
+            size_m: [domain.size_m.x, domain.size_m.y],
+            periodic: domain.periodic,
+        },
+        inputs: input_records(scenario)?,
+    };
+    // The output's directory is made if missing, as `-o out/run.h5` suggests.
+    if let Some(parent) = args.output.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent).map_err(|e| Error::io(&args.output, e))?;
+    }
+    let mut writer = RunWriter::create(
+        &args.output,
+        &metadata,
+        setup.world.floes(),
+        &OutputOptions::default(),
+    )?;
+    if !setup.land_floe_ids.is_empty() {
+        writer.mark_land(&setup.land_floe_ids)?;
+    }
+    writer.set_status(&floe_io::run_status::running())?;
+    Ok(writer)
+}
+
+/// The scenario a run file stores, read from where it was, after checking
+/// that its inputs and domain are those the run began with; with the
+/// file's metadata.
+pub(crate) fn stored_scenario(args: &RunArgs) -> Result<(RunMetadata, Scenario), Error> {
     let metadata = RunFile::open(&args.output)?.metadata()?;
-    let origin = PathBuf::from(format!(
-        "{} (scenario stored in {})",
-        metadata.scenario_path,
-        args.output.display()
-    ));
-    let base_dir = Path::new(&metadata.scenario_path)
-        .parent()
-        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
-    let scenario = Scenario::from_text_in(&metadata.scenario_toml, &origin, &base_dir, &args.laws)?;
+    let scenario = scenario_from_text(args, &metadata.scenario_toml, &metadata.scenario_path)?;
     check_inputs_unchanged(&metadata.inputs, &scenario, &args.output)?;
     let d = scenario.domain();
-    let recorded = metadata.domain;
+    let recorded = &metadata.domain;
     if [d.min_m.x, d.min_m.y] != recorded.min_m
         || [d.size_m.x, d.size_m.y] != recorded.size_m
         || d.periodic != recorded.periodic
@@ -247,36 +296,89 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
                 .into(),
         }));
     }
-    let threads = thread_count(args.threads.or(scenario.threads()))?;
-    let pool = pool(threads)?;
-    pool.install(|| {
-        let parts = scenario.engine_parts();
-        // Checkpoints of format 3 hold the time step; older ones take the
-        // scenario's, found by building its floes.
-        let (mut writer, state, info) = RunWriter::reopen_for_resume(
-            &args.output,
-            || scenario.time_step().ok(),
-            parts.model.law.state_slots(),
-        )?;
-        hooks.say(&format!(
-            "resuming {} from step {} (t = {})",
-            args.output.display(),
-            info.step,
-            format_sim_time(info.time_s)
-        ));
-        let mut world = World::resume(state, parts.model, parts.forcing, parts.periodicity)?;
-        writer.set_status(&floe_io::run_status::running())?;
-        advance(&scenario, &mut world, &mut writer, args, threads, hooks)
-    })
+    Ok((metadata, scenario))
 }
 
-/// The stepping loop and the status it leaves in the file.
-fn advance(
-    scenario: &Scenario,
-    world: &mut World<Forcing>,
-    writer: &mut RunWriter,
+/// A stored scenario's text, its relative input files found from where
+/// the scenario file was (`scenario_path`).
+pub(crate) fn scenario_from_text(
     args: &RunArgs,
-    threads: usize,
+    toml: &str,
+    scenario_path: &str,
+) -> Result<Scenario, Error> {
+    let origin = PathBuf::from(format!(
+        "{scenario_path} (scenario stored in {})",
+        args.output.display()
+    ));
+    let base_dir = Path::new(scenario_path)
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    Ok(Scenario::from_text_in(
+        toml, &origin, &base_dir, &args.laws,
+    )?)
+}
+
+/// The run file reopened to continue, its last checkpoint's state, status
+/// running.
+pub(crate) fn reopen(
+    args: &RunArgs,
+    scenario: &Scenario,
+    hooks: &dyn RunHooks,
+) -> Result<(RunWriter, WorldState), Error> {
+    // Checkpoints of format 3 hold the time step; older ones take the
+    // scenario's, found by building its floes.
+    let (mut writer, state, info) = RunWriter::reopen_for_resume(
+        &args.output,
+        || scenario.time_step().ok(),
+        scenario.engine_parts().model.law.state_slots(),
+    )?;
+    hooks.say(&format!(
+        "resuming {} from step {} (t = {})",
+        args.output.display(),
+        info.step,
+        format_sim_time(info.time_s)
+    ));
+    writer.set_status(&floe_io::run_status::running())?;
+    Ok((writer, state))
+}
+
+/// The run writer on the process that writes (`None` on the others of a
+/// distributed run, which never get a world to write).
+pub(crate) struct RootWriter<'a>(pub(crate) Option<&'a mut RunWriter>);
+
+impl<F: ExternalForces> RunObserver<F> for RootWriter<'_> {
+    type Error = IoError;
+
+    fn snapshot(&mut self, world: &World<F>) -> Result<(), IoError> {
+        match &mut self.0 {
+            Some(w) => RunObserver::<F>::snapshot(*w, world),
+            None => Ok(()),
+        }
+    }
+
+    fn observables(&mut self, step: u64, observables: &Observables) -> Result<(), IoError> {
+        match &mut self.0 {
+            Some(w) => RunObserver::<F>::observables(*w, step, observables),
+            None => Ok(()),
+        }
+    }
+
+    fn checkpoint(&mut self, state: &WorldState, law_state_slots: usize) -> Result<(), IoError> {
+        match &mut self.0 {
+            Some(w) => RunObserver::<F>::checkpoint(*w, state, law_state_slots),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The stepping loop and the status it leaves in the file (written by the
+/// process holding `writer`).
+pub(crate) fn advance<S: Stepper>(
+    scenario: &Scenario,
+    world: &mut S,
+    mut writer: Option<&mut RunWriter>,
+    args: &RunArgs,
+    (threads, processes): (usize, usize),
     hooks: &dyn RunHooks,
 ) -> Result<RunSummary, Error> {
     let dt = world.dt_s();
@@ -292,10 +394,17 @@ fn advance(
         pause_at,
         &cadence,
         scenario.domain().area_m2(),
-        writer,
+        &mut RootWriter(writer.as_deref_mut()),
         hooks.interrupt(),
         progress.as_mut(),
     )?;
+    let mut set_status = |status: &str| -> Result<(), Error> {
+        if let Some(w) = writer.as_deref_mut() {
+            w.set_status(status)?;
+            w.flush()?;
+        }
+        Ok(())
+    };
     let summary = RunSummary {
         steps_taken: world.steps() - first_step,
         final_step: world.steps(),
@@ -303,29 +412,26 @@ fn advance(
         final_time_s: world.time_s(),
         wall_s: started.elapsed().as_secs_f64(),
         threads,
+        processes,
     };
     match ending {
         Ending::Completed => {
-            writer.set_status("completed")?;
-            writer.flush()?;
+            set_status("completed")?;
             Ok(summary)
         }
         Ending::Interrupted { step } => {
-            writer.set_status(&format!("interrupted at step {step}"))?;
-            writer.flush()?;
+            set_status(&format!("interrupted at step {step}"))?;
             Err(Error::Interrupted {
                 output: args.output.clone(),
                 step,
             })
         }
         Ending::Paused { step } => {
-            writer.set_status(&format!("paused at step {step}"))?;
-            writer.flush()?;
+            set_status(&format!("paused at step {step}"))?;
             Ok(summary)
         }
         Ending::ForcingFailed { step, message } => {
-            writer.set_status(&format!("stopped after step {step}: {message}"))?;
-            writer.flush()?;
+            set_status(&format!("stopped after step {step}: {message}"))?;
             // Located at the key of the field's file.
             let message = scenario.locate_forcing_failure(&message);
             Err(Error::Forcing {
@@ -335,8 +441,7 @@ fn advance(
             })
         }
         Ending::BlewUp(blow_up) => {
-            writer.set_status(&format!("stopped: {blow_up}"))?;
-            writer.flush()?;
+            set_status(&format!("stopped: {blow_up}"))?;
             Err(Error::BlowUp {
                 output: args.output.clone(),
                 message: blow_up.to_string(),
@@ -416,7 +521,7 @@ pub(crate) fn thread_count(requested: Option<usize>) -> Result<usize, Error> {
     }
 }
 
-fn pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
+pub(crate) fn pool(threads: usize) -> Result<rayon::ThreadPool, Error> {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

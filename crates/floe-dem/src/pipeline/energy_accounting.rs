@@ -2,40 +2,50 @@
 //! friction and dashpots over a step, summed into the
 //! [`EnergyLedger`].
 //!
-//! Every sum runs over fixed blocks (`ENERGY_CHUNK`) in parallel, then
-//! over the blocks in order: the same sums for any thread count. The
-//! contacts' powers depend on the contact list alone (not on how the
-//! narrow phase cut its work), so a resumed run sums them as the
-//! uninterrupted one did.
+//! Every sum is exact ([`ExactSum`], rounded once when it is booked), so it
+//! depends on the set of terms alone: not on the thread count, on how the
+//! narrow phase cut its work, or on how the floes are split between
+//! processes. A process counts the floes it owns and the contacts whose
+//! floe `a` it owns; a ghost (another process's floe) is counted there.
+//! The step's sums ([`StepSums`]) can be combined across processes before
+//! they are booked ([`World::kick_with`](crate::world::World::kick_with)).
 
 use rayon::prelude::*;
 
 use crate::contact_kernel::force_and_torques;
 use crate::contacts::ContactRecord;
 use crate::energy_ledger::EnergyLedger;
+use crate::exact_sum::{ExactSum, EXACT_SUM_WORDS};
 use crate::floes::FloeColumns;
 use crate::Vec2;
 
 /// Contacts (or floes) per block of the energy sums.
 pub(crate) const ENERGY_CHUNK: usize = 4096;
 
+/// Whether floe `h`'s terms are summed by this process: it is not a
+/// `ghost` (an empty mask: no floe is).
+#[inline]
+pub(crate) fn counted_here(ghost: &[bool], h: u32) -> bool {
+    ghost.get(h as usize) != Some(&true)
+}
+
 /// Power of a set of contacts over a step.
-#[derive(Debug, Default, Clone, Copy)]
+#[derive(Debug, Default, Clone)]
 pub(crate) struct ContactPower {
     /// Dissipated by friction, W.
-    friction_w: f64,
+    friction_w: ExactSum,
     /// Dissipated by normal damping, W.
-    damping_w: f64,
+    damping_w: ExactSum,
     /// Put in by walls (floes with prescribed motion), W.
-    boundary_w: f64,
+    boundary_w: ExactSum,
 }
 
 impl ContactPower {
     /// Adds a contact whose step is complete.
     #[inline]
     fn add(&mut self, c: &ContactRecord, f: &FloeColumns) {
-        self.friction_w += c.friction_power_w;
-        self.damping_w += c.damping_power_w;
+        self.friction_w.add(c.friction_power_w);
+        self.damping_w.add(c.damping_power_w);
         // Work done by a wall on the floe it touches: the force the wall
         // exerts (the opposite of the force on it) times its velocity.
         // Only wall contacts need the force.
@@ -45,11 +55,77 @@ impl ContactPower {
         }
         let (fb, _, _) = force_and_torques(c, f.position[a], f.position[b] + c.image_offset);
         if !f.is_free(a) {
-            self.boundary_w += fb.dot(f.velocity[a]);
+            self.boundary_w.add(fb.dot(f.velocity[a]));
         }
         if !f.is_free(b) {
-            self.boundary_w += (-fb).dot(f.velocity[b]);
+            self.boundary_w.add((-fb).dot(f.velocity[b]));
         }
+    }
+
+    /// Adds another set's powers.
+    fn merge(&mut self, other: &ContactPower) {
+        self.friction_w.merge(&other.friction_w);
+        self.damping_w.merge(&other.damping_w);
+        self.boundary_w.merge(&other.boundary_w);
+    }
+}
+
+/// The sums of a step that go into the energy ledger, exact, so that
+/// partial sums from several processes combine into the same bits
+/// ([`StepSums::to_words`], an integer sum of which is the sum of the
+/// parts).
+#[derive(Debug, Default, Clone, PartialEq)]
+pub struct StepSums {
+    /// Power of the external forcing on the free floes, W.
+    pub forcing_w: ExactSum,
+    /// Dissipated by friction, W.
+    pub friction_w: ExactSum,
+    /// Dissipated by normal damping, W.
+    pub damping_w: ExactSum,
+    /// Put in by walls, W.
+    pub boundary_w: ExactSum,
+    /// Elastic energy of the contacts that ended, J.
+    pub released_j: ExactSum,
+}
+
+/// Words in [`StepSums::to_words`].
+pub const STEP_SUM_WORDS: usize = 5 * EXACT_SUM_WORDS;
+
+impl StepSums {
+    /// The sums as integers: adding two processes' words element by
+    /// element gives the words of their combined sums.
+    pub fn to_words(&self) -> Vec<i64> {
+        let mut words = Vec::with_capacity(STEP_SUM_WORDS);
+        for s in self.sums() {
+            words.extend_from_slice(&s.to_words());
+        }
+        words
+    }
+
+    /// The sums from [`StepSums::to_words`]'s words (`STEP_SUM_WORDS` of them).
+    pub fn from_words(words: &[i64]) -> Self {
+        let part = |k: usize| {
+            let mut w = [0i64; EXACT_SUM_WORDS];
+            w.copy_from_slice(&words[k * EXACT_SUM_WORDS..(k + 1) * EXACT_SUM_WORDS]);
+            ExactSum::from_words(&w)
+        };
+        StepSums {
+            forcing_w: part(0),
+            friction_w: part(1),
+            damping_w: part(2),
+            boundary_w: part(3),
+            released_j: part(4),
+        }
+    }
+
+    fn sums(&self) -> [&ExactSum; 5] {
+        [
+            &self.forcing_w,
+            &self.friction_w,
+            &self.damping_w,
+            &self.boundary_w,
+            &self.released_j,
+        ]
     }
 }
 
@@ -59,7 +135,9 @@ pub(crate) struct EnergyAccounting {
     /// Per block of contacts, the sums of their powers.
     contact_partials: Vec<ContactPower>,
     /// Per block of floes, the power of the external forces.
-    pub(crate) forcing_partials: Vec<f64>,
+    pub(crate) forcing_partials: Vec<ExactSum>,
+    /// The step's energy released at break (the narrow phase adds to it).
+    pub(crate) released_j: ExactSum,
     /// The external forces at the start of the step, N, for the work
     /// integral (trapezoidal in the force).
     pub(crate) previous_external_force: Vec<Vec2>,
@@ -82,15 +160,21 @@ impl EnergyAccounting {
         std::mem::swap(external_torque, &mut self.previous_external_torque);
     }
 
-    /// Sums the contacts' powers over fixed blocks of the list, in
-    /// parallel. The velocities it reads are the walls', which the kick
-    /// leaves alone, so it may run beside the force gathering.
-    pub(crate) fn sum_contact_power(&mut self, contacts: &[ContactRecord], f: &FloeColumns) {
+    /// Sums the contacts' powers over blocks of the list, in parallel,
+    /// leaving out those whose floe `a` is a `ghost`. The velocities it
+    /// reads are the walls', which the kick leaves alone, so it may run
+    /// beside the force gathering.
+    pub(crate) fn sum_contact_power(
+        &mut self,
+        contacts: &[ContactRecord],
+        f: &FloeColumns,
+        ghost: &[bool],
+    ) {
         contacts
             .par_chunks(ENERGY_CHUNK)
             .map(|block| {
                 let mut power = ContactPower::default();
-                for c in block {
+                for c in block.iter().filter(|c| counted_here(ghost, c.a)) {
                     power.add(c, f);
                 }
                 power
@@ -98,22 +182,33 @@ impl EnergyAccounting {
             .collect_into_vec(&mut self.contact_partials);
     }
 
-    /// Adds the step's work and dissipation to `ledger`, block by block in
-    /// order: the forcing power the kick summed, then the contacts'.
-    pub(crate) fn finish_step(&self, ledger: &mut EnergyLedger, dt: f64) {
+    /// This process's sums of the step, and resets them for the next.
+    pub(crate) fn take_step_sums(&mut self) -> StepSums {
+        let mut forcing_w = ExactSum::new();
         for p in &self.forcing_partials {
-            ledger.forcing_work_j += dt * p;
+            forcing_w.merge(p);
         }
         let mut power = ContactPower::default();
         for p in &self.contact_partials {
-            power.friction_w += p.friction_w;
-            power.damping_w += p.damping_w;
-            power.boundary_w += p.boundary_w;
+            power.merge(p);
         }
-        ledger.friction_dissipation_j += dt * power.friction_w;
-        ledger.damping_dissipation_j += dt * power.damping_w;
-        ledger.boundary_work_j += dt * power.boundary_w;
+        StepSums {
+            forcing_w,
+            friction_w: power.friction_w,
+            damping_w: power.damping_w,
+            boundary_w: power.boundary_w,
+            released_j: std::mem::take(&mut self.released_j),
+        }
     }
+}
+
+/// Adds a step's work and dissipation (`sums`, of every process) to `ledger`.
+pub(crate) fn book_step(sums: &StepSums, ledger: &mut EnergyLedger, dt: f64) {
+    ledger.forcing_work_j += dt * sums.forcing_w.value();
+    ledger.friction_dissipation_j += dt * sums.friction_w.value();
+    ledger.damping_dissipation_j += dt * sums.damping_w.value();
+    ledger.boundary_work_j += dt * sums.boundary_w.value();
+    ledger.released_at_break_j += sums.released_j.value();
 }
 
 /// Power of the external forcing on a free floe over the step, W:

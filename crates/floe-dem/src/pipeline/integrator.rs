@@ -11,9 +11,10 @@
 use rayon::prelude::*;
 
 use super::broad_phase::BroadPhase;
-use super::energy_accounting::{forcing_power, ENERGY_CHUNK};
+use super::energy_accounting::{counted_here, forcing_power, ENERGY_CHUNK};
 use crate::contact_kernel::{overlap_stiffness, Body};
 use crate::contact_model::ContactModel;
+use crate::exact_sum::ExactSum;
 use crate::floes::{FloeColumns, Motion};
 use crate::forcing::ForceRates;
 use crate::periodicity::Periodicity;
@@ -88,13 +89,13 @@ pub(crate) struct KickForces<'a> {
 
 /// The second half kick of every free floe, implicit in the external
 /// forces (see [`implicit_half_kick`]), and in the same pass the power of
-/// the external forces over the step, summed over fixed blocks of floes
-/// into `forcing_partials` (see [`forcing_power`]).
+/// the external forces over the step, summed exactly over blocks of floes
+/// into `forcing_partials` (see [`forcing_power`]), less the `ghost` floes.
 pub(crate) fn kick(
     f: &mut FloeColumns,
     forces: KickForces<'_>,
     previous_external: (&[Vec2], &[f64]),
-    forcing_partials: &mut Vec<f64>,
+    (forcing_partials, ghost): (&mut Vec<ExactSum>, &[bool]),
     dt: f64,
 ) {
     let FloeColumns {
@@ -129,7 +130,7 @@ pub(crate) fn kick(
         .into_par_iter()
         .enumerate()
         .map(|(block, ((vs, omegas), (fs, ts), (efs, ets)))| {
-            let mut power_w = 0.0;
+            let mut power_w = ExactSum::new();
             for (k, (v, omega)) in vs.iter_mut().zip(omegas).enumerate() {
                 let i = block * ENERGY_CHUNK + k;
                 if let Motion::Free = motion[i] {
@@ -152,12 +153,14 @@ pub(crate) fn kick(
                         ts[k] += dt_torque;
                         ets[k] += dt_torque;
                     }
-                    power_w += forcing_power(
-                        (previous_external.0[i], previous_external.1[i]),
-                        (efs[k], ets[k]),
-                        v_half,
-                        omega_half,
-                    );
+                    if counted_here(ghost, i as u32) {
+                        power_w.add(forcing_power(
+                            (previous_external.0[i], previous_external.1[i]),
+                            (efs[k], ets[k]),
+                            v_half,
+                            omega_half,
+                        ));
+                    }
                 }
             }
             power_w

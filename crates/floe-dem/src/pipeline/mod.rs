@@ -71,6 +71,10 @@ pub struct Pipeline {
     pub(crate) rates: Vec<crate::forcing::ForceRates>,
     /// A floe moved beyond the broad phase's allowance in the drift.
     pub(crate) moved_far: bool,
+    /// Per floe, whether it is a ghost: a copy of another process's floe,
+    /// stepped here for its contacts but not counted in the energy sums.
+    /// Empty: every floe is this process's.
+    pub(crate) ghost: Vec<bool>,
     pub(crate) next: Stage,
 }
 
@@ -85,6 +89,7 @@ impl Pipeline {
             trig: Vec::new(),
             rates: Vec::new(),
             moved_far: true,
+            ghost: Vec::new(),
             next: Stage::Drift,
         }
     }
@@ -111,6 +116,7 @@ impl Pipeline {
         self.narrow_phase.invalidate();
         self.gathering.invalidate();
         self.moved_far = true;
+        self.ghost.clear();
     }
 
     /// Moves to the next stage, which must be `stage`.

@@ -20,6 +20,7 @@ use super::friction::{new_contact_state, FrictionBatch, Slot};
 use crate::contact_kernel::{contact_before_friction, Body};
 use crate::contact_model::ContactModel;
 use crate::contacts::{BrokenContact, ContactRecord};
+use crate::exact_sum::ExactSum;
 use crate::floes::FloeColumns;
 use crate::geometry::{overlap_cached, ClipScratch, Overlap, SeparatingEdge};
 use crate::periodicity::Periodicity;
@@ -61,6 +62,9 @@ pub(crate) struct DetectionInput<'a> {
     pub(crate) dt: f64,
     /// Simulated time at the end of the step, s.
     pub(crate) time_s: f64,
+    /// Per floe, whether it is a ghost (another process's floe): its
+    /// contacts' released energy is counted there. Empty: none is.
+    pub(crate) ghost: &'a [bool],
 }
 
 /// What the contact detection updates: the contacts and their memory, and
@@ -70,8 +74,9 @@ pub(crate) struct ContactSet<'a> {
     pub(crate) contacts: &'a mut Vec<ContactRecord>,
     /// Recently broken contacts, sorted by `(a, b)`.
     pub(crate) broken: &'a mut Vec<BrokenContact>,
-    /// The ledger's energy released at break, J.
-    pub(crate) released_at_break_j: &'a mut f64,
+    /// The step's energy released at break, J (an exact sum, booked into
+    /// the ledger at the end of the step).
+    pub(crate) released_at_break_j: &'a mut ExactSum,
 }
 
 /// The narrow phase's buffers, reused every step.
@@ -207,7 +212,7 @@ impl NarrowPhase {
                         broke_at_s: time_s,
                     });
                 }
-                old.a = DEAD;
+                old.b = DEAD;
             };
         // Each chunk's runs of previous contacts, as disjoint mutable slices.
         let mut runs: Vec<&mut [ContactRecord]> = Vec::with_capacity(n_chunks.max(1));
@@ -309,7 +314,13 @@ impl NarrowPhase {
             .map_or(set.contacts.len(), |c| self.chunk_start[c]);
         let formed = self.born[..n_chunks].iter().any(|b| !b.is_empty());
         let changed = formed || self.chunk_ended.iter().any(|&ended| ended);
-        let released = merge_in_place(set.contacts, &mut self.born[..n_chunks], first_dead);
+        merge_in_place(
+            set.contacts,
+            &mut self.born[..n_chunks],
+            first_dead,
+            set.released_at_break_j,
+            input.ghost,
+        );
         if model.memory_s > 0.0 || !set.broken.is_empty() {
             *set.broken = remember_broken(
                 set.broken,
@@ -319,7 +330,6 @@ impl NarrowPhase {
                 model.memory_s,
             );
         }
-        *set.released_at_break_j += released;
         changed
     }
 

@@ -6,7 +6,7 @@
 //! start of this process, so a resumed run writes exactly where the
 //! uninterrupted run would have.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
 use crate::forcing::ExternalForces;
 use crate::observables::Observables;
@@ -16,7 +16,8 @@ use crate::world::World;
 use floe_friction::FrictionLaw;
 
 use super::cadence::{Cadence, Due, NextDue};
-use super::health::{check_health, BlowUp};
+use super::health::BlowUp;
+use super::stepper::Stepper;
 
 /// What the loop reports to: the HDF5 run writer of floe-io is one, tests
 /// use an in-memory one.
@@ -80,29 +81,37 @@ impl Progress for Silent {
     fn finish(&mut self) {}
 }
 
-/// Writes what `due` asks for at the world's current step.
-fn write_due<F: ExternalForces, O: RunObserver<F>>(
-    world: &World<F>,
+/// Writes what `due` asks for at the world's current step (on the process
+/// that writes; every process takes part in gathering the world).
+fn write_due<S: Stepper, O: RunObserver<S::Whole>>(
+    world: &mut S,
     observer: &mut O,
     due: Due,
     domain_area_m2: f64,
 ) -> Result<(), O::Error> {
-    if due.observables {
-        observer.observables(world.steps(), &world.observables(domain_area_m2))?;
+    if !(due.observables || due.snapshot || due.checkpoint) {
+        return Ok(());
     }
-    if due.snapshot {
-        observer.snapshot(world)?;
-    }
-    // The checkpoint comes last: whatever it records as written is written.
-    if due.checkpoint {
-        observer.checkpoint(world.state(), world.model().law.state_slots())?;
-    }
-    Ok(())
+    world
+        .with_whole(|whole| {
+            if due.observables {
+                observer.observables(whole.steps(), &whole.observables(domain_area_m2))?;
+            }
+            if due.snapshot {
+                observer.snapshot(whole)?;
+            }
+            // The checkpoint comes last: whatever it records as written is written.
+            if due.checkpoint {
+                observer.checkpoint(whole.state(), whole.model().law.state_slots())?;
+            }
+            Ok(())
+        })
+        .unwrap_or(Ok(()))
 }
 
 /// Writes the initial output of a fresh run (step 0: observables, snapshot, checkpoint).
-pub fn start<F: ExternalForces, O: RunObserver<F>>(
-    world: &World<F>,
+pub fn start<S: Stepper, O: RunObserver<S::Whole>>(
+    world: &mut S,
     observer: &mut O,
     domain_area_m2: f64,
 ) -> Result<(), O::Error> {
@@ -113,8 +122,8 @@ pub fn start<F: ExternalForces, O: RunObserver<F>>(
 /// first, writing at the cadences. Checks the interrupt flag and the
 /// state's health after every step.
 #[allow(clippy::too_many_arguments)] // one call site; a struct would only rename them
-pub fn drive<F: ExternalForces, O: RunObserver<F>>(
-    world: &mut World<F>,
+pub fn drive<S: Stepper, O: RunObserver<S::Whole>>(
+    world: &mut S,
     total_steps: u64,
     pause_at: Option<u64>,
     cadence: &Cadence,
@@ -126,20 +135,24 @@ pub fn drive<F: ExternalForces, O: RunObserver<F>>(
     let mut next = NextDue::after(cadence, world.steps());
     while world.steps() < total_steps {
         let before = world.steps();
-        world.step();
-        if let Some(failure) = world.forcing_failure() {
+        let report = world.step(interrupt);
+        if let Some(message) = report.forcing_failure {
             progress.finish();
             return Ok(Ending::ForcingFailed {
                 step: before,
-                message: failure.to_string(),
+                message,
             });
         }
         progress.update(world.steps(), total_steps, world.time_s());
-        if let Some(blow_up) = check_health(world) {
+        if let Some(blow_up) = report.blow_up {
             // The bad state is shown (it is what one needs to see), but the
             // checkpoint is left at the last good state.
-            observer.observables(world.steps(), &world.observables(domain_area_m2))?;
-            observer.snapshot(world)?;
+            let bad_state = Due {
+                observables: true,
+                snapshot: true,
+                checkpoint: false,
+            };
+            write_due(world, observer, bad_state, domain_area_m2)?;
             progress.finish();
             return Ok(Ending::BlewUp(blow_up));
         }
@@ -151,7 +164,7 @@ pub fn drive<F: ExternalForces, O: RunObserver<F>>(
             if last { Due::ALL } else { due },
             domain_area_m2,
         )?;
-        if interrupt.load(Ordering::SeqCst) && !last {
+        if report.interrupted && !last {
             finish_interrupted(world, observer, due, domain_area_m2)?;
             progress.finish();
             return Ok(Ending::Interrupted {
@@ -174,19 +187,22 @@ pub fn drive<F: ExternalForces, O: RunObserver<F>>(
 /// snapshot the cadence did not already write (`written`). The checkpoint
 /// comes before those extras, so it does not count them and a resume drops
 /// them: the resumed file then holds exactly the uninterrupted run's output.
-fn finish_interrupted<F: ExternalForces, O: RunObserver<F>>(
-    world: &World<F>,
+fn finish_interrupted<S: Stepper, O: RunObserver<S::Whole>>(
+    world: &mut S,
     observer: &mut O,
     written: Due,
     domain_area_m2: f64,
 ) -> Result<(), O::Error> {
+    let checkpoint = Due {
+        observables: false,
+        snapshot: false,
+        checkpoint: !written.checkpoint,
+    };
+    write_due(world, observer, checkpoint, domain_area_m2)?;
     let extra = Due {
         observables: !written.observables,
         snapshot: !written.snapshot,
         checkpoint: false,
     };
-    if !written.checkpoint {
-        observer.checkpoint(world.state(), world.model().law.state_slots())?;
-    }
     write_due(world, observer, extra, domain_area_m2)
 }

@@ -17,7 +17,7 @@ use crate::world::World;
 pub const MAX_OVERLAP_FRACTION: f64 = 0.25;
 
 /// What went wrong, where and when.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BlowUp {
     /// The step at which it was detected.
     pub step: u64,
@@ -30,7 +30,7 @@ pub struct BlowUp {
 }
 
 /// The kind of fault.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Fault {
     /// A floe's position, angle or velocity is not finite.
     NonFinite {

@@ -9,8 +9,10 @@ pub mod cadence;
 pub mod drive;
 pub mod health;
 pub mod sim_time;
+pub mod stepper;
 
 pub use cadence::{Cadence, CadenceWindow, Due};
 pub use drive::{drive, start, Ending, Progress, RunObserver, Silent};
 pub use health::{check_health, BlowUp, Fault, MAX_OVERLAP_FRACTION};
 pub use sim_time::format_sim_time;
+pub use stepper::{StepReport, Stepper};

@@ -1,0 +1,50 @@
+//! Whether `floe run` is one process of an MPI job (`mpirun -np K`,
+//! `srun`), and starting MPI when it is.
+//!
+//! MPI is behind the cargo feature `mpi` (`make` builds with it; a plain
+//! `cargo build` does not, for machines without an MPI library). A build
+//! without it refuses to run as one of several processes rather than let
+//! each write the same file.
+
+/// The number of processes the launcher started, from its environment
+/// (Open MPI, MPICH and Intel MPI's PMI, PMIx), if any.
+pub fn launched_processes() -> Option<usize> {
+    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"]
+        .iter()
+        .find_map(|v| std::env::var(v).ok()?.trim().parse::<usize>().ok())
+        .or_else(|| std::env::var("PMIX_RANK").ok().map(|_| 2))
+}
+
+/// Whether this is a process of an MPI job other than the first (which
+/// alone talks to the user).
+pub fn is_other_than_first() -> bool {
+    ["OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"]
+        .iter()
+        .find_map(|v| std::env::var(v).ok()?.trim().parse::<usize>().ok())
+        .is_some_and(|rank| rank > 0)
+}
+
+/// MPI for this process, when it is one of several; `Ok(None)` for a lone
+/// process.
+#[cfg(feature = "mpi")]
+pub fn start() -> Result<Option<floe_parallel::mpi_comm::Mpi>, crate::CliError> {
+    if launched_processes().is_none() {
+        return Ok(None);
+    }
+    floe_parallel::mpi_comm::Mpi::initialize()
+        .map(Some)
+        .ok_or_else(|| crate::CliError::Usage("MPI could not be initialised".into()))
+}
+
+/// Refuses to run as one of several processes in a build without MPI.
+#[cfg(not(feature = "mpi"))]
+pub fn start() -> Result<Option<std::convert::Infallible>, crate::CliError> {
+    match launched_processes() {
+        Some(n) if n > 1 => Err(crate::CliError::Usage(format!(
+            "started as one of {n} processes (mpirun), but this floe was built without MPI: \
+             build it with `make build` or `cargo build --release --features floe-cli/mpi` \
+             (see docs/hpc.md), or run it without mpirun"
+        ))),
+        _ => Ok(None),
+    }
+}

@@ -1,0 +1,881 @@
+//! A world spread over processes by spatial domain decomposition, stepped
+//! so that the result is bitwise the single process's.
+//!
+//! Each process holds a [`World`] of the floes it owns and their ghosts
+//! (copies of floes owned elsewhere that its floes could touch), sorted by
+//! id as the whole world's are. Its contact list is then the whole list's
+//! pairs among those floes in the same order, each contact computed from
+//! the same bits, so each owned floe's force sums the same terms in the
+//! same order. After every step the owners send their ghosts' motion and
+//! forces ([`Kinematics`]), so a ghost drifts as its owner's floe does. The
+//! energy ledger's sums are exact and added over the processes
+//! ([`World::kick_with`]).
+//!
+//! When a floe has moved half the halo's skin since the last migration,
+//! every process hands its floes to their owners under the current (or,
+//! when the work is out of balance, a new) decomposition, each with its
+//! contacts' springs and friction state and the memory of its broken
+//! contacts, and rebuilds its world from what it receives.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use floe_dem::contact_model::ContactModel;
+use floe_dem::contacts::{BrokenContact, ContactRecord};
+use floe_dem::decomposition::Decomposition;
+use floe_dem::floes::{FloeColumns, Floes};
+use floe_dem::forcing::{ExternalForces, NoForcing};
+use floe_dem::load_point::LoadPoint;
+use floe_dem::motion_schedule::ScheduledMotion;
+use floe_dem::periodicity::Periodicity;
+use floe_dem::pipeline::energy_accounting::StepSums;
+use floe_dem::run::{check_health, BlowUp, StepReport, Stepper};
+use floe_dem::state::WorldState;
+use floe_dem::stress_control::StressControl;
+use floe_dem::tessellation::Rect;
+use floe_dem::world::{Kinematics, World};
+use floe_dem::Vec2;
+
+use crate::comm::Communicator;
+use crate::error::ParallelError;
+use crate::reach::{box_distance, images, Outline, OutlineGrid};
+use crate::wire::{decode, encode, put_f64s, take_f64s, Migrant, Packet};
+
+/// How a run is spread and kept in balance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// The halo's reach beyond contact, as a fraction of the largest free
+    /// floe's bounding radius: floes migrate when one has moved half of
+    /// it. Larger: more ghosts, fewer migrations.
+    pub skin_fraction: f64,
+    /// A migration also rebalances when the busiest process's work (its
+    /// floes plus their contacts) exceeds the mean by this fraction.
+    pub rebalance_threshold: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            skin_fraction: 0.25,
+            rebalance_threshold: 0.2,
+        }
+    }
+}
+
+/// What the processes hold of the whole run that is not per floe: the
+/// schedules, load points and stress controls of every floe.
+#[derive(Debug, Clone, Default)]
+struct Drivers {
+    schedules: Vec<ScheduledMotion>,
+    load_points: Vec<LoadPoint>,
+    stress_controls: Vec<StressControl>,
+}
+
+/// Counts of what the decomposition did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct DecompositionStats {
+    /// Migrations (ghosts and owners redone), the first set-up included.
+    pub migrations: u64,
+    /// Migrations that also cut the domain anew.
+    pub rebalances: u64,
+    /// Floes this process owns now.
+    pub owned: usize,
+    /// Ghosts it holds now.
+    pub ghosts: usize,
+    /// Broken contacts of its floes it keeps aside (the other floe is
+    /// not here) now.
+    pub parked: usize,
+}
+
+/// A world spread over the processes of `C`.
+pub struct DistributedWorld<F: ExternalForces, C: Communicator> {
+    /// This process's part (taken out only while it is rebuilt).
+    world: Option<World<F>>,
+    comm: C,
+    settings: Settings,
+    decomposition: Decomposition,
+    /// Where the cuts were made: the period on periodic axes, the floes'
+    /// extent on open ones (whose outer boxes reach to infinity).
+    domain: Rect,
+    /// The largest free floe's bounding radius, m.
+    largest_radius_m: f64,
+    /// The halo's reach beyond contact, m.
+    skin_m: f64,
+    /// The domain's periodic axes.
+    periodicity: Periodicity,
+    /// Per local floe: owned here.
+    owned: Vec<bool>,
+    /// Per process, the owned floes (handles) whose motion it receives.
+    send: Vec<(usize, Vec<usize>)>,
+    /// Per process, the ghosts (handles) whose motion it sends.
+    receive: Vec<(usize, Vec<usize>)>,
+    /// Each local floe's position and angle at the last migration.
+    reference: Vec<(Vec2, f64)>,
+    /// Broken contacts of owned floes whose other floe is not here.
+    parked: Vec<([u64; 2], BrokenContact)>,
+    drivers: Drivers,
+    stats: DecompositionStats,
+}
+
+impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
+    /// Spreads a whole world (every process passes the same `state`: a
+    /// fresh world's or a checkpoint's) over the processes of `comm`.
+    pub fn from_whole(
+        state: WorldState,
+        model: ContactModel,
+        forcing: F,
+        periodicity: Periodicity,
+        comm: C,
+        settings: Settings,
+    ) -> Result<Self, ParallelError> {
+        let f = state.floes.columns();
+        let free: Vec<usize> = (0..f.len()).filter(|&i| f.is_free(i)).collect();
+        if comm.size() > free.len() {
+            return Err(ParallelError::MoreProcessesThanFloes {
+                processes: comm.size(),
+                floes: free.len(),
+            });
+        }
+        let largest_radius_m = free.iter().map(|&i| f.radius_m[i]).fold(0.0, f64::max);
+        let mut counts = vec![0u64; f.len()];
+        for c in &state.contacts {
+            counts[c.a as usize] += 1;
+            counts[c.b as usize] += 1;
+        }
+        let points: Vec<Vec2> = free.iter().map(|&i| f.position[i]).collect();
+        let weights: Vec<f64> = free.iter().map(|&i| 1.0 + counts[i] as f64).collect();
+        let domain = cut_domain(&points, periodicity);
+        let decomposition = Decomposition::rcb(&points, &weights, domain, comm.size())?;
+        check_subdomains(&decomposition, domain, periodicity, largest_radius_m)?;
+        let drivers = Drivers {
+            schedules: state.schedules.clone(),
+            load_points: state.load_points.clone(),
+            stress_controls: state.stress_controls.clone(),
+        };
+        let mut this = DistributedWorld {
+            world: None,
+            comm,
+            settings,
+            decomposition,
+            domain,
+            largest_radius_m,
+            skin_m: settings.skin_fraction * largest_radius_m,
+            periodicity,
+            owned: Vec::new(),
+            send: Vec::new(),
+            receive: Vec::new(),
+            reference: Vec::new(),
+            parked: Vec::new(),
+            drivers,
+            stats: DecompositionStats::default(),
+        };
+        // Every process has the whole: each takes what it holds.
+        let me = this.comm.rank();
+        let grid = this.outline_grid(f);
+        let mut mine = Packet::default();
+        for i in 0..f.len() {
+            let (owner, holders) = this.holders(f, i, &grid, periodicity);
+            if holders.contains(&me) {
+                mine.floes.push(migrant(&state, i, owner, holders));
+            }
+        }
+        let id = |h: u32| f.id[h as usize];
+        mine.contacts = state
+            .contacts
+            .iter()
+            .map(|c| ([id(c.a), id(c.b)], *c))
+            .collect();
+        mine.broken = state
+            .broken
+            .iter()
+            .map(|c| ([id(c.a), id(c.b)], *c))
+            .collect();
+        let clock = Clock::of(&state);
+        this.install(vec![mine], clock, model, forcing, periodicity)?;
+        Ok(this)
+    }
+
+    /// This process's part of the world: its floes and their ghosts.
+    pub fn local(&self) -> &World<F> {
+        self.world.as_ref().expect("present between calls")
+    }
+
+    fn local_mut(&mut self) -> &mut World<F> {
+        self.world.as_mut().expect("present between calls")
+    }
+
+    /// The communicator.
+    pub fn comm(&self) -> &C {
+        &self.comm
+    }
+
+    /// What the decomposition did so far, and this process's share now.
+    pub fn stats(&self) -> DecompositionStats {
+        self.stats
+    }
+
+    /// The subdomains' boxes, by process.
+    pub fn boxes(&self) -> &[Rect] {
+        self.decomposition.boxes()
+    }
+
+    /// The prescribed floes' outlines with their owners, on a grid.
+    fn outline_grid(&self, f: &FloeColumns) -> OutlineGrid {
+        let outlines = (0..f.len())
+            .filter(|&i| !f.is_free(i))
+            .map(|i| Outline {
+                owner: self.decomposition.owner_of(f.position[i]),
+                vertices: f.world_vertices(i),
+            })
+            .collect();
+        OutlineGrid::new(outlines, self.largest_radius_m + self.skin_m)
+    }
+
+    /// Floe `i`'s owner and every process that holds it, sorted.
+    fn holders(
+        &self,
+        f: &FloeColumns,
+        i: usize,
+        grid: &OutlineGrid,
+        periodicity: Periodicity,
+    ) -> (usize, Vec<usize>) {
+        let p = f.position[i];
+        let owner = self.decomposition.owner_of(p);
+        if !f.is_free(i) {
+            return (owner, (0..self.comm.size()).collect());
+        }
+        let pts = images(p, periodicity);
+        let reach = f.radius_m[i] + self.largest_radius_m + self.skin_m;
+        let mut ranks: Vec<usize> = (0..self.comm.size())
+            .filter(|&k| k == owner || box_distance(self.open_box(k), &pts) < reach)
+            .collect();
+        grid.owners_near(&pts, f.radius_m[i] + self.skin_m, &mut ranks);
+        ranks.sort_unstable();
+        ranks.dedup();
+        (owner, ranks)
+    }
+
+    /// Process `k`'s box, reaching to infinity on open sides.
+    fn open_box(&self, k: usize) -> Rect {
+        open_box(&self.decomposition, k, self.domain, self.periodicity)
+    }
+
+    /// Builds this process's world from the packets it received.
+    fn install(
+        &mut self,
+        incoming: Vec<Packet>,
+        clock: Clock,
+        model: ContactModel,
+        forcing: F,
+        periodicity: Periodicity,
+    ) -> Result<(), ParallelError> {
+        let me = self.comm.rank() as u32;
+        let mut migrants: Vec<Migrant> = Vec::new();
+        let mut contacts = Vec::new();
+        let mut broken = Vec::new();
+        for p in incoming {
+            migrants.extend(p.floes);
+            contacts.extend(p.contacts);
+            broken.extend(p.broken);
+        }
+        migrants.sort_by_key(|m| m.floe.id);
+        migrants.dedup_by_key(|m| m.floe.id);
+        let ids: Vec<u64> = migrants.iter().map(|m| m.floe.id).collect();
+        let handle = |id: u64| ids.binary_search(&id).ok();
+        let owned: Vec<bool> = migrants.iter().map(|m| m.owner == me).collect();
+        // Contacts of floes both here, by pair.
+        let mut local_contacts: Vec<ContactRecord> = contacts
+            .into_iter()
+            .filter_map(|([x, y], mut c)| {
+                let (a, b) = (handle(x)?, handle(y)?);
+                (c.a, c.b) = (a as u32, b as u32);
+                Some(c)
+            })
+            .collect();
+        local_contacts.sort_by_key(|c| (c.a, c.b));
+        local_contacts.dedup_by_key(|c| (c.a, c.b));
+        // Broken contacts: here if both floes are, kept aside for an owned
+        // floe whose partner is elsewhere, dropped once forgotten.
+        let remembered = |c: &BrokenContact| clock.time_s - c.broke_at_s <= model.memory_s;
+        let mut local_broken = Vec::new();
+        let mut parked = Vec::new();
+        for ([x, y], mut c) in broken {
+            if !remembered(&c) {
+                continue;
+            }
+            match (handle(x), handle(y)) {
+                (Some(a), Some(b)) => {
+                    (c.a, c.b) = (a as u32, b as u32);
+                    local_broken.push(c);
+                }
+                (Some(h), None) | (None, Some(h)) if owned[h] => parked.push(([x, y], c)),
+                _ => {}
+            }
+        }
+        local_broken.sort_by_key(|c| (c.a, c.b));
+        local_broken.dedup_by_key(|c| (c.a, c.b));
+        parked.sort_by_key(|(k, _)| *k);
+        parked.dedup_by_key(|(k, _)| *k);
+        // Who sends whom motion each step.
+        let mut send: Vec<(usize, Vec<usize>)> = Vec::new();
+        let mut receive: Vec<(usize, Vec<usize>)> = Vec::new();
+        let push = |lists: &mut Vec<(usize, Vec<usize>)>, rank: usize, h: usize| match lists
+            .iter_mut()
+            .find(|(r, _)| *r == rank)
+        {
+            Some((_, l)) => l.push(h),
+            None => lists.push((rank, vec![h])),
+        };
+        for (h, m) in migrants.iter().enumerate() {
+            if owned[h] {
+                for &r in m.holders.iter().filter(|&&r| r != me) {
+                    push(&mut send, r as usize, h);
+                }
+            } else {
+                push(&mut receive, m.owner as usize, h);
+            }
+        }
+        send.sort_by_key(|(r, _)| *r);
+        receive.sort_by_key(|(r, _)| *r);
+        let mut floes = Floes::new();
+        let (mut force, mut torque) = (Vec::new(), Vec::new());
+        let (mut external_force, mut external_torque) = (Vec::new(), Vec::new());
+        for m in migrants {
+            force.push(m.force);
+            torque.push(m.torque);
+            external_force.push(m.external_force);
+            external_torque.push(m.external_torque);
+            floes.insert(m.floe)?;
+        }
+        let here = |id: u64| handle(id).is_some();
+        let d = &self.drivers;
+        let state = WorldState {
+            contacts: local_contacts,
+            broken: local_broken,
+            time_s: clock.time_s,
+            steps: clock.steps,
+            dt_s: clock.dt_s,
+            energy: clock.energy,
+            force,
+            torque,
+            external_force,
+            external_torque,
+            schedules: d
+                .schedules
+                .iter()
+                .filter(|s| here(s.floe_id))
+                .cloned()
+                .collect(),
+            load_points: d
+                .load_points
+                .iter()
+                .filter(|l| here(l.floe_id))
+                .cloned()
+                .collect(),
+            stress_controls: d.stress_controls.clone(),
+            floes,
+        };
+        let f = state.floes.columns();
+        self.reference = (0..f.len()).map(|h| (f.position[h], f.angle[h])).collect();
+        let mut world = World::resume(state, model, forcing, periodicity)?;
+        world.set_ghosts(owned.iter().map(|&o| !o).collect())?;
+        self.stats.owned = owned.iter().filter(|&&o| o).count();
+        self.stats.ghosts = owned.len() - self.stats.owned;
+        self.stats.migrations += 1;
+        self.owned = owned;
+        self.send = send;
+        self.receive = receive;
+        self.stats.parked = parked.len();
+        self.parked = parked;
+        self.world = Some(world);
+        Ok(())
+    }
+
+    /// Hands every owned floe to the processes that hold it from now on,
+    /// rebalancing first if the work is out of balance, and rebuilds.
+    fn migrate(&mut self) -> Result<(), ParallelError> {
+        self.rebalance_if_needed()?;
+        let world = self.world.take().expect("present between calls");
+        let (state, model, forcing, periodicity) = world.into_parts();
+        let f = state.floes.columns();
+        let grid = self.outline_grid(f);
+        let k = self.comm.size();
+        let mut packets = vec![Packet::default(); k];
+        let mut holders_of: Vec<Vec<usize>> = vec![Vec::new(); f.len()];
+        for i in (0..f.len()).filter(|&i| self.owned[i]) {
+            let (owner, holders) = self.holders(f, i, &grid, periodicity);
+            for &r in &holders {
+                packets[r]
+                    .floes
+                    .push(migrant(&state, i, owner, holders.clone()));
+            }
+            holders_of[i] = holders;
+        }
+        let id = |h: u32| f.id[h as usize];
+        for c in &state.contacts {
+            for end in [c.a, c.b].into_iter().filter(|&e| self.owned[e as usize]) {
+                for &r in &holders_of[end as usize] {
+                    packets[r].contacts.push(([id(c.a), id(c.b)], *c));
+                }
+            }
+        }
+        for c in &state.broken {
+            for end in [c.a, c.b].into_iter().filter(|&e| self.owned[e as usize]) {
+                for &r in &holders_of[end as usize] {
+                    packets[r].broken.push(([id(c.a), id(c.b)], *c));
+                }
+            }
+        }
+        // A parked memory goes with its owned floe to the floe's new owner.
+        for (pair, c) in std::mem::take(&mut self.parked) {
+            let Some(h) = pair
+                .iter()
+                .find_map(|&x| f.handle_of(x).filter(|&h| self.owned[h]))
+            else {
+                continue;
+            };
+            let owner = self.decomposition.owner_of(f.position[h]);
+            packets[owner].broken.push((pair, c));
+        }
+        let outgoing = packets.iter().map(encode).collect();
+        let incoming = self
+            .comm
+            .all_to_all(outgoing)
+            .iter()
+            .map(|b| decode::<Packet>(b))
+            .collect::<Result<Vec<_>, _>>()?;
+        let clock = Clock::of(&state);
+        self.install(incoming, clock, model, forcing, periodicity)
+    }
+
+    /// Cuts the domain anew when the busiest process's work exceeds the
+    /// mean by more than the threshold.
+    fn rebalance_if_needed(&mut self) -> Result<(), ParallelError> {
+        let (me, k) = (self.comm.rank(), self.comm.size());
+        let world = self.local();
+        let f = world.floes().columns();
+        let mut counts = vec![0u64; f.len()];
+        for c in world.contacts() {
+            counts[c.a as usize] += 1;
+            counts[c.b as usize] += 1;
+        }
+        let mine: Vec<usize> = (0..f.len())
+            .filter(|&i| self.owned[i] && f.is_free(i))
+            .collect();
+        let mut work = vec![0i64; k];
+        work[me] = mine.iter().map(|&i| 1 + counts[i] as i64).sum();
+        self.comm.sum_i64(&mut work);
+        let mean = work.iter().sum::<i64>() as f64 / k as f64;
+        let busiest = work.iter().copied().max().unwrap_or(0) as f64;
+        if mean <= 0.0 || busiest / mean - 1.0 <= self.settings.rebalance_threshold {
+            return Ok(());
+        }
+        // Every process cuts the same points, gathered in id order.
+        let mut bytes = Vec::with_capacity(mine.len() * 32);
+        for &i in &mine {
+            bytes.extend_from_slice(&f.id[i].to_le_bytes());
+            put_f64s(
+                &mut bytes,
+                &[f.position[i].x, f.position[i].y, 1.0 + counts[i] as f64],
+            );
+        }
+        let all = self.comm.all_to_all(vec![bytes; k]);
+        let mut rows: Vec<(u64, [f64; 3])> = Vec::new();
+        for part in &all {
+            for row in part.chunks_exact(32) {
+                let id = u64::from_le_bytes(row[..8].try_into().expect("8 bytes"));
+                let mut rest = &row[8..];
+                let v = take_f64s::<3>(&mut rest).expect("24 bytes");
+                rows.push((id, v));
+            }
+        }
+        rows.sort_by_key(|r| r.0);
+        let points: Vec<Vec2> = rows.iter().map(|r| Vec2::new(r.1[0], r.1[1])).collect();
+        let weights: Vec<f64> = rows.iter().map(|r| r.1[2]).collect();
+        let domain = cut_domain(&points, self.periodicity);
+        let decomposition = Decomposition::rcb(&points, &weights, domain, k)?;
+        // Cuts that would leave a subdomain narrower than a floe are not
+        // taken: the old ones stay (balance is only speed).
+        if check_subdomains(
+            &decomposition,
+            domain,
+            self.periodicity,
+            self.largest_radius_m,
+        )
+        .is_ok()
+        {
+            (self.domain, self.decomposition) = (domain, decomposition);
+            self.stats.rebalances += 1;
+        }
+        Ok(())
+    }
+
+    /// Sends each ghost its owner's motion and forces.
+    fn exchange_ghosts(&mut self) {
+        let world = self.world.as_ref().expect("present between calls");
+        let mut outgoing = vec![Vec::new(); self.comm.size()];
+        for (r, list) in &self.send {
+            let out = &mut outgoing[*r];
+            out.reserve(list.len() * 72);
+            for &h in list {
+                let k = world.kinematics(h);
+                put_f64s(
+                    out,
+                    &[
+                        k.position.x,
+                        k.position.y,
+                        k.angle,
+                        k.velocity.x,
+                        k.velocity.y,
+                        k.angular_velocity,
+                        k.force.x,
+                        k.force.y,
+                        k.torque,
+                    ],
+                );
+            }
+        }
+        let incoming = self.comm.all_to_all(outgoing);
+        let world = self.world.as_mut().expect("present between calls");
+        for (r, list) in &self.receive {
+            let mut bytes = incoming[*r].as_slice();
+            for &h in list {
+                let v = take_f64s::<9>(&mut bytes).expect("the owner sends every ghost it listed");
+                let k = Kinematics {
+                    position: Vec2::new(v[0], v[1]),
+                    angle: v[2],
+                    velocity: Vec2::new(v[3], v[4]),
+                    angular_velocity: v[5],
+                    force: Vec2::new(v[6], v[7]),
+                    torque: v[8],
+                };
+                world
+                    .set_kinematics(h, &k)
+                    .expect("between steps, after the kick");
+            }
+        }
+    }
+
+    /// How far any owned floe's outline has moved since the last
+    /// migration, m (a free floe's centre: its reach is a circle).
+    fn largest_move_m(&self) -> f64 {
+        let world = self.local();
+        let f = world.floes().columns();
+        let periodicity = world.periodicity();
+        (0..f.len())
+            .filter(|&h| self.owned[h])
+            .map(|h| {
+                let (p0, a0) = self.reference[h];
+                let p = f.position[h];
+                let moved = (p + periodicity.nearest_image(p0, p) - p0).length();
+                if f.is_free(h) {
+                    moved
+                } else {
+                    moved + f.radius_m[h] * (f.angle[h] - a0).abs()
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// The whole world's state on process 0 (`None` elsewhere): every
+    /// process sends its owned floes and the contacts it counts.
+    pub fn gather_whole(&self) -> Result<Option<WorldState>, ParallelError> {
+        let world = self.local();
+        let state = world.state();
+        let f = state.floes.columns();
+        let me = self.comm.rank();
+        let id = |h: u32| f.id[h as usize];
+        let mut packet = Packet::default();
+        for h in (0..f.len()).filter(|&h| self.owned[h]) {
+            packet.floes.push(migrant(state, h, me, Vec::new()));
+        }
+        packet.contacts = state
+            .contacts
+            .iter()
+            .filter(|c| self.owned[c.a as usize])
+            .map(|c| ([id(c.a), id(c.b)], *c))
+            .collect();
+        packet.broken = state
+            .broken
+            .iter()
+            .filter(|c| self.owned[c.a as usize])
+            .map(|c| ([id(c.a), id(c.b)], *c))
+            .collect();
+        // A parked memory is counted by the owner of its lower id, if
+        // it is still remembered.
+        let memory_s = world.model().memory_s;
+        packet
+            .broken
+            .extend(self.parked.iter().filter(|([x, _], c)| {
+                f.handle_of(*x).is_some_and(|h| self.owned[h])
+                    && state.time_s - c.broke_at_s <= memory_s
+            }));
+        let parts = self.comm.gather_to_root(encode(&packet));
+        if me != 0 {
+            return Ok(None);
+        }
+        let mut whole = Packet::default();
+        for part in parts {
+            let p: Packet = decode(&part)?;
+            whole.floes.extend(p.floes);
+            whole.contacts.extend(p.contacts);
+            whole.broken.extend(p.broken);
+        }
+        whole.floes.sort_by_key(|m| m.floe.id);
+        whole.contacts.sort_by_key(|(k, _)| *k);
+        whole.broken.sort_by_key(|(k, _)| *k);
+        let ids: Vec<u64> = whole.floes.iter().map(|m| m.floe.id).collect();
+        let handle = |x: u64| ids.binary_search(&x).map(|h| h as u32);
+        let rehandle = |[x, y]: [u64; 2]| -> Result<(u32, u32), ParallelError> {
+            match (handle(x), handle(y)) {
+                (Ok(a), Ok(b)) => Ok((a, b)),
+                _ => Err(ParallelError::Wire(format!(
+                    "a contact names floes {x} and {y}, not both gathered"
+                ))),
+            }
+        };
+        let mut contacts = Vec::with_capacity(whole.contacts.len());
+        for (pair, mut c) in whole.contacts {
+            (c.a, c.b) = rehandle(pair)?;
+            contacts.push(c);
+        }
+        let mut broken = Vec::with_capacity(whole.broken.len());
+        for (pair, mut c) in whole.broken {
+            (c.a, c.b) = rehandle(pair)?;
+            broken.push(c);
+        }
+        let mut floes = Floes::new();
+        let (mut force, mut torque) = (Vec::new(), Vec::new());
+        let (mut external_force, mut external_torque) = (Vec::new(), Vec::new());
+        for m in whole.floes {
+            force.push(m.force);
+            torque.push(m.torque);
+            external_force.push(m.external_force);
+            external_torque.push(m.external_torque);
+            floes.insert(m.floe)?;
+        }
+        let d = &self.drivers;
+        Ok(Some(WorldState {
+            floes,
+            contacts,
+            broken,
+            time_s: state.time_s,
+            steps: state.steps,
+            dt_s: state.dt_s,
+            energy: state.energy,
+            force,
+            torque,
+            external_force,
+            external_torque,
+            schedules: d.schedules.clone(),
+            load_points: d.load_points.clone(),
+            stress_controls: d.stress_controls.clone(),
+        }))
+    }
+
+    /// The whole world on process 0, as a world without forcing (what the
+    /// writer and the observables read).
+    fn whole_world(&self) -> Result<Option<World<NoForcing>>, ParallelError> {
+        let world = self.local();
+        Ok(match self.gather_whole()? {
+            Some(state) => Some(World::resume(
+                state,
+                world.model().clone(),
+                NoForcing,
+                world.periodicity(),
+            )?),
+            None => None,
+        })
+    }
+
+    /// Why the forcing failed, as the single process says it (the whole's
+    /// first floe off the grid), on every process.
+    fn forcing_failure_message(&mut self) -> Result<String, ParallelError> {
+        let whole = self.gather_whole()?;
+        let mut message = String::new();
+        if let Some(state) = whole {
+            let t = state.time_s;
+            let world = self.local_mut();
+            message = match world.forcing_mut().prepare(t, state.floes.columns()) {
+                Err(failure) => failure.to_string(),
+                Ok(()) => world
+                    .forcing_failure()
+                    .map_or_else(|| "the forcing failed".into(), ToString::to_string),
+            };
+        }
+        let bytes = self.comm.broadcast_from_root(message.into_bytes());
+        Ok(String::from_utf8_lossy(&bytes).into_owned())
+    }
+
+    /// The blow-up as the single process finds it, on every process.
+    fn blow_up(&self) -> Result<Option<BlowUp>, ParallelError> {
+        let found = self.whole_world()?.and_then(|w| check_health(&w));
+        let bytes = self.comm.broadcast_from_root(encode(&found));
+        decode(&bytes)
+    }
+
+    /// One step of every process, the ghosts' exchange, and a migration
+    /// when a floe has moved half the skin.
+    pub fn try_step(&mut self, interrupt: &AtomicBool) -> Result<StepReport, ParallelError> {
+        let comm = &self.comm;
+        let world = self.world.as_mut().expect("present between calls");
+        world.drift();
+        world.detect_contacts();
+        world.gather_forces();
+        world.kick_with(|sums| {
+            let mut words = sums.to_words();
+            comm.sum_i64(&mut words);
+            *sums = StepSums::from_words(&words);
+        });
+        self.exchange_ghosts();
+        let world = self.local();
+        let flag = |b: bool| if b { 1.0 } else { 0.0 };
+        let mut v = [
+            self.largest_move_m(),
+            flag(interrupt.load(Ordering::SeqCst)),
+            flag(world.forcing_failure().is_some()),
+            flag(check_health(world).is_some()),
+        ];
+        self.comm.max_f64(&mut v);
+        let mut report = StepReport {
+            interrupted: v[1] > 0.0,
+            ..StepReport::default()
+        };
+        if v[2] > 0.0 {
+            report.forcing_failure = Some(self.forcing_failure_message()?);
+        } else if v[3] > 0.0 {
+            report.blow_up = self.blow_up()?;
+        } else if v[0] > 0.5 * self.skin_m {
+            self.migrate()?;
+        }
+        Ok(report)
+    }
+}
+
+/// The clock and ledger every process shares.
+#[derive(Debug, Clone, Copy)]
+struct Clock {
+    time_s: f64,
+    steps: u64,
+    dt_s: f64,
+    energy: floe_dem::energy_ledger::EnergyLedger,
+}
+
+impl Clock {
+    fn of(state: &WorldState) -> Self {
+        Clock {
+            time_s: state.time_s,
+            steps: state.steps,
+            dt_s: state.dt_s,
+            energy: state.energy,
+        }
+    }
+}
+
+/// Floe `i` of `state` with its forces, for `owner` and `holders`.
+fn migrant(state: &WorldState, i: usize, owner: usize, holders: Vec<usize>) -> Migrant {
+    Migrant {
+        floe: state.floes.get(i),
+        force: state.force[i],
+        torque: state.torque[i],
+        external_force: state.external_force[i],
+        external_torque: state.external_torque[i],
+        owner: owner as u32,
+        holders: holders.into_iter().map(|r| r as u32).collect(),
+    }
+}
+
+/// The rectangle the cuts are made in: the period on periodic axes, the
+/// points' extent (a metre wider) on open ones.
+fn cut_domain(points: &[Vec2], periodicity: Periodicity) -> Rect {
+    let (mut lo, mut hi) = (Vec2::splat(f64::INFINITY), Vec2::splat(f64::NEG_INFINITY));
+    for p in points {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    lo -= Vec2::splat(1.0);
+    hi += Vec2::splat(1.0);
+    if let Some(p) = periodicity.x {
+        (lo.x, hi.x) = (p.min_m, p.min_m + p.length_m);
+    }
+    if let Some(p) = periodicity.y {
+        (lo.y, hi.y) = (p.min_m, p.min_m + p.length_m);
+    }
+    Rect::new(lo, hi)
+}
+
+/// Box `k` of `d`, reaching to infinity where it meets an open side of
+/// the `domain` it was cut in (floes may drift out of it).
+fn open_box(d: &Decomposition, k: usize, domain: Rect, periodicity: Periodicity) -> Rect {
+    let b = d.boxes()[k];
+    let open = |v: f64, edge: f64, periodic: bool, inf: f64| {
+        if !periodic && v == edge {
+            inf
+        } else {
+            v
+        }
+    };
+    let (px, py) = (periodicity.x.is_some(), periodicity.y.is_some());
+    Rect::new(
+        Vec2::new(
+            open(b.min.x, domain.min.x, px, f64::NEG_INFINITY),
+            open(b.min.y, domain.min.y, py, f64::NEG_INFINITY),
+        ),
+        Vec2::new(
+            open(b.max.x, domain.max.x, px, f64::INFINITY),
+            open(b.max.y, domain.max.y, py, f64::INFINITY),
+        ),
+    )
+}
+
+/// Refuses a subdomain narrower than the largest floe (an open side
+/// reaches to infinity).
+fn check_subdomains(
+    d: &Decomposition,
+    domain: Rect,
+    periodicity: Periodicity,
+    largest_radius_m: f64,
+) -> Result<(), ParallelError> {
+    let diameter_m = 2.0 * largest_radius_m;
+    if d.boxes().len() == 1 {
+        return Ok(());
+    }
+    for rank in 0..d.boxes().len() {
+        let b = open_box(d, rank, domain, periodicity);
+        if b.width_m() < diameter_m || b.height_m() < diameter_m {
+            return Err(ParallelError::SubdomainTooSmall {
+                rank,
+                width_m: b.width_m(),
+                height_m: b.height_m(),
+                diameter_m,
+            });
+        }
+    }
+    Ok(())
+}
+
+impl<F: ExternalForces, C: Communicator> Stepper for DistributedWorld<F, C> {
+    type Whole = NoForcing;
+
+    fn step(&mut self, interrupt: &AtomicBool) -> StepReport {
+        self.try_step(interrupt)
+            .unwrap_or_else(|e| panic!("a distributed step failed: {e}"))
+    }
+
+    fn steps(&self) -> u64 {
+        self.local().steps()
+    }
+
+    fn time_s(&self) -> f64 {
+        self.local().time_s()
+    }
+
+    fn dt_s(&self) -> f64 {
+        self.local().dt_s()
+    }
+
+    fn with_whole<R>(&mut self, write: impl FnOnce(&World<NoForcing>) -> R) -> Option<R> {
+        self.whole_world()
+            .unwrap_or_else(|e| panic!("gathering the world failed: {e}"))
+            .map(|w| write(&w))
+    }
+}

@@ -1,0 +1,183 @@
+//! `mpirun -np K floe run`: the run file is bitwise the single process's
+//! for K = 1..4; a run paused on some processes resumes on others (or on
+//! one); SIGTERM to the processes (as Slurm sends at a time limit) ends
+//! them with one consistent checkpoint and exit 130; a process killed with
+//! SIGKILL stops the job and the last checkpoint resumes; too many
+//! processes is one clear error. Needs `mpirun` (`make deps`) and the
+//! `mpi` feature (`make test`).
+#![cfg(feature = "mpi")]
+
+use std::path::Path;
+use std::process::Command;
+use std::time::Duration;
+
+use floe_io::RunFile;
+
+#[path = "run_support/mod.rs"]
+mod run_support;
+use run_support::{assert_no_panic, assert_same_run, code, text, wait_for_progress, Case, Launch};
+
+/// A sheared periodic channel with walls and contact memory, 800 steps.
+const CHANNEL: &str = include_str!("data/mpi_channel.toml");
+
+/// The channel of tests/cli_run.rs run long enough to be interrupted.
+const LONG: &str = include_str!("data/run_long.toml");
+
+#[test]
+fn one_to_four_processes_write_the_single_process_run_file_bitwise() {
+    let case = Case::new(CHANNEL);
+    case.run_ok("alone.h5", &["--threads", "1"]);
+    for (np, threads) in [(1, "2"), (2, "1"), (3, "1"), (4, "1"), (2, "2")] {
+        let name = format!("np{np}x{threads}.h5");
+        let out = case.run_with(Launch::Mpi(np), &name, &["--threads", threads]);
+        let err = text(&out.stderr);
+        assert_eq!(code(&out), 0, "-np {np}: {err}");
+        assert_no_panic(&err);
+        if np > 1 {
+            assert!(
+                err.contains(&format!("{np} processes x {threads} threads")),
+                "{err}"
+            );
+            // Process 0 alone talks: the set-up is said once.
+            assert_eq!(err.matches("dt: ").count(), 1, "{err}");
+            // Floes crossed between subdomains more than once.
+            let migrations: u64 = err
+                .split("decomposition: ")
+                .nth(1)
+                .and_then(|s| s.split(' ').next())
+                .and_then(|n| n.parse().ok())
+                .unwrap_or_else(|| panic!("the run reports its migrations: {err}"));
+            assert!(migrations > 2, "{err}");
+        }
+        assert_same_run(
+            Path::new(&case.path("alone.h5")),
+            Path::new(&case.path(&name)),
+        );
+    }
+}
+
+#[test]
+fn a_run_paused_on_two_processes_resumes_on_three_and_on_one_bitwise() {
+    let case = Case::new(CHANNEL);
+    case.run_ok("alone.h5", &[]);
+    let out = case.run_with(Launch::Mpi(2), "parts.h5", &["--max-steps", "137"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("paused"),
+        "{}",
+        text(&out.stdout)
+    );
+    let out = case.resume_with(Launch::Mpi(3), "parts.h5", &["--max-steps", "300"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &[]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("alone.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+}
+
+/// The processes `mpirun` started (its children).
+fn ranks_of(mpirun: u32) -> Vec<u32> {
+    let out = Command::new("pgrep")
+        .args(["-P", &mpirun.to_string()])
+        .output()
+        .unwrap();
+    text(&out.stdout)
+        .split_whitespace()
+        .map(|p| p.parse().unwrap())
+        .collect()
+}
+
+fn signal(signal: &str, pids: &[u32]) {
+    let mut kill = Command::new("kill");
+    kill.arg(format!("-{signal}"));
+    for p in pids {
+        kill.arg(p.to_string());
+    }
+    assert!(kill.status().unwrap().success());
+}
+
+#[test]
+fn sigterm_to_every_process_writes_one_checkpoint_exits_130_and_resumes_bitwise() {
+    let case = Case::new(LONG);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn_with(Launch::Mpi(2), "parts.h5", &["--threads", "1"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    // As Slurm does at a time limit: every process of the job step.
+    signal("TERM", &ranks_of(child.id()));
+    let out = child.wait_with_output().unwrap();
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert_no_panic(&err);
+    assert_eq!(
+        err.matches("continue with `floe run --resume").count(),
+        1,
+        "{err}"
+    );
+    let file = RunFile::open(Path::new(&target)).unwrap();
+    let status = file.status().unwrap();
+    let step: u64 = status
+        .strip_prefix("interrupted at step ")
+        .unwrap_or_else(|| panic!("status {status}"))
+        .parse()
+        .unwrap();
+    assert_eq!(file.checkpoint().unwrap().unwrap().step, step);
+    drop(file);
+    let out = case.resume_with(Launch::Mpi(2), "parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
+fn a_process_killed_with_sigkill_stops_the_job_and_the_last_checkpoint_resumes() {
+    let case = Case::new(LONG);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn_with(Launch::Mpi(3), "parts.h5", &["--threads", "1"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    std::thread::sleep(Duration::from_millis(150));
+    let ranks = ranks_of(child.id());
+    assert_eq!(ranks.len(), 3, "three processes");
+    signal("KILL", &ranks[1..2]);
+    let out = child.wait_with_output().unwrap();
+    let err = text(&out.stderr);
+    assert_ne!(out.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("signal 9"),
+        "mpirun says which process died: {err}"
+    );
+    let out = case.resume_with(Launch::Mpi(2), "parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
+fn more_processes_than_floes_or_subdomains_narrower_than_a_floe_are_one_clear_error() {
+    let few = CHANNEL.replace("side_m = 500.0", "side_m = 2000.0");
+    let case = Case::new(&few);
+    let alone = case.run("probe.h5", &["--max-steps", "1"]);
+    let said = text(&alone.stderr);
+    assert_eq!(code(&alone), 0, "{said}");
+    // "  N free floes, M prescribed ..."
+    let floes: usize = said
+        .lines()
+        .find_map(|l| l.trim().split_once(" free floes"))
+        .and_then(|(n, _)| n.trim().parse().ok())
+        .unwrap_or_else(|| panic!("the set-up counts the free floes: {said}"));
+    assert!(floes < 8, "a few floes: {floes}");
+    let out = case.run_with(Launch::Mpi(floes + 1), "many.h5", &[]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 2, "{err}");
+    assert_no_panic(&err);
+    assert_eq!(err.matches("error:").count(), 1, "one message: {err}");
+    assert!(err.contains("each process needs a floe"), "{err}");
+    let out = case.run_with(Launch::Mpi(4), "narrow.h5", &[]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 2, "{err}");
+    assert!(
+        err.contains("narrower than the largest floe") && err.contains("fewer processes"),
+        "{err}"
+    );
+}
