@@ -15,7 +15,9 @@ use floe_io::RunFile;
 
 #[path = "run_support/mod.rs"]
 mod run_support;
-use run_support::{assert_no_panic, assert_same_run, code, text, wait_for_progress, Case, Launch};
+use run_support::{
+    assert_no_panic, assert_same_run, code, mpirun_args, text, wait_for_progress, Case, Launch,
+};
 
 /// A sheared periodic channel with walls and contact memory, 800 steps.
 const CHANNEL: &str = include_str!("data/mpi_channel.toml");
@@ -179,5 +181,65 @@ fn more_processes_than_floes_or_subdomains_narrower_than_a_floe_are_one_clear_er
     assert!(
         err.contains("narrower than the largest floe") && err.contains("fewer processes"),
         "{err}"
+    );
+}
+
+/// `floe sweep --emit`'s mpi.slurm, run as Slurm would run task 2 of the
+/// array, with `srun` standing for `mpirun -np 2`: the variant's run file
+/// is the single process's.
+#[test]
+fn the_emitted_mpi_job_script_runs_a_variant_over_processes() {
+    let case = Case::new(CHANNEL);
+    let out = std::path::PathBuf::from(case.path("sweep"));
+    let sweep = Launch::Alone
+        .command()
+        .args([
+            "sweep",
+            &case.scenario(),
+            "--set",
+            "contact.memory_s=50,100",
+        ])
+        .args(["--emit", "-o", &out.display().to_string()])
+        .output()
+        .unwrap();
+    assert_eq!(code(&sweep), 0, "{}", text(&sweep.stderr));
+    let script = out.join("mpi.slurm");
+    assert!(std::fs::read_to_string(&script)
+        .unwrap()
+        .contains("#SBATCH --array=1-2"));
+    // `floe` and `srun` on the PATH, as on a cluster.
+    let bin = out.join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    let shim = |name: &str, body: String| {
+        let path = bin.join(name);
+        std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).unwrap();
+        Command::new("chmod").arg("+x").arg(&path).status().unwrap();
+    };
+    shim(
+        "floe",
+        format!("exec '{}' \"$@\"", env!("CARGO_BIN_EXE_floe")),
+    );
+    shim(
+        "srun",
+        format!("exec mpirun {} \"$@\"", mpirun_args(2).join(" ")),
+    );
+    let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap());
+    let job = Command::new("bash")
+        .arg(&script)
+        .env("PATH", path)
+        .env("SLURM_SUBMIT_DIR", &out)
+        .env("SLURM_ARRAY_TASK_ID", "2")
+        .env("SLURM_CPUS_PER_TASK", "1")
+        .output()
+        .unwrap();
+    let err = text(&job.stderr);
+    assert_eq!(code(&job), 0, "{err}");
+    assert!(err.contains("2 processes x 1 threads"), "{err}");
+    let alone = case.run_with(Launch::Alone, "alone.h5", &["--threads", "1"]);
+    assert_eq!(code(&alone), 0);
+    // Variant 2 is memory_s = 100, the scenario's own value.
+    assert_same_run(
+        Path::new(&case.path("alone.h5")),
+        &out.join("variant_002.h5"),
     );
 }

@@ -25,17 +25,22 @@ impl Launch {
             Launch::Alone => Command::new(env!("CARGO_BIN_EXE_floe")),
             Launch::Mpi(np) => {
                 let mut c = Command::new("mpirun");
-                c.args(["--oversubscribe", "-np", &np.to_string()]);
-                if is_root() {
-                    c.arg("--allow-run-as-root");
-                }
-                c.arg(env!("CARGO_BIN_EXE_floe"));
+                c.args(mpirun_args(np)).arg(env!("CARGO_BIN_EXE_floe"));
                 c
             }
         };
         c.env("RUST_BACKTRACE", "1");
         c
     }
+}
+
+/// `mpirun`'s arguments for `np` processes on this machine.
+pub fn mpirun_args(np: usize) -> Vec<String> {
+    let mut args = vec!["--oversubscribe".to_string(), "-np".into(), np.to_string()];
+    if is_root() {
+        args.push("--allow-run-as-root".into());
+    }
+    args
 }
 
 fn is_root() -> bool {

@@ -133,7 +133,9 @@ pub enum Command {
         /// Sweep directory.
         #[arg(long, short)]
         output: PathBuf,
-        /// Only write one scenario file per variant and the manifest (for HPC job arrays).
+        /// Only write one scenario file per variant, the manifest and two
+        /// Slurm job-array scripts (array.slurm: a node per variant;
+        /// mpi.slurm: an MPI run over several nodes per variant).
         #[arg(long)]
         emit: bool,
         /// Tabulate the outputs already in the sweep directory.
@@ -660,7 +662,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             };
             let path = sweep::sweep(&args, &TerminalHooks { progress: false })?;
             Ok(if emit {
-                format!("variants written; manifest: {} (run each variant_NNN.toml with `floe run`, then `floe sweep --gather`)", path.display())
+                format!("variants written; manifest: {} (run each variant_NNN.toml with `floe run`: sbatch array.slurm, or mpi.slurm for one MPI run per variant; then `floe sweep --gather`)", path.display())
             } else {
                 format!("results: {}", path.display())
             })

@@ -18,6 +18,27 @@ pub trait Communicator {
     /// sender.
     fn all_to_all(&self, outgoing: Vec<Vec<u8>>) -> Vec<Vec<u8>>;
 
+    /// Sends each `(process, bytes)` of `sends` and receives from each
+    /// `(process, length)` of `receives` a message of that length: an
+    /// exchange among neighbours only (the halo's), whose sizes both sides
+    /// know. Returns the received messages in `receives`' order.
+    fn exchange(&self, sends: Vec<(usize, Vec<u8>)>, receives: &[(usize, usize)]) -> Vec<Vec<u8>> {
+        let mut outgoing = vec![Vec::new(); self.size()];
+        for (r, bytes) in sends {
+            outgoing[r] = bytes;
+        }
+        let mut incoming = self.all_to_all(outgoing);
+        receives
+            .iter()
+            .map(|&(r, _)| std::mem::take(&mut incoming[r]))
+            .collect()
+    }
+
+    /// Every process's `mine`, on every process, by rank.
+    fn all_gather(&self, mine: Vec<u8>) -> Vec<Vec<u8>> {
+        self.all_to_all(vec![mine; self.size()])
+    }
+
     /// Element-wise integer sum over the processes, in place.
     fn sum_i64(&self, values: &mut [i64]) {
         let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
@@ -87,6 +108,12 @@ impl<C: Communicator + ?Sized> Communicator for &C {
     }
     fn all_to_all(&self, outgoing: Vec<Vec<u8>>) -> Vec<Vec<u8>> {
         (**self).all_to_all(outgoing)
+    }
+    fn exchange(&self, sends: Vec<(usize, Vec<u8>)>, receives: &[(usize, usize)]) -> Vec<Vec<u8>> {
+        (**self).exchange(sends, receives)
+    }
+    fn all_gather(&self, mine: Vec<u8>) -> Vec<Vec<u8>> {
+        (**self).all_gather(mine)
     }
     fn sum_i64(&self, values: &mut [i64]) {
         (**self).sum_i64(values)

@@ -77,13 +77,19 @@ pub struct DecompositionStats {
     pub migrations: u64,
     /// Migrations that also cut the domain anew.
     pub rebalances: u64,
-    /// Floes this process owns now.
+    /// Free floes this process owns now.
     pub owned: usize,
-    /// Ghosts it holds now.
+    /// Free floes it holds as ghosts now.
     pub ghosts: usize,
+    /// Prescribed floes (walls, land), which every process holds.
+    pub prescribed: usize,
     /// Broken contacts of its floes it keeps aside (the other floe is
     /// not here) now.
     pub parked: usize,
+    /// Processes it exchanges ghosts with each step now.
+    pub neighbours: usize,
+    /// Bytes of ghost motion it sends each step now.
+    pub halo_bytes: usize,
 }
 
 /// A world spread over the processes of `C`.
@@ -108,6 +114,8 @@ pub struct DistributedWorld<F: ExternalForces, C: Communicator> {
     send: Vec<(usize, Vec<usize>)>,
     /// Per process, the ghosts (handles) whose motion it sends.
     receive: Vec<(usize, Vec<usize>)>,
+    /// The stress-controlled walls (handles, by id).
+    controlled: Vec<usize>,
     /// Each local floe's position and angle at the last migration.
     reference: Vec<(Vec2, f64)>,
     /// Broken contacts of owned floes whose other floe is not here.
@@ -163,6 +171,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             owned: Vec::new(),
             send: Vec::new(),
             receive: Vec::new(),
+            controlled: Vec::new(),
             reference: Vec::new(),
             parked: Vec::new(),
             drivers,
@@ -325,7 +334,24 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             Some((_, l)) => l.push(h),
             None => lists.push((rank, vec![h])),
         };
+        // A prescribed floe is on every process and moves the same on each
+        // (its schedule, or its stress control, which reads the forces
+        // `share_wall_forces` hands round): only free floes' motion travels.
+        let controlled: Vec<usize> = migrants
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| {
+                self.drivers
+                    .stress_controls
+                    .iter()
+                    .any(|c| c.floe_ids.contains(&m.floe.id))
+            })
+            .map(|(h, _)| h)
+            .collect();
         for (h, m) in migrants.iter().enumerate() {
+            if !matches!(m.floe.motion, floe_dem::floes::Motion::Free) {
+                continue;
+            }
             if owned[h] {
                 for &r in m.holders.iter().filter(|&&r| r != me) {
                     push(&mut send, r as usize, h);
@@ -378,13 +404,22 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         self.reference = (0..f.len()).map(|h| (f.position[h], f.angle[h])).collect();
         let mut world = World::resume(state, model, forcing, periodicity)?;
         world.set_ghosts(owned.iter().map(|&o| !o).collect())?;
-        self.stats.owned = owned.iter().filter(|&&o| o).count();
-        self.stats.ghosts = owned.len() - self.stats.owned;
+        let f = world.floes();
+        let free = |h: &usize| f.is_free(*h);
+        self.stats.owned = (0..owned.len()).filter(free).filter(|&h| owned[h]).count();
+        self.stats.ghosts = (0..owned.len()).filter(free).filter(|&h| !owned[h]).count();
+        self.stats.prescribed = owned.len() - self.stats.owned - self.stats.ghosts;
         self.stats.migrations += 1;
         self.owned = owned;
+        self.stats.parked = parked.len();
+        let mut neighbours: Vec<usize> = send.iter().chain(&receive).map(|(r, _)| *r).collect();
+        neighbours.sort_unstable();
+        neighbours.dedup();
+        self.stats.neighbours = neighbours.len();
+        self.stats.halo_bytes = send.iter().map(|(_, l)| l.len() * KINEMATICS_BYTES).sum();
         self.send = send;
         self.receive = receive;
-        self.stats.parked = parked.len();
+        self.controlled = controlled;
         self.parked = parked;
         self.world = Some(world);
         Ok(())
@@ -512,32 +547,40 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
     /// Sends each ghost its owner's motion and forces.
     fn exchange_ghosts(&mut self) {
         let world = self.world.as_ref().expect("present between calls");
-        let mut outgoing = vec![Vec::new(); self.comm.size()];
-        for (r, list) in &self.send {
-            let out = &mut outgoing[*r];
-            out.reserve(list.len() * 72);
-            for &h in list {
-                let k = world.kinematics(h);
-                put_f64s(
-                    out,
-                    &[
-                        k.position.x,
-                        k.position.y,
-                        k.angle,
-                        k.velocity.x,
-                        k.velocity.y,
-                        k.angular_velocity,
-                        k.force.x,
-                        k.force.y,
-                        k.torque,
-                    ],
-                );
-            }
-        }
-        let incoming = self.comm.all_to_all(outgoing);
+        let sends = self
+            .send
+            .iter()
+            .map(|(r, list)| {
+                let mut out = Vec::with_capacity(list.len() * KINEMATICS_BYTES);
+                for &h in list {
+                    let k = world.kinematics(h);
+                    put_f64s(
+                        &mut out,
+                        &[
+                            k.position.x,
+                            k.position.y,
+                            k.angle,
+                            k.velocity.x,
+                            k.velocity.y,
+                            k.angular_velocity,
+                            k.force.x,
+                            k.force.y,
+                            k.torque,
+                        ],
+                    );
+                }
+                (*r, out)
+            })
+            .collect();
+        let receives: Vec<(usize, usize)> = self
+            .receive
+            .iter()
+            .map(|(r, list)| (*r, list.len() * KINEMATICS_BYTES))
+            .collect();
+        let incoming = self.comm.exchange(sends, &receives);
         let world = self.world.as_mut().expect("present between calls");
-        for (r, list) in &self.receive {
-            let mut bytes = incoming[*r].as_slice();
+        for ((_, list), bytes) in self.receive.iter().zip(&incoming) {
+            let mut bytes = bytes.as_slice();
             for &h in list {
                 let v = take_f64s::<9>(&mut bytes).expect("the owner sends every ghost it listed");
                 let k = Kinematics {
@@ -553,6 +596,43 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
                     .expect("between steps, after the kick");
             }
         }
+    }
+
+    /// Hands the force on each stress-controlled wall from its owner to
+    /// every process: the next drift moves the walls by their sum.
+    fn share_wall_forces(&mut self) -> Result<(), ParallelError> {
+        if self.controlled.is_empty() {
+            return Ok(());
+        }
+        let world = self.local();
+        let ids = &world.floes().id;
+        let mut mine = Vec::new();
+        for &h in self.controlled.iter().filter(|&&h| self.owned[h]) {
+            let k = world.kinematics(h);
+            mine.extend_from_slice(&ids[h].to_le_bytes());
+            put_f64s(&mut mine, &[k.force.x, k.force.y, k.torque]);
+        }
+        let all = self.comm.all_gather(mine);
+        let world = self.world.as_mut().expect("present between calls");
+        for part in &all {
+            for row in part.chunks_exact(32) {
+                let id = u64::from_le_bytes(row[..8].try_into().expect("8 bytes"));
+                let mut rest = &row[8..];
+                let v = take_f64s::<3>(&mut rest).expect("24 bytes");
+                let h = world.floes().handle_of(id).ok_or_else(|| {
+                    ParallelError::Wire(format!("wall {id} is not on every process"))
+                })?;
+                if !self.owned[h] {
+                    let k = Kinematics {
+                        force: Vec2::new(v[0], v[1]),
+                        torque: v[2],
+                        ..world.kinematics(h)
+                    };
+                    world.set_kinematics(h, &k)?;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// How far any owned floe's outline has moved since the last
@@ -727,6 +807,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             *sums = StepSums::from_words(&words);
         });
         self.exchange_ghosts();
+        self.share_wall_forces()?;
         let world = self.local();
         let flag = |b: bool| if b { 1.0 } else { 0.0 };
         let mut v = [
@@ -750,6 +831,9 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         Ok(report)
     }
 }
+
+/// Bytes of a ghost's motion and forces ([`Kinematics`]: nine `f64`).
+const KINEMATICS_BYTES: usize = 72;
 
 /// The clock and ledger every process shares.
 #[derive(Debug, Clone, Copy)]

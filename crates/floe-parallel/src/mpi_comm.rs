@@ -1,6 +1,7 @@
 //! The collectives over MPI (rsmpi, binding the system's MPI library):
-//! `MPI_Alltoall(v)` for the exchanges, `MPI_Allreduce` for the sums and
-//! maxima.
+//! `MPI_Alltoall(v)` for migration and gathering, non-blocking sends and
+//! receives between neighbours for the halo of every step, `MPI_Allreduce`
+//! for the sums and maxima.
 
 use std::cell::Cell;
 
@@ -8,7 +9,7 @@ use mpi::collective::SystemOperation;
 use mpi::datatype::{Partition, PartitionMut};
 use mpi::environment::Universe;
 use mpi::topology::SimpleCommunicator;
-use mpi::traits::{Communicator as _, CommunicatorCollectives};
+use mpi::traits::{Communicator as _, CommunicatorCollectives, Destination, Source};
 use mpi::Threading;
 
 use crate::comm::{Communicator, Traffic};
@@ -123,6 +124,56 @@ impl Communicator for MpiComm {
         recv_displs
             .iter()
             .zip(&recv_counts)
+            .map(|(&d, &c)| recv[d as usize..(d + c) as usize].to_vec())
+            .collect()
+    }
+
+    fn exchange(&self, sends: Vec<(usize, Vec<u8>)>, receives: &[(usize, usize)]) -> Vec<Vec<u8>> {
+        let mut incoming: Vec<Vec<u8>> = receives.iter().map(|&(_, n)| vec![0u8; n]).collect();
+        let bytes: usize = sends.iter().map(|(_, b)| b.len()).sum();
+        self.count(bytes, sends.len());
+        mpi::request::multiple_scope(sends.len() + receives.len(), |scope, requests| {
+            for ((r, _), buf) in receives.iter().zip(incoming.iter_mut()) {
+                let from = self.comm.process_at_rank(*r as i32);
+                requests.add(from.immediate_receive_into(scope, &mut buf[..]));
+            }
+            for (r, buf) in &sends {
+                let to = self.comm.process_at_rank(*r as i32);
+                requests.add(to.immediate_send(scope, &buf[..]));
+            }
+            let mut done = Vec::with_capacity(sends.len() + receives.len());
+            requests.wait_all(&mut done);
+        });
+        incoming
+    }
+
+    fn all_gather(&self, mine: Vec<u8>) -> Vec<Vec<u8>> {
+        let k = self.size();
+        let mut counts = vec![0i32; k];
+        self.comm
+            .all_gather_into(&count(mine.len()), &mut counts[..]);
+        let displs: Vec<i32> = counts
+            .iter()
+            .scan(0i32, |at, &c| {
+                let here = *at;
+                *at += c;
+                Some(here)
+            })
+            .collect();
+        self.count(mine.len() + 4, 2);
+        let total: usize = counts.iter().map(|&c| c as usize).sum();
+        // Distinct from the send buffer even when both are empty.
+        let mut send = mine;
+        let n = send.len();
+        send.push(0);
+        let mut recv = vec![0u8; total + 1];
+        {
+            let mut r = PartitionMut::new(&mut recv[..], &counts[..], &displs[..]);
+            self.comm.all_gather_varcount_into(&send[..n], &mut r);
+        }
+        displs
+            .iter()
+            .zip(&counts)
             .map(|(&d, &c)| recv[d as usize..(d + c) as usize].to_vec())
             .collect()
     }

@@ -49,12 +49,20 @@ pub fn run_parallel<C: Communicator + Sync>(
     let root = comm.rank() == 0;
     let quiet = Quiet(hooks);
     let hooks: &dyn RunHooks = if root { hooks } else { &quiet };
-    let result = run_inner(args, hooks, comm, settings);
-    match result {
-        Err(e) if !root => Err(Error::ReportedByRoot {
-            code: e.exit_code(),
-        }),
-        other => other,
+    match run_inner(args, hooks, comm, settings) {
+        Ok(summary) => Ok(summary),
+        Err(e) => {
+            // Every process is here (the failure was agreed, or the run
+            // ended so on all): process 0 says why before any exits, for
+            // mpirun ends the job, and its output, at the first non-zero
+            // exit.
+            let code = e.exit_code();
+            if root {
+                hooks.say(&format!("error: {e}"));
+            }
+            comm.max_f64(&mut [0.0]);
+            Err(Error::ReportedByRoot { code })
+        }
     }
 }
 

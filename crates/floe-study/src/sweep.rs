@@ -106,8 +106,13 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     }
     write_manifest(&manifest, &args.settings, &rows)?;
     if args.emit_only {
-        let script = args.out_dir.join("array.slurm");
-        std::fs::write(&script, slurm_array(rows.len())).map_err(|e| Error::io(&script, e))?;
+        for (name, text) in [
+            ("array.slurm", slurm_array(rows.len())),
+            ("mpi.slurm", slurm_mpi(rows.len())),
+        ] {
+            let script = args.out_dir.join(name);
+            std::fs::write(&script, text).map_err(|e| Error::io(&script, e))?;
+        }
         return Ok(manifest);
     }
     let jobs: Vec<(PathBuf, PathBuf)> = rows
@@ -160,6 +165,31 @@ if [ -f "$v.h5" ]; then
     exec floe run --resume "$v.h5" --threads "$SLURM_CPUS_PER_TASK" --quiet
 fi
 exec floe run "$v.toml" -o "$v.h5" --threads "$SLURM_CPUS_PER_TASK" --quiet
+"#
+    )
+}
+
+/// A Slurm job-array script that runs (or resumes) each variant as one
+/// run spread over several nodes by MPI (`srun floe run`); see docs/hpc.md.
+fn slurm_mpi(variants: usize) -> String {
+    format!(
+        r#"#!/bin/bash
+# Written by `floe sweep --emit`: each variant as one MPI run over several
+# nodes (docs/hpc.md). Adjust the resources: processes x threads = cores.
+#SBATCH --job-name=floe-sweep-mpi
+#SBATCH --array=1-{variants}
+#SBATCH --nodes=2
+#SBATCH --ntasks-per-node=16
+#SBATCH --cpus-per-task=4
+#SBATCH --time=24:00:00
+#SBATCH --signal=TERM@120
+set -euo pipefail
+cd "$SLURM_SUBMIT_DIR"
+v=$(printf 'variant_%03d' "$SLURM_ARRAY_TASK_ID")
+if [ -f "$v.h5" ]; then
+    exec srun floe run --resume "$v.h5" --threads "$SLURM_CPUS_PER_TASK" --quiet
+fi
+exec srun floe run "$v.toml" -o "$v.h5" --threads "$SLURM_CPUS_PER_TASK" --quiet
 "#
     )
 }
