@@ -242,6 +242,21 @@ fn bad_flags_and_missing_files_get_one_message() {
 }
 
 #[test]
+fn bad_decomposition_flags_get_one_message_naming_the_flag() {
+    for (flag, value) in [
+        ("--halo-skin", "0"),
+        ("--halo-skin", "nan"),
+        ("--rebalance-threshold", "-0.1"),
+        ("--rebalance-threshold", "inf"),
+        ("--rebalance-threshold", "x"),
+    ] {
+        let (code, err) = floe(&["run", "s.toml", "-o", "o.h5", &format!("{flag}={value}")]);
+        assert_one_clear_error(code, &err, 2);
+        assert!(err.contains(flag) && err.contains("fraction > 0"), "{err}");
+    }
+}
+
+#[test]
 fn rheology_flags_and_scenarios_that_are_not_cells_get_one_message() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");

@@ -132,11 +132,12 @@ fn single(threads: usize) -> Vec<String> {
 struct Parallel {
     states: Vec<String>,
     migrations: u64,
+    rebalances: u64,
     owned_ids_changed: bool,
     most_parked: usize,
 }
 
-fn parallel(processes: usize, threads: usize) -> Parallel {
+fn parallel(processes: usize, threads: usize, rebalance_threshold: f64) -> Parallel {
     let never = AtomicBool::new(false);
     let results = ThreadComm::run(processes, |comm| {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -147,7 +148,7 @@ fn parallel(processes: usize, threads: usize) -> Parallel {
             let (state, model, forcing, periodicity) = sheared_layer(3).into_parts();
             let settings = Settings {
                 skin_fraction: 0.1,
-                ..Settings::default()
+                rebalance_threshold,
             };
             let mut d =
                 DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
@@ -173,6 +174,7 @@ fn parallel(processes: usize, threads: usize) -> Parallel {
             Parallel {
                 states: out,
                 migrations: d.stats().migrations,
+                rebalances: d.stats().rebalances,
                 owned_ids_changed: changed,
                 most_parked,
             }
@@ -217,8 +219,15 @@ fn the_layer_moves_across_the_seam_and_keeps_contact_memory() {
 fn one_to_four_processes_step_bitwise_as_one() {
     let reference = single(1);
     assert_eq!(reference, single(2), "threads do not change the bits");
-    for (processes, threads) in [(1, 1), (2, 1), (3, 2), (4, 1)] {
-        let p = parallel(processes, threads);
+    // The last one cuts the domain anew at every migration.
+    for (processes, threads, rebalance) in [
+        (1, 1, 0.2),
+        (2, 1, 0.2),
+        (3, 2, 0.2),
+        (4, 1, 0.2),
+        (3, 1, 1e-9),
+    ] {
+        let p = parallel(processes, threads, rebalance);
         assert_eq!(p.states.len(), reference.len());
         for (k, (a, b)) in p.states.iter().zip(&reference).enumerate() {
             assert!(
@@ -230,6 +239,13 @@ fn one_to_four_processes_step_bitwise_as_one() {
         if processes > 1 {
             assert!(p.migrations > 2, "floes migrated ({} times)", p.migrations);
             assert!(p.owned_ids_changed, "a floe changed owner");
+        }
+        if rebalance < 1e-3 {
+            assert!(
+                p.rebalances > 2,
+                "the domain was cut anew ({} times)",
+                p.rebalances
+            );
         }
     }
 }

@@ -28,7 +28,11 @@ pub const TEMPLATES: &[Template] = &[
             ("--max-steps", Some("200")),
             ("-q", None),
         ],
-        extra: &[("--step-limit", "1000000")],
+        extra: &[
+            ("--step-limit", "1000000"),
+            ("--halo-skin", "0.25"),
+            ("--rebalance-threshold", "0.2"),
+        ],
         required: &["-o"],
         repeatable: &[],
         exclusive: &[],

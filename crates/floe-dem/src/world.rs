@@ -22,8 +22,10 @@
 //! the world never creates threads. Every loop either writes one element per
 //! index (floes, candidate pairs) or sums in a fixed order: contact forces
 //! are gathered per floe through a contact list sorted by pair, never
-//! scattered with atomics, and energy sums run over fixed blocks. The result
-//! is bitwise identical for any number of threads.
+//! scattered with atomics, and the energy sums are exact
+//! ([`crate::exact_sum`]). The result is bitwise identical for any number
+//! of threads, and for any split of the floes between processes (a ghost,
+//! [`World::set_ghosts`], is another process's floe).
 //!
 //! # Example
 //! Two squares pushed into each other, stepped for a second:

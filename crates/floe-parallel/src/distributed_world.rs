@@ -22,7 +22,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use floe_dem::contact_model::ContactModel;
 use floe_dem::contacts::{BrokenContact, ContactRecord};
 use floe_dem::decomposition::Decomposition;
-use floe_dem::floes::{FloeColumns, Floes};
+use floe_dem::floes::{FloeColumns, Floes, Motion};
 use floe_dem::forcing::{ExternalForces, NoForcing};
 use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::ScheduledMotion;
@@ -71,7 +71,7 @@ struct Drivers {
 }
 
 /// Counts of what the decomposition did.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct DecompositionStats {
     /// Migrations (ghosts and owners redone), the first set-up included.
     pub migrations: u64,
@@ -90,6 +90,11 @@ pub struct DecompositionStats {
     pub neighbours: usize,
     /// Bytes of ghost motion it sends each step now.
     pub halo_bytes: usize,
+    /// Times the whole world was gathered for output.
+    pub gathers: u64,
+    /// Wall-clock time spent gathering the world and handing it to the
+    /// writer (on process 0: and writing it), s.
+    pub output_s: f64,
 }
 
 /// A world spread over the processes of `C`.
@@ -121,6 +126,9 @@ pub struct DistributedWorld<F: ExternalForces, C: Communicator> {
     /// Broken contacts of owned floes whose other floe is not here.
     parked: Vec<([u64; 2], BrokenContact)>,
     drivers: Drivers,
+    /// On process 0: the whole set of floes as it began, for what never
+    /// changes (shapes, masses) when the world is gathered.
+    whole_floes: Option<Floes>,
     stats: DecompositionStats,
 }
 
@@ -154,6 +162,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let domain = cut_domain(&points, periodicity);
         let decomposition = Decomposition::rcb(&points, &weights, domain, comm.size())?;
         check_subdomains(&decomposition, domain, periodicity, largest_radius_m)?;
+        let comm_rank_is_root = comm.rank() == 0;
         let drivers = Drivers {
             schedules: state.schedules.clone(),
             load_points: state.load_points.clone(),
@@ -175,6 +184,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             reference: Vec::new(),
             parked: Vec::new(),
             drivers,
+            whole_floes: (comm_rank_is_root).then(|| state.floes.clone()),
             stats: DecompositionStats::default(),
         };
         // Every process has the whole: each takes what it holds.
@@ -657,24 +667,27 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
     }
 
     /// The whole world's state on process 0 (`None` elsewhere): every
-    /// process sends its owned floes and the contacts it counts.
+    /// process sends its owned floes' motion and forces (a fixed row each;
+    /// process 0 keeps what never changes, the shapes and masses) and the
+    /// contacts it counts.
     pub fn gather_whole(&self) -> Result<Option<WorldState>, ParallelError> {
         let world = self.local();
         let state = world.state();
         let f = state.floes.columns();
-        let me = self.comm.rank();
         let id = |h: u32| f.id[h as usize];
-        let mut packet = Packet::default();
-        for h in (0..f.len()).filter(|&h| self.owned[h]) {
-            packet.floes.push(migrant(state, h, me, Vec::new()));
+        let mut part = WholePart::default();
+        let owned: Vec<usize> = (0..f.len()).filter(|&h| self.owned[h]).collect();
+        part.rows.reserve(owned.len() * ROW_BYTES);
+        for &h in &owned {
+            put_row(&mut part.rows, state, h);
         }
-        packet.contacts = state
+        part.contacts = state
             .contacts
             .iter()
             .filter(|c| self.owned[c.a as usize])
             .map(|c| ([id(c.a), id(c.b)], *c))
             .collect();
-        packet.broken = state
+        part.broken = state
             .broken
             .iter()
             .filter(|c| self.owned[c.a as usize])
@@ -683,59 +696,87 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         // A parked memory is counted by the owner of its lower id, if
         // it is still remembered.
         let memory_s = world.model().memory_s;
-        packet
-            .broken
-            .extend(self.parked.iter().filter(|([x, _], c)| {
-                f.handle_of(*x).is_some_and(|h| self.owned[h])
-                    && state.time_s - c.broke_at_s <= memory_s
-            }));
-        let parts = self.comm.gather_to_root(encode(&packet));
-        if me != 0 {
+        part.broken.extend(self.parked.iter().filter(|([x, _], c)| {
+            f.handle_of(*x).is_some_and(|h| self.owned[h])
+                && state.time_s - c.broke_at_s <= memory_s
+        }));
+        let parts = self.comm.gather_to_root(encode(&part));
+        let Some(template) = self.whole_floes.as_ref() else {
             return Ok(None);
+        };
+        let mut columns = template.columns().clone();
+        let n = columns.len();
+        let (mut force, mut torque) = (vec![Vec2::ZERO; n], vec![0.0; n]);
+        let (mut external_force, mut external_torque) = (vec![Vec2::ZERO; n], vec![0.0; n]);
+        let mut seen = vec![false; n];
+        let (mut contacts, mut broken) = (Vec::new(), Vec::new());
+        for bytes in parts {
+            let p: WholePart = decode(&bytes)?;
+            for row in p.rows.chunks_exact(ROW_BYTES) {
+                let floe_id = u64::from_le_bytes(row[..8].try_into().expect("8 bytes"));
+                let mut rest = &row[8..];
+                let v = take_f64s::<16>(&mut rest).expect("a whole row");
+                let h = match template.handle_of(floe_id) {
+                    Some(h) if !seen[h] => h,
+                    _ => {
+                        return Err(ParallelError::Wire(format!(
+                            "floe {floe_id} gathered twice, or not in the run"
+                        )))
+                    }
+                };
+                seen[h] = true;
+                columns.position[h] = Vec2::new(v[0], v[1]);
+                columns.angle[h] = v[2];
+                columns.velocity[h] = Vec2::new(v[3], v[4]);
+                columns.angular_velocity[h] = v[5];
+                columns.motion[h] = if v[6] == 0.0 {
+                    Motion::Free
+                } else {
+                    Motion::Prescribed {
+                        velocity: Vec2::new(v[7], v[8]),
+                    }
+                };
+                force[h] = Vec2::new(v[9], v[10]);
+                torque[h] = v[11];
+                external_force[h] = Vec2::new(v[12], v[13]);
+                external_torque[h] = v[14];
+            }
+            contacts.extend(p.contacts);
+            broken.extend(p.broken);
         }
-        let mut whole = Packet::default();
-        for part in parts {
-            let p: Packet = decode(&part)?;
-            whole.floes.extend(p.floes);
-            whole.contacts.extend(p.contacts);
-            whole.broken.extend(p.broken);
+        if let Some(h) = seen.iter().position(|s| !s) {
+            return Err(ParallelError::Wire(format!(
+                "floe {} was gathered from no process",
+                columns.id[h]
+            )));
         }
-        whole.floes.sort_by_key(|m| m.floe.id);
-        whole.contacts.sort_by_key(|(k, _)| *k);
-        whole.broken.sort_by_key(|(k, _)| *k);
-        let ids: Vec<u64> = whole.floes.iter().map(|m| m.floe.id).collect();
-        let handle = |x: u64| ids.binary_search(&x).map(|h| h as u32);
+        contacts.sort_unstable_by_key(|(k, _)| *k);
+        broken.sort_unstable_by_key(|(k, _)| *k);
         let rehandle = |[x, y]: [u64; 2]| -> Result<(u32, u32), ParallelError> {
-            match (handle(x), handle(y)) {
-                (Ok(a), Ok(b)) => Ok((a, b)),
+            match (template.handle_of(x), template.handle_of(y)) {
+                (Some(a), Some(b)) => Ok((a as u32, b as u32)),
                 _ => Err(ParallelError::Wire(format!(
-                    "a contact names floes {x} and {y}, not both gathered"
+                    "a contact names floes {x} and {y}, not both in the run"
                 ))),
             }
         };
-        let mut contacts = Vec::with_capacity(whole.contacts.len());
-        for (pair, mut c) in whole.contacts {
-            (c.a, c.b) = rehandle(pair)?;
-            contacts.push(c);
-        }
-        let mut broken = Vec::with_capacity(whole.broken.len());
-        for (pair, mut c) in whole.broken {
-            (c.a, c.b) = rehandle(pair)?;
-            broken.push(c);
-        }
-        let mut floes = Floes::new();
-        let (mut force, mut torque) = (Vec::new(), Vec::new());
-        let (mut external_force, mut external_torque) = (Vec::new(), Vec::new());
-        for m in whole.floes {
-            force.push(m.force);
-            torque.push(m.torque);
-            external_force.push(m.external_force);
-            external_torque.push(m.external_torque);
-            floes.insert(m.floe)?;
-        }
+        let contacts = contacts
+            .into_iter()
+            .map(|(pair, mut c)| {
+                (c.a, c.b) = rehandle(pair)?;
+                Ok(c)
+            })
+            .collect::<Result<Vec<_>, ParallelError>>()?;
+        let broken = broken
+            .into_iter()
+            .map(|(pair, mut c)| {
+                (c.a, c.b) = rehandle(pair)?;
+                Ok(c)
+            })
+            .collect::<Result<Vec<_>, ParallelError>>()?;
         let d = &self.drivers;
         Ok(Some(WorldState {
-            floes,
+            floes: Floes::from_columns(columns)?,
             contacts,
             broken,
             time_s: state.time_s,
@@ -834,6 +875,51 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
 
 /// Bytes of a ghost's motion and forces ([`Kinematics`]: nine `f64`).
 const KINEMATICS_BYTES: usize = 72;
+
+/// Bytes of a floe's row in the gathered whole: its id and sixteen `f64`.
+const ROW_BYTES: usize = 136;
+
+/// What a process sends process 0 for the whole world: its floes' rows
+/// ([`put_row`]) and the contacts it counts, named by floe ids.
+#[derive(Debug, Default, serde::Serialize, serde::Deserialize)]
+struct WholePart {
+    rows: Vec<u8>,
+    contacts: Vec<([u64; 2], ContactRecord)>,
+    broken: Vec<([u64; 2], BrokenContact)>,
+}
+
+/// Floe `h`'s row: id, position, angle, velocity, angular velocity,
+/// motion (0 free, 1 prescribed, and the prescribed velocity), force,
+/// torque, external force and torque.
+fn put_row(out: &mut Vec<u8>, state: &WorldState, h: usize) {
+    let f = state.floes.columns();
+    out.extend_from_slice(&f.id[h].to_le_bytes());
+    let (kind, v) = match f.motion[h] {
+        Motion::Free => (0.0, Vec2::ZERO),
+        Motion::Prescribed { velocity } => (1.0, velocity),
+    };
+    put_f64s(
+        out,
+        &[
+            f.position[h].x,
+            f.position[h].y,
+            f.angle[h],
+            f.velocity[h].x,
+            f.velocity[h].y,
+            f.angular_velocity[h],
+            kind,
+            v.x,
+            v.y,
+            state.force[h].x,
+            state.force[h].y,
+            state.torque[h],
+            state.external_force[h].x,
+            state.external_force[h].y,
+            state.external_torque[h],
+            0.0,
+        ],
+    );
+}
 
 /// The clock and ledger every process shares.
 #[derive(Debug, Clone, Copy)]
@@ -958,8 +1044,13 @@ impl<F: ExternalForces, C: Communicator> Stepper for DistributedWorld<F, C> {
     }
 
     fn with_whole<R>(&mut self, write: impl FnOnce(&World<NoForcing>) -> R) -> Option<R> {
-        self.whole_world()
+        let started = std::time::Instant::now();
+        let written = self
+            .whole_world()
             .unwrap_or_else(|e| panic!("gathering the world failed: {e}"))
-            .map(|w| write(&w))
+            .map(|w| write(&w));
+        self.stats.gathers += 1;
+        self.stats.output_s += started.elapsed().as_secs_f64();
+        written
     }
 }

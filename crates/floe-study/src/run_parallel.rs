@@ -149,11 +149,14 @@ fn run_inner<C: Communicator + Sync>(
         let (stats, traffic) = (world.stats(), comm.traffic());
         let steps = (world.local().steps() - first_step).max(1);
         hooks.say(&format!(
-            "decomposition: {} migrations, {} rebalances; process 0 sent {:.1} kB in {:.1} messages per step",
+            "decomposition: {} migrations, {} rebalances; process 0 sent {:.1} kB in {:.1} messages per step, \
+             spent {:.2} s gathering and writing {} outputs",
             stats.migrations,
             stats.rebalances,
             traffic.bytes as f64 / steps as f64 / 1e3,
-            traffic.messages as f64 / steps as f64
+            traffic.messages as f64 / steps as f64,
+            stats.output_s,
+            stats.gathers
         ));
         result.map_err(|e| match e {
             // The others wait in a collective for process 0: end the job.
