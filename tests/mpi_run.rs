@@ -133,6 +133,26 @@ fn sigterm_to_every_process_writes_one_checkpoint_exits_130_and_resumes_bitwise(
 }
 
 #[test]
+fn sigusr1_to_mpirun_writes_one_checkpoint_exits_130_and_resumes_bitwise() {
+    let case = Case::new(LONG);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn_with(Launch::Mpi(2), "parts.h5", &["--threads", "1"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    // mpirun passes SIGUSR1 on to every process at once.
+    signal("USR1", &[child.id()]);
+    let out = child.wait_with_output().unwrap();
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert_no_panic(&err);
+    let status = RunFile::open(Path::new(&target)).unwrap().status().unwrap();
+    assert!(status.starts_with("interrupted at step "), "{status}");
+    let out = case.resume_with(Launch::Mpi(3), "parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
 fn a_process_killed_with_sigkill_stops_the_job_and_the_last_checkpoint_resumes() {
     let case = Case::new(LONG);
     case.run_ok("whole.h5", &["--threads", "2"]);

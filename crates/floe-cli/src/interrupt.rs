@@ -1,7 +1,9 @@
 //! Ctrl-C and SIGTERM: the first asks the run to stop after the current step
 //! (with a final snapshot and checkpoint); a second one aborts at once.
 //! SIGTERM counts because batch schedulers (Slurm at a job's time limit)
-//! send it before killing a job.
+//! send it before killing a job. SIGUSR1 asks the same, and only that (a
+//! repeat does not abort): Open MPI's `mpirun` passes it to every process
+//! at once, where it holds SIGTERM back and then kills (docs/hpc.md).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -34,8 +36,26 @@ pub fn flag() -> &'static AtomicBool {
                 "warning: no interrupt handler ({e}); Ctrl-C will stop without a final snapshot"
             ));
         }
+        on_user_signal_1();
     });
     &INTERRUPTED
+}
+
+/// Makes SIGUSR1 raise the flag.
+#[allow(unsafe_code)]
+fn on_user_signal_1() {
+    extern "C" fn raise_flag(_: libc::c_int) {
+        // An atomic store: async-signal-safe.
+        INTERRUPTED.store(true, Ordering::SeqCst);
+    }
+    // SAFETY: installs a handler that only stores to an atomic; the
+    // function pointer lives for the program's life.
+    unsafe {
+        libc::signal(
+            libc::SIGUSR1,
+            raise_flag as extern "C" fn(libc::c_int) as libc::sighandler_t,
+        );
+    }
 }
 
 /// Ends the process at once, as kill -9 would: no exit handlers, so the
