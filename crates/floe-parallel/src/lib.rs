@@ -10,8 +10,12 @@
 //! | [`comm`] | the collectives a run needs ([`Communicator`]) |
 //! | [`thread_comm`] | those collectives between threads, for tests |
 //! | `mpi_comm` | those collectives over MPI (feature `mpi`) |
-//! | [`distributed_world`] | the stepping, the ghosts' exchange, migration, gathering |
-//! | `reach` | which processes hold a floe |
+//! | [`distributed_world`] | the distributed world and its step |
+//! | `distributed_world/placement.rs` | a floe's owner and the processes it reaches |
+//! | `distributed_world/migration.rs` | floes handed to their new holders, rebalancing |
+//! | `distributed_world/halo.rs` | every step's exchange of the ghosts' motion |
+//! | `distributed_world/gather.rs` | the whole world on process 0 |
+//! | `reach` | distances to subdomains and walls |
 //! | `wire` | what is sent |
 
 #![deny(missing_docs)]
