@@ -153,6 +153,57 @@ fn sigusr1_to_mpirun_writes_one_checkpoint_exits_130_and_resumes_bitwise() {
 }
 
 #[test]
+fn ctrl_c_to_mpirun_reaches_every_process_which_checkpoint_and_the_run_resumes() {
+    // Ten times longer than LONG: still running when the signal arrives.
+    let case = Case::new(&LONG.replace("duration_s = 5400.0", "duration_s = 54000.0"));
+    let target = case.path("parts.h5");
+    // Open MPI's mpirun passes SIGINT on as SIGTERM after this many seconds
+    // and kills as long after: time for the final checkpoint.
+    let mut child = Launch::Mpi(2)
+        .command()
+        .env("OMPI_MCA_odls_base_sigkill_timeout", "3")
+        .args([
+            "run",
+            &case.scenario(),
+            "-o",
+            &target,
+            "-q",
+            "--threads",
+            "1",
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_for_progress(&mut child, Path::new(&target));
+    signal("INT", &[child.id()]);
+    let out = child.wait_with_output().unwrap();
+    let err = text(&out.stderr);
+    // mpirun itself reports 1 for a job it was told to end; the processes
+    // stopped cleanly.
+    assert_ne!(out.status.code(), Some(0), "{err}");
+    assert_no_panic(&err);
+    assert_eq!(
+        err.matches("continue with `floe run --resume").count(),
+        1,
+        "{err}"
+    );
+    let file = RunFile::open(Path::new(&target)).unwrap();
+    let status = file.status().unwrap();
+    let step: u64 = status
+        .strip_prefix("interrupted at step ")
+        .unwrap_or_else(|| panic!("status {status}"))
+        .parse()
+        .unwrap();
+    assert_eq!(file.checkpoint().unwrap().unwrap().step, step);
+    drop(file);
+    let out = case.resume_with(Launch::Mpi(3), "parts.h5", &["--max-steps", "20"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let resumed = RunFile::open(Path::new(&target)).unwrap();
+    assert_eq!(resumed.checkpoint().unwrap().unwrap().step, step + 20);
+}
+
+#[test]
 fn a_process_killed_with_sigkill_stops_the_job_and_the_last_checkpoint_resumes() {
     let case = Case::new(LONG);
     case.run_ok("whole.h5", &["--threads", "2"]);
