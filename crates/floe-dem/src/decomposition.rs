@@ -18,7 +18,7 @@ use crate::tessellation::Rect;
 use crate::{DemError, Vec2};
 
 /// One cut of the bisection tree.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 enum Node {
     /// A leaf: the part's index.
     Part(usize),
@@ -32,7 +32,7 @@ enum Node {
 }
 
 /// Subdomains from recursive coordinate bisection.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Decomposition {
     nodes: Vec<Node>,
     boxes: Vec<Rect>,

@@ -2,7 +2,7 @@
 //! the start of a run, part of the world's state.
 
 /// Energy bookkeeping since the start of the run, J.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EnergyLedger {
     /// Work done on the floes by external forcing.
     pub forcing_work_j: f64,

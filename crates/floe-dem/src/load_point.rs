@@ -16,7 +16,7 @@ use crate::periodicity::Periodicity;
 use crate::Vec2;
 
 /// A spring from a moving point to a free floe's centroid.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LoadPoint {
     /// Global id of the floe it drives (a free one).
     pub floe_id: u64,

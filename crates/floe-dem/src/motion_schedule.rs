@@ -16,7 +16,7 @@ use crate::Vec2;
 /// One piece of a schedule: over `duration_s` the velocity and the angular
 /// velocity go linearly from their start to their end values (equal: a
 /// constant speed; zero: a hold).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MotionSegment {
     /// How long the segment lasts, s (> 0).
     pub duration_s: f64,
@@ -61,7 +61,7 @@ impl MotionSegment {
 
 /// A floe's piecewise-linear velocity from `t = 0`; after the last segment
 /// its end velocity continues.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MotionSchedule {
     segments: Vec<MotionSegment>,
     /// Start time of each segment, s (`starts[0] = 0`).
@@ -193,7 +193,7 @@ impl MotionSchedule {
 }
 
 /// A schedule and the floe that follows it.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ScheduledMotion {
     /// Global id of the floe (a prescribed one).
     pub floe_id: u64,

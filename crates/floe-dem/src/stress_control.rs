@@ -19,7 +19,7 @@ use crate::error::DemError;
 use crate::Vec2;
 
 /// A wall (its pieces) holding a normal stress.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StressControl {
     /// Global ids of the wall's pieces (prescribed floes), increasing.
     pub floe_ids: Vec<u64>,

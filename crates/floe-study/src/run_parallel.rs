@@ -1,7 +1,8 @@
 //! A scenario run spread over the processes of a communicator (`mpirun -np
-//! K floe run`): every process builds the whole world from the scenario (or
-//! takes process 0's checkpoint), keeps its subdomain
-//! ([`DistributedWorld`]), and process 0 writes the one run file, in the
+//! K floe run`): process 0 builds the whole world from the scenario (or
+//! reads the checkpoint) and hands each process its subdomain
+//! ([`DistributedWorld::from_root`]); every process reads the scenario for
+//! the model and the forcing; process 0 writes the one run file, in the
 //! layout a single process writes, from the world gathered at each output.
 //!
 //! Errors before the first step are agreed: if any process fails, every
@@ -12,8 +13,6 @@
 use std::path::PathBuf;
 
 use floe_dem::run;
-use floe_friction::FrictionLaw;
-use floe_io::checkpoint_blob::{self, OutputCounts};
 use floe_io::RunWriter;
 use floe_parallel::{Communicator, DistributedWorld, Settings};
 use floe_scenario::Scenario;
@@ -69,7 +68,8 @@ pub fn run_parallel<C: Communicator + Sync>(
 /// What every process has before the first step.
 struct Prepared {
     scenario: Scenario,
-    state: floe_dem::state::WorldState,
+    /// The whole world's state, on process 0.
+    state: Option<floe_dem::state::WorldState>,
     writer: Option<RunWriter>,
     fresh: bool,
 }
@@ -114,7 +114,7 @@ fn run_inner<C: Communicator + Sync>(
             Source::Fresh(f) => build_fresh(args, hooks, comm, f.0, f.1)?,
         };
         let parts = scenario.engine_parts();
-        let mut world = DistributedWorld::from_whole(
+        let mut world = DistributedWorld::from_root(
             state,
             parts.model,
             parts.forcing,
@@ -137,7 +137,7 @@ fn run_inner<C: Communicator + Sync>(
             )
             .map_err(|e| abort_with(comm, e.into()))?;
         }
-        let first_step = world.local().steps();
+        let (first_step, before) = (world.local().steps(), comm.traffic());
         let result = advance(
             &scenario,
             &mut world,
@@ -146,15 +146,15 @@ fn run_inner<C: Communicator + Sync>(
             (threads, comm.size()),
             hooks,
         );
-        let (stats, traffic) = (world.stats(), comm.traffic());
+        let (stats, after) = (world.stats(), comm.traffic());
         let steps = (world.local().steps() - first_step).max(1);
         hooks.say(&format!(
-            "decomposition: {} migrations, {} rebalances; process 0 sent {:.1} kB in {:.1} messages per step, \
-             spent {:.2} s gathering and writing {} outputs",
+            "decomposition: {} migrations, {} rebalances; process 0 sent {:.1} kB in {:.1} messages \
+             per step, spent {:.2} s gathering and writing {} outputs",
             stats.migrations,
             stats.rebalances,
-            traffic.bytes as f64 / steps as f64 / 1e3,
-            traffic.messages as f64 / steps as f64,
+            (after.bytes - before.bytes) as f64 / steps as f64 / 1e3,
+            (after.messages - before.messages) as f64 / steps as f64,
             stats.output_s,
             stats.gathers
         ));
@@ -241,7 +241,8 @@ fn load_fresh<C: Communicator>(args: &RunArgs, comm: &C) -> Result<(PathBuf, Sce
     agree(comm, loaded)
 }
 
-/// Every process builds the whole world; process 0 makes the file.
+/// Process 0 builds the whole world and makes the file (the others get
+/// their floes from it).
 fn build_fresh<C: Communicator>(
     args: &RunArgs,
     hooks: &dyn RunHooks,
@@ -249,23 +250,20 @@ fn build_fresh<C: Communicator>(
     path: PathBuf,
     scenario: Scenario,
 ) -> Result<Prepared, Error> {
-    let setup = agree(comm, scenario.build().map_err(Error::from))?;
-    for line in &setup.report {
-        hooks.say(line);
-    }
-    let writer = if comm.rank() == 0 {
-        Some(create_writer(
-            args,
-            &path,
-            &scenario,
-            &setup,
-            rayon::current_num_threads(),
-        ))
+    let setup = if comm.rank() == 0 {
+        Some(scenario.build().map_err(Error::from))
     } else {
         None
     };
+    let setup = agree(comm, setup.transpose())?;
+    let writer = setup.as_ref().map(|setup| {
+        for line in &setup.report {
+            hooks.say(line);
+        }
+        create_writer(args, &path, &scenario, setup, rayon::current_num_threads())
+    });
     let writer = agree(comm, writer.transpose())?;
-    let (state, _, _, _) = setup.world.into_parts();
+    let state = setup.map(|setup| setup.world.into_parts().0);
     Ok(Prepared {
         scenario,
         state,
@@ -274,55 +272,54 @@ fn build_fresh<C: Communicator>(
     })
 }
 
-/// A resumed run: process 0 reads the file and its last checkpoint and
-/// sends the scenario and the state to the others (only it opens the
-/// file); the run may resume on another number of processes.
+/// A resumed run: process 0 reads the file and its last checkpoint (only
+/// it opens the file) and sends the stored scenario to the others; the
+/// run may resume on another number of processes.
 fn prepare_resume<C: Communicator>(
     args: &RunArgs,
     hooks: &dyn RunHooks,
     comm: &C,
 ) -> Result<Prepared, Error> {
-    let root = comm.rank() == 0;
-    let opened = if root {
+    let opened = if comm.rank() == 0 {
         open_for_resume(args, hooks).map(Some)
     } else {
         Ok(None)
     };
     let opened = agree(comm, opened)?;
-    // Process 0 sends the stored scenario, where it was, and the state.
+    // The stored scenario and where it was (its input files are found from there).
     let payload = match &opened {
-        Some((scenario_toml, scenario_path, state, _, slots)) => {
-            let blob = checkpoint_blob::encode(state, &OutputCounts::default(), *slots);
-            let mut bytes = Vec::new();
-            for part in [scenario_toml.as_bytes(), scenario_path.as_bytes(), &blob] {
-                bytes.extend_from_slice(&(part.len() as u64).to_le_bytes());
-                bytes.extend_from_slice(part);
-            }
-            bytes
-        }
+        Some(o) => encode_strings(&[&o.scenario_toml, &o.scenario_path]),
         None => Vec::new(),
     };
     let payload = comm.broadcast_from_root(payload);
     let received = (|| {
-        let mut parts = split_parts(&payload)
+        let parts = split_parts(&payload)
+            .filter(|p| p.len() == 2)
             .ok_or_else(|| Error::Usage("a message from process 0 was cut short".into()))?;
-        let blob = parts.pop().unwrap_or_default();
-        let scenario_path = String::from_utf8_lossy(parts.pop().unwrap_or_default()).into_owned();
-        let scenario_toml = String::from_utf8_lossy(parts.pop().unwrap_or_default()).into_owned();
-        let scenario = scenario_from_text(args, &scenario_toml, &scenario_path)?;
-        let slots = scenario.engine_parts().model.law.state_slots();
-        let (state, _) = checkpoint_blob::decode(blob, || None, Some(slots))
-            .map_err(|e| Error::Usage(format!("the checkpoint sent by process 0: {e}")))?;
-        Ok((scenario, state))
+        let text = |k: usize| String::from_utf8_lossy(parts[k]).into_owned();
+        scenario_from_text(args, &text(0), &text(1))
     })();
-    let (scenario, state) = agree(comm, received)?;
-    let writer = opened.map(|(_, _, _, writer, _)| writer);
+    let scenario = agree(comm, received)?;
+    let (state, writer) = match opened {
+        Some(o) => (Some(o.state), Some(o.writer)),
+        None => (None, None),
+    };
     Ok(Prepared {
         scenario,
         state,
         writer,
         fresh: false,
     })
+}
+
+/// `parts` as one message of length-prefixed parts.
+fn encode_strings(parts: &[&str]) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    for part in parts {
+        bytes.extend_from_slice(&(part.len() as u64).to_le_bytes());
+        bytes.extend_from_slice(part.as_bytes());
+    }
+    bytes
 }
 
 /// The parts of a message of length-prefixed parts.
@@ -336,25 +333,25 @@ fn split_parts(mut bytes: &[u8]) -> Option<Vec<&[u8]>> {
     Some(parts)
 }
 
-/// What process 0 reads to resume: the stored scenario text and path, the
-/// state, the writer, and the law's state slots.
-type Opened = (
-    String,
-    String,
-    floe_dem::state::WorldState,
-    RunWriter,
-    usize,
-);
+/// What process 0 reads to resume.
+struct Opened {
+    /// The stored scenario's text.
+    scenario_toml: String,
+    /// Where the scenario file was.
+    scenario_path: String,
+    /// The last checkpoint's state.
+    state: floe_dem::state::WorldState,
+    /// The file, reopened.
+    writer: RunWriter,
+}
 
 fn open_for_resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<Opened, Error> {
     let (metadata, scenario) = stored_scenario(args)?;
     let (writer, state) = reopen(args, &scenario, hooks)?;
-    let slots = scenario.engine_parts().model.law.state_slots();
-    Ok((
-        metadata.scenario_toml,
-        metadata.scenario_path,
+    Ok(Opened {
+        scenario_toml: metadata.scenario_toml,
+        scenario_path: metadata.scenario_path,
         state,
         writer,
-        slots,
-    ))
+    })
 }

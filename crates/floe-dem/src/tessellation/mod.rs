@@ -188,7 +188,7 @@ impl Tessellation {
 }
 
 /// The rectangular domain to fill, world coordinates (m).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Rect {
     /// Lower-left corner (m).
     pub min: Vec2,

@@ -284,7 +284,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
 }
 
 /// The clock and ledger every process shares.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 pub(super) struct Clock {
     time_s: f64,
     steps: u64,

@@ -72,11 +72,117 @@ impl Default for Settings {
 
 /// What the processes hold of the whole run that is not per floe: the
 /// schedules, load points and stress controls of every floe.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 struct Drivers {
     schedules: Vec<ScheduledMotion>,
     load_points: Vec<LoadPoint>,
     stress_controls: Vec<StressControl>,
+}
+
+/// How process 0 cut the domain at the start, for every process.
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
+struct Plan {
+    decomposition: Decomposition,
+    domain: Rect,
+    largest_radius_m: f64,
+    drivers: Drivers,
+    clock: Clock,
+}
+
+/// Why the world cannot be spread, as every process learns it.
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
+enum PlanError {
+    MoreProcesses {
+        processes: usize,
+        floes: usize,
+    },
+    TooSmall {
+        rank: usize,
+        width_m: f64,
+        height_m: f64,
+        diameter_m: f64,
+    },
+    Other(String),
+}
+
+impl From<PlanError> for ParallelError {
+    fn from(e: PlanError) -> Self {
+        match e {
+            PlanError::MoreProcesses { processes, floes } => {
+                ParallelError::MoreProcessesThanFloes { processes, floes }
+            }
+            PlanError::TooSmall {
+                rank,
+                width_m,
+                height_m,
+                diameter_m,
+            } => ParallelError::SubdomainTooSmall {
+                rank,
+                width_m,
+                height_m,
+                diameter_m,
+            },
+            PlanError::Other(message) => ParallelError::Wire(message),
+        }
+    }
+}
+
+impl Plan {
+    /// The cuts of `state`'s free floes (weighted by their contacts) into
+    /// `processes` subdomains.
+    fn of(
+        state: &WorldState,
+        periodicity: Periodicity,
+        processes: usize,
+    ) -> Result<Self, PlanError> {
+        let f = state.floes.columns();
+        let free: Vec<usize> = (0..f.len()).filter(|&i| f.is_free(i)).collect();
+        if processes > free.len() {
+            return Err(PlanError::MoreProcesses {
+                processes,
+                floes: free.len(),
+            });
+        }
+        let largest_radius_m = free.iter().map(|&i| f.radius_m[i]).fold(0.0, f64::max);
+        let mut counts = vec![0u64; f.len()];
+        for c in &state.contacts {
+            counts[c.a as usize] += 1;
+            counts[c.b as usize] += 1;
+        }
+        let points: Vec<Vec2> = free.iter().map(|&i| f.position[i]).collect();
+        let weights: Vec<f64> = free.iter().map(|&i| 1.0 + counts[i] as f64).collect();
+        let domain = cut_domain(&points, periodicity);
+        let decomposition = Decomposition::rcb(&points, &weights, domain, processes)
+            .map_err(|e| PlanError::Other(e.to_string()))?;
+        match check_subdomains(&decomposition, domain, periodicity, largest_radius_m) {
+            Ok(()) => {}
+            Err(ParallelError::SubdomainTooSmall {
+                rank,
+                width_m,
+                height_m,
+                diameter_m,
+            }) => {
+                return Err(PlanError::TooSmall {
+                    rank,
+                    width_m,
+                    height_m,
+                    diameter_m,
+                })
+            }
+            Err(e) => return Err(PlanError::Other(e.to_string())),
+        }
+        Ok(Plan {
+            decomposition,
+            domain,
+            largest_radius_m,
+            drivers: Drivers {
+                schedules: state.schedules.clone(),
+                load_points: state.load_points.clone(),
+                stress_controls: state.stress_controls.clone(),
+            },
+            clock: Clock::of(state),
+        })
+    }
 }
 
 /// Counts of what the decomposition did.
@@ -142,8 +248,9 @@ pub struct DistributedWorld<F: ExternalForces, C: Communicator> {
 }
 
 impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
-    /// Spreads a whole world (every process passes the same `state`: a
-    /// fresh world's or a checkpoint's) over the processes of `comm`.
+    /// Spreads a whole world that every process has (the same `state`)
+    /// over the processes of `comm`: [`DistributedWorld::from_root`] with
+    /// process 0's copy.
     pub fn from_whole(
         state: WorldState,
         model: ContactModel,
@@ -152,39 +259,37 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         comm: C,
         settings: Settings,
     ) -> Result<Self, ParallelError> {
-        let f = state.floes.columns();
-        let free: Vec<usize> = (0..f.len()).filter(|&i| f.is_free(i)).collect();
-        if comm.size() > free.len() {
-            return Err(ParallelError::MoreProcessesThanFloes {
-                processes: comm.size(),
-                floes: free.len(),
-            });
-        }
-        let largest_radius_m = free.iter().map(|&i| f.radius_m[i]).fold(0.0, f64::max);
-        let mut counts = vec![0u64; f.len()];
-        for c in &state.contacts {
-            counts[c.a as usize] += 1;
-            counts[c.b as usize] += 1;
-        }
-        let points: Vec<Vec2> = free.iter().map(|&i| f.position[i]).collect();
-        let weights: Vec<f64> = free.iter().map(|&i| 1.0 + counts[i] as f64).collect();
-        let domain = cut_domain(&points, periodicity);
-        let decomposition = Decomposition::rcb(&points, &weights, domain, comm.size())?;
-        check_subdomains(&decomposition, domain, periodicity, largest_radius_m)?;
-        let comm_rank_is_root = comm.rank() == 0;
-        let drivers = Drivers {
-            schedules: state.schedules.clone(),
-            load_points: state.load_points.clone(),
-            stress_controls: state.stress_controls.clone(),
+        let whole = (comm.rank() == 0).then_some(state);
+        Self::from_root(whole, model, forcing, periodicity, comm, settings)
+    }
+
+    /// Spreads the whole world process 0 holds (a fresh world's or a
+    /// checkpoint's state; `None` on the others) over the processes of
+    /// `comm`: process 0 cuts the domain and sends each process the floes
+    /// it holds, so no other process ever holds the whole. Every process
+    /// passes the scenario's model, forcing and periodicity.
+    pub fn from_root(
+        whole: Option<WorldState>,
+        model: ContactModel,
+        forcing: F,
+        periodicity: Periodicity,
+        comm: C,
+        settings: Settings,
+    ) -> Result<Self, ParallelError> {
+        let plan = match &whole {
+            Some(state) => Plan::of(state, periodicity, comm.size()),
+            None => Err(PlanError::Other("no world on process 0".into())),
         };
+        let bytes = comm.broadcast_from_root(encode(&plan));
+        let plan = decode::<Result<Plan, PlanError>>(&bytes)?.map_err(ParallelError::from)?;
         let mut this = DistributedWorld {
             world: None,
             comm,
             settings,
-            decomposition,
-            domain,
-            largest_radius_m,
-            skin_m: settings.skin_fraction * largest_radius_m,
+            decomposition: plan.decomposition,
+            domain: plan.domain,
+            largest_radius_m: plan.largest_radius_m,
+            skin_m: settings.skin_fraction * plan.largest_radius_m,
             periodicity,
             owned: Vec::new(),
             send: Vec::new(),
@@ -192,34 +297,57 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             controlled: Vec::new(),
             reference: Vec::new(),
             parked: Vec::new(),
-            drivers,
-            whole_floes: (comm_rank_is_root).then(|| state.floes.clone()),
+            drivers: plan.drivers,
+            whole_floes: None,
             stats: DecompositionStats::default(),
         };
-        // Every process has the whole: each takes what it holds.
-        let me = this.comm.rank();
-        let grid = this.outline_grid(f);
-        let mut mine = Packet::default();
-        for i in 0..f.len() {
-            let (owner, holders) = this.holders(f, i, &grid, periodicity);
-            if holders.contains(&me) {
-                mine.floes.push(migrant(&state, i, owner, holders));
+        let packets = match &whole {
+            Some(state) => this.scatter_packets(state),
+            None => vec![Vec::new(); this.comm.size()],
+        };
+        let mine = decode::<Packet>(&this.comm.all_to_all(packets)[0])?;
+        this.whole_floes = whole.map(|state| state.floes);
+        this.install(vec![mine], plan.clock, model, forcing, periodicity)?;
+        Ok(this)
+    }
+
+    /// Process 0's packets for a start: each process's floes with their
+    /// contacts and broken contacts (those of an owned floe whose partner
+    /// is elsewhere too, to be kept aside).
+    fn scatter_packets(&self, state: &WorldState) -> Vec<Vec<u8>> {
+        let f = state.floes.columns();
+        let grid = self.outline_grid(f);
+        let mut packets = vec![Packet::default(); self.comm.size()];
+        let placed: Vec<(usize, Vec<usize>)> = (0..f.len())
+            .map(|i| self.holders(f, i, &grid, self.periodicity))
+            .collect();
+        for (i, (owner, holders)) in placed.iter().enumerate() {
+            for &r in holders {
+                packets[r]
+                    .floes
+                    .push(migrant(state, i, *owner, holders.clone()));
             }
         }
         let id = |h: u32| f.id[h as usize];
-        mine.contacts = state
-            .contacts
-            .iter()
-            .map(|c| ([id(c.a), id(c.b)], *c))
-            .collect();
-        mine.broken = state
-            .broken
-            .iter()
-            .map(|c| ([id(c.a), id(c.b)], *c))
-            .collect();
-        let clock = Clock::of(&state);
-        this.install(vec![mine], clock, model, forcing, periodicity)?;
-        Ok(this)
+        let both = |a: u32, b: u32| {
+            let (ha, hb) = (&placed[a as usize].1, &placed[b as usize].1);
+            ha.iter().copied().filter(move |r| hb.contains(r))
+        };
+        for c in &state.contacts {
+            for r in both(c.a, c.b) {
+                packets[r].contacts.push(([id(c.a), id(c.b)], *c));
+            }
+        }
+        for c in &state.broken {
+            let mut ranks: Vec<usize> = both(c.a, c.b).collect();
+            ranks.extend([placed[c.a as usize].0, placed[c.b as usize].0]);
+            ranks.sort_unstable();
+            ranks.dedup();
+            for r in ranks {
+                packets[r].broken.push(([id(c.a), id(c.b)], *c));
+            }
+        }
+        packets.iter().map(encode).collect()
     }
 
     /// This process's part of the world: its floes and their ghosts.
