@@ -12,7 +12,8 @@ use floe_io::RunFile;
 #[path = "run_support/mod.rs"]
 mod run_support;
 use run_support::{
-    assert_no_panic, assert_same_run, bits, bits2, code, text, wait_for_progress, Case, Launch,
+    assert_no_panic, assert_same_run, bits, bits2, code, interrupted_step, text, wait_for_progress,
+    Case, Launch,
 };
 
 /// A sheared channel of small diamonds: a few hundred steps, snapshots,
@@ -180,13 +181,7 @@ fn ctrl_c_writes_a_final_snapshot_and_checkpoint_and_resume_is_bitwise() {
     );
 
     let file = RunFile::open(Path::new(&target)).unwrap();
-    let status = file.status().unwrap();
-    let step: u64 = status
-        .strip_prefix("interrupted at step ")
-        .unwrap_or_else(|| panic!("status {status}"))
-        .parse()
-        .unwrap();
-    assert_eq!(file.checkpoint().unwrap().unwrap().step, step);
+    let step = interrupted_step(&file);
     let n = file.snapshot_count().unwrap();
     assert_eq!(file.snapshot(n - 1).unwrap().step, step, "a final snapshot");
     drop(file);

@@ -16,7 +16,8 @@ use floe_io::RunFile;
 #[path = "run_support/mod.rs"]
 mod run_support;
 use run_support::{
-    assert_no_panic, assert_same_run, code, mpirun_args, text, wait_for_progress, Case, Launch,
+    assert_no_panic, assert_same_run, code, interrupted_step, mpirun_args, text, wait_for_progress,
+    Case, Launch,
 };
 
 /// A sheared periodic channel with walls and contact memory, 800 steps.
@@ -119,13 +120,7 @@ fn sigterm_to_every_process_writes_one_checkpoint_exits_130_and_resumes_bitwise(
         "{err}"
     );
     let file = RunFile::open(Path::new(&target)).unwrap();
-    let status = file.status().unwrap();
-    let step: u64 = status
-        .strip_prefix("interrupted at step ")
-        .unwrap_or_else(|| panic!("status {status}"))
-        .parse()
-        .unwrap();
-    assert_eq!(file.checkpoint().unwrap().unwrap().step, step);
+    interrupted_step(&file);
     drop(file);
     let out = case.resume_with(Launch::Mpi(2), "parts.h5", &["--threads", "1"]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
@@ -189,13 +184,7 @@ fn ctrl_c_to_mpirun_reaches_every_process_which_checkpoint_and_the_run_resumes()
         "{err}"
     );
     let file = RunFile::open(Path::new(&target)).unwrap();
-    let status = file.status().unwrap();
-    let step: u64 = status
-        .strip_prefix("interrupted at step ")
-        .unwrap_or_else(|| panic!("status {status}"))
-        .parse()
-        .unwrap();
-    assert_eq!(file.checkpoint().unwrap().unwrap().step, step);
+    let step = interrupted_step(&file);
     drop(file);
     let out = case.resume_with(Launch::Mpi(3), "parts.h5", &["--max-steps", "20"]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));

@@ -202,3 +202,16 @@ pub fn wait_for_progress(child: &mut Child, file: &Path) {
         std::thread::sleep(Duration::from_millis(50));
     }
 }
+
+/// The step an interrupted run stopped at, from its status, after checking
+/// that its last checkpoint is at that step.
+pub fn interrupted_step(file: &RunFile) -> u64 {
+    let status = file.status().unwrap();
+    let step: u64 = status
+        .strip_prefix("interrupted at step ")
+        .unwrap_or_else(|| panic!("status {status}"))
+        .parse()
+        .unwrap();
+    assert_eq!(file.checkpoint().unwrap().unwrap().step, step);
+    step
+}
