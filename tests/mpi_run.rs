@@ -20,16 +20,32 @@ use run_support::{
     Case, Launch,
 };
 
-/// A sheared periodic channel with walls and contact memory, 800 steps.
+/// A sheared periodic channel with walls and contact memory, 2,400 steps.
 const CHANNEL: &str = include_str!("data/mpi_channel.toml");
 
 /// The channel of tests/cli_run.rs run long enough to be interrupted.
 const LONG: &str = include_str!("data/run_long.toml");
 
+/// Free floes whose x moved by more than half the 6 km period between the
+/// first and the last snapshot: they crossed the periodic seam.
+fn free_floes_across_the_seam(file: &Path) -> usize {
+    let f = RunFile::open(file).unwrap();
+    let n = f.snapshot_count().unwrap();
+    let (first, last) = (f.snapshot(0).unwrap(), f.snapshot(n - 1).unwrap());
+    let prescribed = f.static_floes().unwrap().prescribed;
+    (0..first.position.len())
+        .filter(|&i| !prescribed[i] && (last.position[i][0] - first.position[i][0]).abs() > 3000.0)
+        .count()
+}
+
 #[test]
 fn one_to_four_processes_write_the_single_process_run_file_bitwise() {
     let case = Case::new(CHANNEL);
     case.run_ok("alone.h5", &["--threads", "1"]);
+    assert!(
+        free_floes_across_the_seam(Path::new(&case.path("alone.h5"))) > 0,
+        "the run is eventful: floes cross the periodic seam"
+    );
     for (np, threads) in [(1, "2"), (2, "1"), (3, "1"), (4, "1"), (2, "2")] {
         let name = format!("np{np}x{threads}.h5");
         let out = case.run_with(Launch::Mpi(np), &name, &["--threads", threads]);
