@@ -478,12 +478,10 @@ fn files_that_do_not_fit_the_run_end_in_one_message_naming_them() {
     assert!(msg.contains("junk.nc") && msg.contains("NetCDF"), "{msg}");
 }
 
-#[test]
-fn a_floe_blown_off_the_grid_stops_the_run_with_its_checkpoint_intact_and_resume_checks_the_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
-    // The grid covers the domain with 400 m to spare; in an open domain a
-    // 30 m/s wind blows the floes off it within two hours.
+/// A wind file whose grid covers the PACK domain with 400 m to spare; in
+/// an open domain its 30 m/s wind blows the floes off it within two hours.
+/// Returns the scenario text.
+fn gale(d: &Path) -> String {
     write_nc(
         &d.join("gale.nc"),
         &linspace(-1200.0, 20400.0, 13),
@@ -505,10 +503,17 @@ fn a_floe_blown_off_the_grid_stops_the_run_with_its_checkpoint_intact_and_resume
             },
         ],
     );
-    let text = format!("{PACK}\n[wind]\nfile = \"gale.nc\"\nvariables = [\"u\", \"v\"]\n").replace(
+    format!("{PACK}\n[wind]\nfile = \"gale.nc\"\nvariables = [\"u\", \"v\"]\n").replace(
         "[output]\nsnapshot_every_s = 1800.0",
         "[output]\nsnapshot_every_s = 600.0\ncheckpoint_every_s = 600.0",
-    );
+    )
+}
+
+#[test]
+fn a_floe_blown_off_the_grid_stops_the_run_with_its_checkpoint_intact_and_resume_checks_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let text = gale(d);
     let (code, msg) = error_of(d, "gale", &text);
     assert_eq!(code, 1, "{msg}");
     assert!(
@@ -555,4 +560,36 @@ fn a_floe_blown_off_the_grid_stops_the_run_with_its_checkpoint_intact_and_resume
     let e = run(&resume, &Quiet).unwrap_err();
     assert_eq!(e.exit_code(), 2);
     assert!(e.to_string().contains("changed since the run began"), "{e}");
+}
+
+/// Over two processes (threads standing for MPI ranks) the run stops at
+/// the same step, with the same message in the file's status, the same
+/// exit code and the same last checkpoint as one process.
+#[test]
+fn over_two_processes_a_floe_blown_off_the_grid_ends_the_run_as_in_one() {
+    use floe_parallel::{Settings, ThreadComm};
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario = d.join("gale.toml");
+    std::fs::write(&scenario, gale(d)).unwrap();
+    let one = run(&args(&scenario, &d.join("one.h5"), 1), &Quiet).unwrap_err();
+    assert_eq!(one.exit_code(), 1, "{one}");
+    let codes = ThreadComm::run(2, |comm| {
+        let args = args(&scenario, &d.join("two.h5"), 1);
+        floe_study::run_parallel::run_parallel(&args, &Quiet, &comm, Settings::default())
+            .unwrap_err()
+            .exit_code()
+    });
+    assert_eq!(codes, [1, 1]);
+    let (a, b) = (
+        RunFile::open(&d.join("one.h5")).unwrap(),
+        RunFile::open(&d.join("two.h5")).unwrap(),
+    );
+    let status = a.status().unwrap();
+    assert!(status.contains("outside the grid"), "{status}");
+    assert_eq!(status, b.status().unwrap());
+    assert_eq!(
+        format!("{:?}", a.checkpoint_state(|| None).unwrap()),
+        format!("{:?}", b.checkpoint_state(|| None).unwrap())
+    );
 }

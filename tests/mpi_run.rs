@@ -26,6 +26,9 @@ const CHANNEL: &str = include_str!("data/mpi_channel.toml");
 /// The channel of tests/cli_run.rs run long enough to be interrupted.
 const LONG: &str = include_str!("data/run_long.toml");
 
+/// Walls that close far faster than contacts can push back.
+const BLOW_UP: &str = include_str!("data/run_blow_up.toml");
+
 /// Free floes whose x moved by more than half the 6 km period between the
 /// first and the last snapshot: they crossed the periodic seam.
 fn free_floes_across_the_seam(file: &Path) -> usize {
@@ -318,4 +321,32 @@ fn the_emitted_mpi_job_script_runs_a_variant_over_processes() {
         Path::new(&case.path("alone.h5")),
         &out.join("variant_002.h5"),
     );
+}
+
+#[test]
+fn a_blow_up_over_processes_stops_at_the_step_and_with_the_message_of_one_process() {
+    let case = Case::new(BLOW_UP);
+    let alone = case.run("alone.h5", &[]);
+    assert_eq!(code(&alone), 1, "{}", text(&alone.stderr));
+    let out = case.run_with(Launch::Mpi(2), "two.h5", &[]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 1, "{err}");
+    assert_no_panic(&err);
+    assert_eq!(
+        err.matches("numerical blow-up").count(),
+        1,
+        "said once: {err}"
+    );
+    let status = |name: &str| {
+        RunFile::open(Path::new(&case.path(name)))
+            .unwrap()
+            .status()
+            .unwrap()
+    };
+    assert!(
+        status("alone.h5").contains("blow-up"),
+        "{}",
+        status("alone.h5")
+    );
+    assert_eq!(status("alone.h5"), status("two.h5"));
 }
