@@ -350,3 +350,20 @@ fn a_blow_up_over_processes_stops_at_the_step_and_with_the_message_of_one_proces
     );
     assert_eq!(status("alone.h5"), status("two.h5"));
 }
+
+#[test]
+fn commands_other_than_run_refuse_to_be_several_processes() {
+    let case = Case::new(CHANNEL);
+    let out = Launch::Mpi(2)
+        .command()
+        .args(["compare", &case.scenario(), "-o", &case.path("cmp")])
+        .output()
+        .unwrap();
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 2, "{err}");
+    assert!(
+        err.contains("only `floe run` spreads over processes"),
+        "{err}"
+    );
+    assert!(!Path::new(&case.path("cmp")).exists());
+}

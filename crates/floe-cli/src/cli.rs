@@ -551,6 +551,9 @@ fn json<T: serde::Serialize>(value: &T) -> String {
 
 /// Runs a parsed command; returns what to print on standard output.
 pub fn execute(cli: Cli) -> Result<String, CliError> {
+    if !matches!(cli.command, Command::Run { .. }) {
+        crate::processes::refuse_several()?;
+    }
     match cli.command {
         Command::Run {
             scenario,

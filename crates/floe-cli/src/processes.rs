@@ -15,6 +15,18 @@ pub fn launched_processes() -> Option<usize> {
         .or_else(|| std::env::var("PMIX_RANK").ok().map(|_| 2))
 }
 
+/// Refuses a command other than `floe run` started as one of several
+/// processes: each would do the whole work and write the same files.
+pub fn refuse_several() -> Result<(), crate::CliError> {
+    match launched_processes() {
+        Some(n) if n > 1 => Err(crate::CliError::Usage(format!(
+            "started as one of {n} processes (mpirun): only `floe run` spreads over \
+             processes; run this command without mpirun"
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// Whether this is a process of an MPI job other than the first (which
 /// alone talks to the user).
 pub fn is_other_than_first() -> bool {
