@@ -12,7 +12,7 @@
 //! [`Decomposition::imbalance`] measures how far the busiest part's work
 //! exceeds the mean, what a rebalance is triggered on.
 //!
-//! Not yet used by the run loop (the MPI issue builds on it).
+//! floe-parallel cuts a distributed run's domain with it (docs/hpc.md).
 
 use crate::tessellation::Rect;
 use crate::{DemError, Vec2};
