@@ -70,6 +70,16 @@ fn one_to_four_processes_write_the_single_process_run_file_bitwise() {
                 .and_then(|n| n.parse().ok())
                 .unwrap_or_else(|| panic!("the run reports its migrations: {err}"));
             assert!(migrations > 2, "{err}");
+            let info = Launch::Alone
+                .command()
+                .args(["info", &case.path(&name)])
+                .output()
+                .unwrap();
+            let info = text(&info.stdout);
+            assert!(
+                info.contains(&format!("{np} processes x {threads} threads")),
+                "floe info says how the run was spread: {info}"
+            );
         }
         assert_same_run(
             Path::new(&case.path("alone.h5")),

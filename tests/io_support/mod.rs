@@ -103,6 +103,7 @@ pub fn metadata() -> RunMetadata {
         git_commit: "0123abc".into(),
         command_line: vec!["floe".into(), "run".into(), "pack toml".into()],
         threads: 3,
+        processes: 2,
         author: "tester".into(),
         domain: DOMAIN,
         inputs: Vec::new(),

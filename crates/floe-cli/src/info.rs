@@ -28,10 +28,17 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
     line("scenario", meta.scenario_path.clone());
     line(
         "created by",
-        format!(
-            "floe {} (commit {}), {} threads",
-            meta.floe_version, meta.git_commit, meta.threads
-        ),
+        if meta.processes > 1 {
+            format!(
+                "floe {} (commit {}), {} processes x {} threads",
+                meta.floe_version, meta.git_commit, meta.processes, meta.threads
+            )
+        } else {
+            format!(
+                "floe {} (commit {}), {} threads",
+                meta.floe_version, meta.git_commit, meta.threads
+            )
+        },
     );
     line("command", meta.command_line.join(" "));
     for input in &meta.inputs {

@@ -77,6 +77,7 @@ fn main() {
             git_commit: "n/a".into(),
             command_line: std::env::args().collect(),
             threads: 1,
+            processes: 1,
             author: "io_size".into(),
             domain,
             inputs: Vec::new(),

@@ -25,8 +25,11 @@ pub struct RunMetadata {
     pub git_commit: String,
     /// The command line of the run.
     pub command_line: Vec<String>,
-    /// Worker threads.
+    /// Worker threads (per process).
     pub threads: usize,
+    /// Processes the run began on (`mpirun -np`; 1 for files written
+    /// before floe recorded it).
+    pub processes: usize,
     /// Who ran it (H5MD `author`).
     pub author: String,
     /// The domain.

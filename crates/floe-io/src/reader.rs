@@ -251,6 +251,10 @@ impl RunFile {
                 git_commit: h5::read_str(&g, "git_commit")?,
                 command_line: h5::read_strs(&g, "command_line")?,
                 threads: g.attr("threads")?.read_scalar::<u64>()? as usize,
+                processes: match g.attr("processes") {
+                    Ok(a) => a.read_scalar::<u64>()? as usize,
+                    Err(_) => 1,
+                },
                 author: h5::read_str(&g, "author")?,
                 domain: DomainBox {
                     min_m: two("min")?,

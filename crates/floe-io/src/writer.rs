@@ -245,6 +245,7 @@ impl RunWriter {
             let args: Vec<&str> = meta.command_line.iter().map(String::as_str).collect();
             h5::write_strs(&g, "command_line", &args)?;
             h5::write_scalar(&g, "threads", meta.threads as u64)?;
+            h5::write_scalar(&g, "processes", meta.processes as u64)?;
             h5::write_str(&g, "author", &meta.author)?;
             h5::write_str(&g, "status", "created")?;
             if !meta.inputs.is_empty() {

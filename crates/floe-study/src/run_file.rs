@@ -175,7 +175,7 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         for line in &setup.report {
             hooks.say(line);
         }
-        let mut writer = create_writer(args, path, &scenario, &setup, threads)?;
+        let mut writer = create_writer(args, path, &scenario, &setup, (threads, 1))?;
         let mut world = setup.world;
         run::start(&mut world, &mut writer, scenario.domain().area_m2())?;
         advance(
@@ -232,7 +232,7 @@ pub(crate) fn create_writer(
     path: &Path,
     scenario: &Scenario,
     setup: &floe_scenario::Setup,
-    threads: usize,
+    (threads, processes): (usize, usize),
 ) -> Result<RunWriter, Error> {
     if args.force && args.output.exists() {
         std::fs::remove_file(&args.output).map_err(|e| Error::io(&args.output, e))?;
@@ -250,6 +250,7 @@ pub(crate) fn create_writer(
         git_commit: p.git_commit.clone(),
         command_line: p.command_line.clone(),
         threads,
+        processes,
         author: p.author.clone(),
         domain: DomainBox {
             min_m: [domain.min_m.x, domain.min_m.y],

@@ -260,7 +260,13 @@ fn build_fresh<C: Communicator>(
         for line in &setup.report {
             hooks.say(line);
         }
-        create_writer(args, &path, &scenario, setup, rayon::current_num_threads())
+        create_writer(
+            args,
+            &path,
+            &scenario,
+            setup,
+            (rayon::current_num_threads(), comm.size()),
+        )
     });
     let writer = agree(comm, writer.transpose())?;
     let state = setup.map(|setup| setup.world.into_parts().0);
