@@ -26,6 +26,9 @@ impl Launch {
             Launch::Mpi(np) => {
                 let mut c = Command::new("mpirun");
                 c.args(mpirun_args(np)).arg(env!("CARGO_BIN_EXE_floe"));
+                // Containers often forbid the cross-memory attach Open MPI's
+                // shared-memory transport tries first; copy through memory.
+                c.env("OMPI_MCA_btl_vader_single_copy_mechanism", "none");
                 c
             }
         };
