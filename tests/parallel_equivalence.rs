@@ -10,7 +10,7 @@ use std::sync::atomic::AtomicBool;
 
 use floe_dem::contact_model::ContactModel;
 use floe_dem::floes::{Floe, Floes};
-use floe_dem::forcing::{Forcing, VelocityField};
+use floe_dem::forcing::{Forcing, NoForcing, VelocityField};
 use floe_dem::geometry::FloeShape;
 use floe_dem::periodicity::{Period, Periodicity};
 use floe_dem::run::Stepper;
@@ -330,6 +330,135 @@ fn a_remembered_contact_travels_with_its_floe_and_is_resumed() {
             got.iter().any(|g| g.1 > 0),
             "a memory was parked with its floe"
         );
+        assert!(
+            got[0].0.as_ref() == Some(&reference),
+            "{processes} processes"
+        );
+    }
+}
+
+/// Two diamonds closing tip to tip across a cut that passes 5 mm from
+/// one of them (a third floe sets it there), with a skin of 19 steps'
+/// travel: their tips touch in the very step that brings the migration
+/// due. The migration must come a step early, or the owner of the first
+/// floe misses the contact (found by review: it did).
+fn tips_closing(skin_steps: f64) -> (World<NoForcing>, Settings) {
+    let diamond = |c: Vec2| {
+        [(70.0, 0.0), (0.0, 30.0), (-70.0, 0.0), (0.0, -30.0)]
+            .map(|(x, y)| c + Vec2::new(x, y))
+            .to_vec()
+    };
+    let model = rate_state(0.5, 1.0e4);
+    let probe = Floes::from_polygons(&[diamond(Vec2::ZERO)], &[1.0], RHO_ICE).unwrap();
+    let dt = 0.5 * floe_dem::world::stable_time_step(&probe, &model).0;
+    let step = 0.01; // each floe's travel per step, m
+    let skin = skin_steps * step;
+    let r = probe.radius_m[0];
+    let gap = 2.0 * r + skin + 0.006;
+    let centres = [
+        Vec2::new(-1000.0, 0.0),
+        Vec2::new(0.0, 0.0),
+        Vec2::new(0.01, 1000.0),
+        Vec2::new(gap, 0.0),
+    ];
+    let polys: Vec<_> = centres.iter().map(|&c| diamond(c)).collect();
+    let mut floes = Floes::from_polygons(&polys, &[1.0; 4], RHO_ICE).unwrap();
+    let v = step / dt;
+    floes.set_velocity(1, Vec2::new(v, 0.0), 0.0);
+    floes.set_velocity(3, Vec2::new(-v, 0.0), 0.0);
+    let world = World::new(floes, model, NoForcing, Periodicity::default(), dt).unwrap();
+    let settings = Settings {
+        skin_fraction: skin / r,
+        ..Settings::default()
+    };
+    (world, settings)
+}
+
+#[test]
+fn a_contact_that_forms_as_a_migration_comes_due_is_found() {
+    let never = AtomicBool::new(false);
+    let steps = 30;
+    let (mut w, _) = tips_closing(19.0);
+    let mut touched_at = None;
+    while w.steps() < steps {
+        w.step();
+        if touched_at.is_none() && !w.contacts().is_empty() {
+            touched_at = Some(w.steps());
+        }
+    }
+    assert_eq!(touched_at, Some(10), "the tips touch in step 10");
+    let reference = bits(w.state());
+    let got = ThreadComm::run(2, |comm| {
+        let (world, settings) = tips_closing(19.0);
+        let (state, model, forcing, periodicity) = world.into_parts();
+        let mut d =
+            DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
+                .unwrap();
+        let cut = d.boxes()[0].max.x;
+        while d.steps() < steps {
+            d.step(&never);
+        }
+        (d.gather_whole().unwrap().map(|s| bits(&s)), cut)
+    });
+    assert!((got[0].1 - 0.005).abs() < 1e-9, "the cut: {}", got[0].1);
+    assert!(
+        got[0].0.as_ref() == Some(&reference),
+        "two processes differ from one"
+    );
+}
+
+/// Rows of squares sliding past each other fast, in an open domain, with a
+/// halo skin far thinner than a step's travel: the skin grows to two steps
+/// of the fastest floe, floes migrate every few steps, and the run stays
+/// the single process's.
+fn fast_rows() -> World<Forcing> {
+    let (nx, ny) = (24usize, 4usize);
+    let polys: Vec<_> = (0..ny)
+        .flat_map(|j| {
+            (0..nx).map(move |i| rect(Vec2::new(i as f64 * 103.0, j as f64 * 101.0), S, S))
+        })
+        .collect();
+    let n = polys.len();
+    let mut floes = Floes::from_polygons(&polys, &vec![1.0; n], RHO_ICE).unwrap();
+    for i in 0..n {
+        let row = i / nx;
+        let v = if row % 2 == 0 { 3.0 } else { -3.0 };
+        floes.set_velocity(i, Vec2::new(v, if row == 0 { 0.05 } else { -0.05 }), 0.0);
+    }
+    let model = rate_state(0.5, 1.0e4);
+    let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
+    World::new(floes, model, Forcing::default(), Periodicity::default(), dt).unwrap()
+}
+
+#[test]
+fn a_skin_thinner_than_a_step_grows_and_the_run_stays_bitwise() {
+    let never = AtomicBool::new(false);
+    let steps = 400;
+    let mut w = fast_rows();
+    for _ in 0..steps {
+        w.step();
+    }
+    assert!(!w.contacts().is_empty());
+    let reference = bits(w.state());
+    for processes in [2, 3] {
+        let got = ThreadComm::run(processes, |comm| {
+            let (state, model, forcing, periodicity) = fast_rows().into_parts();
+            let settings = Settings {
+                skin_fraction: 1e-4,
+                ..Settings::default()
+            };
+            let mut d =
+                DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
+                    .unwrap();
+            while d.steps() < steps {
+                d.step(&never);
+            }
+            (
+                d.gather_whole().unwrap().map(|s| bits(&s)),
+                d.stats().migrations,
+            )
+        });
+        assert!(got[0].1 > 10, "migrations: {}", got[0].1);
         assert!(
             got[0].0.as_ref() == Some(&reference),
             "{processes} processes"

@@ -45,7 +45,7 @@ pub fn start() -> Result<Option<floe_parallel::mpi_comm::Mpi>, crate::CliError> 
     }
     floe_parallel::mpi_comm::Mpi::initialize()
         .map(Some)
-        .ok_or_else(|| crate::CliError::Usage("MPI could not be initialised".into()))
+        .map_err(crate::CliError::Usage)
 }
 
 /// Refuses to run as one of several processes in a build without MPI.

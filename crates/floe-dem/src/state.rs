@@ -128,6 +128,49 @@ impl WorldState {
         Ok(())
     }
 
+    /// Each floe's velocity and angular velocity in the next drift, as the
+    /// step will set them: a scheduled floe's mean over the step, a
+    /// stress-controlled wall's normal speed from the forces now, a free
+    /// floe's half-kicked ones (`v + F dt / 2m`). Times `dt_s`, how far a
+    /// floe will move and turn before the next contact detection.
+    pub fn next_drift_velocities(&self) -> Vec<(Vec2, f64)> {
+        let f = self.floes.columns();
+        let dt = self.dt_s;
+        let mut next: Vec<(Vec2, f64)> = (0..f.len())
+            .map(|i| {
+                let (v, w) = (f.velocity[i], f.angular_velocity[i]);
+                if f.is_free(i) {
+                    (
+                        v + self.force[i] / f.mass_kg[i] * (0.5 * dt),
+                        w + self.torque[i] / f.inertia_kg_m2[i] * (0.5 * dt),
+                    )
+                } else {
+                    (v, w)
+                }
+            })
+            .collect();
+        for s in &self.schedules {
+            if let Some(h) = self.floes.handle_of(s.floe_id) {
+                next[h] = s.schedule.mean_velocity(self.time_s, dt);
+            }
+        }
+        for c in &self.stress_controls {
+            let stress = c.stress(|id| {
+                self.floes
+                    .handle_of(id)
+                    .map_or(Vec2::ZERO, |h| self.force[h])
+            });
+            let (v_n, n) = (c.normal_speed(stress), c.inward_normal);
+            for &id in &c.floe_ids {
+                if let Some(h) = self.floes.handle_of(id) {
+                    let v = next[h].0;
+                    next[h].0 = v - n * v.dot(n) + n * v_n;
+                }
+            }
+        }
+        next
+    }
+
     /// Refuses `ids` (of floes with `what`) unless they are increasing and
     /// name floes that exist and are free (`free`) or prescribed.
     fn check_driven(

@@ -20,18 +20,28 @@ pub struct Mpi {
 }
 
 impl Mpi {
-    /// Initialises MPI, or `None` if it was already (or cannot be). The
-    /// run loop calls MPI from one thread at a time, which may not be the
-    /// thread that initialised it (`MPI_THREAD_SERIALIZED`).
-    pub fn initialize() -> Option<Mpi> {
-        let (universe, level) = mpi::initialize_with_threading(Threading::Serialized)?;
+    /// Initialises MPI, or says why it cannot. The run loop calls MPI from
+    /// one thread at a time, which may not be the thread that initialised
+    /// it (`MPI_THREAD_SERIALIZED`); a panic on any process then aborts
+    /// the job.
+    pub fn initialize() -> Result<Mpi, String> {
+        let (universe, level) = mpi::initialize_with_threading(Threading::Serialized)
+            .ok_or_else(|| "MPI could not be initialised (or was already)".to_string())?;
         if level < Threading::Serialized {
-            eprintln!(
-                "floe: the MPI library gives thread level {level:?}; floe needs Serialized: \
-                 the run continues, calling MPI from one thread at a time"
-            );
+            return Err(format!(
+                "the MPI library gives thread level {level:?}; floe calls MPI from a worker \
+                 thread, one at a time, and needs MPI_THREAD_SERIALIZED: use an MPI built \
+                 with thread support"
+            ));
         }
-        Some(Mpi { universe })
+        // A panic on one process would leave the others waiting in a
+        // collective; end the whole job instead.
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            previous(info);
+            mpi::topology::SimpleCommunicator::world().abort(101);
+        }));
+        Ok(Mpi { universe })
     }
 
     /// The communicator of every process of the job.
@@ -76,6 +86,14 @@ fn count(n: usize) -> i32 {
     })
 }
 
+/// Refuses messages whose lengths add up past MPI's `int` offsets.
+fn total_count(counts: &[i32]) {
+    let total: i64 = counts.iter().map(|&c| i64::from(c)).sum();
+    if total > i64::from(i32::MAX) {
+        panic!("{total} bytes in one exchange: more than MPI's 2 GiB of offsets; run on more processes or write fewer contacts")
+    }
+}
+
 impl Communicator for MpiComm {
     fn rank(&self) -> usize {
         self.comm.rank() as usize
@@ -102,6 +120,8 @@ impl Communicator for MpiComm {
                 })
                 .collect()
         };
+        total_count(&send_counts);
+        total_count(&recv_counts);
         let (send_displs, recv_displs) = (displs(&send_counts), displs(&recv_counts));
         let me = self.rank();
         let others = outgoing

@@ -150,27 +150,35 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
     /// Why the forcing failed, as the single process says it (the whole's
     /// first floe off the grid), on every process.
     pub(super) fn forcing_failure_message(&mut self) -> Result<String, ParallelError> {
-        let whole = self.gather_whole()?;
-        let mut message = String::new();
-        if let Some(state) = whole {
-            let t = state.time_s;
-            let world = self.local_mut();
-            message = match world.forcing_mut().prepare(t, state.floes.columns()) {
-                Err(failure) => failure.to_string(),
-                Ok(()) => world
-                    .forcing_failure()
-                    .map_or_else(|| "the forcing failed".into(), ToString::to_string),
-            };
-        }
-        let bytes = self.comm.broadcast_from_root(message.into_bytes());
-        Ok(String::from_utf8_lossy(&bytes).into_owned())
+        // Process 0's answer, or why it has none, goes to every process.
+        let message: Result<String, String> = match self.gather_whole() {
+            Ok(Some(state)) => {
+                let t = state.time_s;
+                let world = self.local_mut();
+                Ok(
+                    match world.forcing_mut().prepare(t, state.floes.columns()) {
+                        Err(failure) => failure.to_string(),
+                        Ok(()) => world
+                            .forcing_failure()
+                            .map_or_else(|| "the forcing failed".into(), ToString::to_string),
+                    },
+                )
+            }
+            Ok(None) => Ok(String::new()),
+            Err(e) => Err(e.to_string()),
+        };
+        let bytes = self.comm.broadcast_from_root(encode(&message));
+        decode::<Result<String, String>>(&bytes)?.map_err(ParallelError::Wire)
     }
 
     /// The blow-up as the single process finds it, on every process.
     pub(super) fn blow_up(&self) -> Result<Option<BlowUp>, ParallelError> {
-        let found = self.whole_world()?.and_then(|w| check_health(&w));
+        let found: Result<Option<BlowUp>, String> = self
+            .whole_world()
+            .map(|w| w.and_then(|w| check_health(&w)))
+            .map_err(|e| e.to_string());
         let bytes = self.comm.broadcast_from_root(encode(&found));
-        decode(&bytes)
+        decode::<Result<Option<BlowUp>, String>>(&bytes)?.map_err(ParallelError::Wire)
     }
 }
 

@@ -96,25 +96,35 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         Ok(())
     }
 
-    /// How far any owned floe's outline has moved since the last
-    /// migration, m (a free floe's centre: its reach is a circle).
-    pub(super) fn largest_move_m(&self) -> f64 {
+    /// How far any owned floe's outline will have moved since the last
+    /// migration by the end of the next drift, m (a free floe's centre:
+    /// its reach is a circle), and how far one moves in that drift: the
+    /// contacts of the next step are found within the halo only if the
+    /// first stays below half the skin.
+    pub(super) fn motion_bounds(&self) -> (f64, f64) {
         let world = self.local();
-        let f = world.floes().columns();
-        let periodicity = world.periodicity();
-        (0..f.len())
-            .filter(|&h| self.owned[h])
-            .map(|h| {
-                let (p0, a0) = self.reference[h];
-                let p = f.position[h];
-                let moved = (p + periodicity.nearest_image(p0, p) - p0).length();
-                if f.is_free(h) {
-                    moved
-                } else {
-                    moved + f.radius_m[h] * (f.angle[h] - a0).abs()
-                }
-            })
-            .fold(0.0, f64::max)
+        let state = world.state();
+        let f = state.floes.columns();
+        let next = state.next_drift_velocities();
+        let (dt, periodicity) = (state.dt_s, world.periodicity());
+        let (mut moved_max, mut step_max) = (0.0f64, 0.0f64);
+        for h in (0..f.len()).filter(|&h| self.owned[h]) {
+            let (p0, a0) = self.reference[h];
+            let p = f.position[h];
+            let (v, w) = next[h];
+            let mut step = v.length() * dt;
+            let mut moved = (p + periodicity.nearest_image(p0, p) - p0).length() + step;
+            if !f.is_free(h) {
+                // A wall's outline: its corners turn with it.
+                let turn = f.radius_m[h] * w.abs() * dt;
+                moved += f.radius_m[h] * (f.angle[h] - a0).abs() + turn;
+                step += turn;
+            }
+            moved_max = moved_max.max(moved);
+            step_max = step_max.max(step);
+        }
+        // A margin for the drift's own rounding.
+        (moved_max * (1.0 + 1e-9), step_max)
     }
 }
 

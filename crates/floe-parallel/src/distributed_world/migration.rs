@@ -265,9 +265,12 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let points: Vec<Vec2> = rows.iter().map(|r| Vec2::new(r.1[0], r.1[1])).collect();
         let weights: Vec<f64> = rows.iter().map(|r| r.1[2]).collect();
         let domain = cut_domain(&points, self.periodicity);
-        let decomposition = Decomposition::rcb(&points, &weights, domain, k)?;
-        // Cuts that would leave a subdomain narrower than a floe are not
-        // taken: the old ones stay (balance is only speed).
+        // Cuts that cannot be made (floes bunched where no cut fits
+        // between them) or that would leave a subdomain narrower than a
+        // floe are not taken: the old ones stay (balance is only speed).
+        let Ok(decomposition) = Decomposition::rcb(&points, &weights, domain, k) else {
+            return Ok(());
+        };
         if check_subdomains(
             &decomposition,
             domain,

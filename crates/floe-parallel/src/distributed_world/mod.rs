@@ -11,9 +11,11 @@
 //! energy ledger's sums are exact and added over the processes
 //! ([`World::kick_with`]).
 //!
-//! When a floe has moved half the halo's skin since the last migration,
-//! every process hands its floes to their owners under the current (or,
-//! when the work is out of balance, a new) decomposition, each with its
+//! When a floe will have moved half the halo's skin since the last
+//! migration by the end of the next drift (so the next step's contacts all
+//! lie within the halo), every process hands its floes to their owners
+//! under the current (or, when the work is out of balance, a new)
+//! decomposition, each with its
 //! contacts' springs and friction state and the memory of its broken
 //! contacts, and rebuilds its world from what it receives.
 
@@ -85,6 +87,7 @@ struct Plan {
     decomposition: Decomposition,
     domain: Rect,
     largest_radius_m: f64,
+    skin_m: f64,
     drivers: Drivers,
     clock: Clock,
 }
@@ -134,6 +137,7 @@ impl Plan {
         state: &WorldState,
         periodicity: Periodicity,
         processes: usize,
+        skin_fraction: f64,
     ) -> Result<Self, PlanError> {
         let f = state.floes.columns();
         let free: Vec<usize> = (0..f.len()).filter(|&i| f.is_free(i)).collect();
@@ -171,10 +175,26 @@ impl Plan {
             }
             Err(e) => return Err(PlanError::Other(e.to_string())),
         }
+        // At least two steps of the fastest floe (see `try_step`).
+        let dt = state.dt_s;
+        let step_m = state
+            .next_drift_velocities()
+            .iter()
+            .enumerate()
+            .map(|(i, (v, w))| {
+                let turn = if f.is_free(i) {
+                    0.0
+                } else {
+                    f.radius_m[i] * w.abs() * dt
+                };
+                v.length() * dt + turn
+            })
+            .fold(0.0, f64::max);
         Ok(Plan {
             decomposition,
             domain,
             largest_radius_m,
+            skin_m: (skin_fraction * largest_radius_m).max(4.0 * step_m),
             drivers: Drivers {
                 schedules: state.schedules.clone(),
                 load_points: state.load_points.clone(),
@@ -277,7 +297,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         settings: Settings,
     ) -> Result<Self, ParallelError> {
         let plan = match &whole {
-            Some(state) => Plan::of(state, periodicity, comm.size()),
+            Some(state) => Plan::of(state, periodicity, comm.size(), settings.skin_fraction),
             None => Err(PlanError::Other("no world on process 0".into())),
         };
         let bytes = comm.broadcast_from_root(encode(&plan));
@@ -289,7 +309,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             decomposition: plan.decomposition,
             domain: plan.domain,
             largest_radius_m: plan.largest_radius_m,
-            skin_m: settings.skin_fraction * plan.largest_radius_m,
+            skin_m: plan.skin_m,
             periodicity,
             owned: Vec::new(),
             send: Vec::new(),
@@ -350,6 +370,11 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         packets.iter().map(encode).collect()
     }
 
+    /// The halo's skin the settings ask for, m.
+    fn base_skin_m(&self) -> f64 {
+        self.settings.skin_fraction * self.largest_radius_m
+    }
+
     /// This process's part of the world: its floes and their ghosts.
     pub fn local(&self) -> &World<F> {
         self.world.as_ref().expect("present between calls")
@@ -391,11 +416,13 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         self.share_wall_forces()?;
         let world = self.local();
         let flag = |b: bool| if b { 1.0 } else { 0.0 };
+        let (moved, next_step) = self.motion_bounds();
         let mut v = [
-            self.largest_move_m(),
+            moved,
             flag(interrupt.load(Ordering::SeqCst)),
             flag(world.forcing_failure().is_some()),
             flag(check_health(world).is_some()),
+            next_step,
         ];
         self.comm.max_f64(&mut v);
         let mut report = StepReport {
@@ -407,6 +434,9 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         } else if v[3] > 0.0 {
             report.blow_up = self.blow_up()?;
         } else if v[0] > 0.5 * self.skin_m {
+            // The skin also covers two steps of the fastest floe, so that
+            // the step after a migration stays inside it.
+            self.skin_m = self.base_skin_m().max(4.0 * v[4]);
             self.migrate()?;
         }
         Ok(report)
