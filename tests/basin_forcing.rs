@@ -16,11 +16,15 @@
 //!   starts; a floe that drifts off the grid during the run stops it, as a
 //!   blow-up does, with exit code 1 and the message located at the key.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use floe_basin::MapProjection;
 use floe_io::RunFile;
-use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
+use floe_study::run_file::{run, Quiet, RunArgs};
+
+#[path = "study_support/mod.rs"]
+mod study_support;
+use study_support::{run_args, run_text};
 
 /// One variable to write: name, CF attributes and value at (x, y, t).
 struct Var<'a> {
@@ -108,28 +112,6 @@ fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)
         .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
         .collect()
-}
-
-fn args(scenario: &Path, out: &Path, threads: usize) -> RunArgs {
-    RunArgs {
-        scenario: Some(scenario.to_path_buf()),
-        output: out.to_path_buf(),
-        threads: Some(threads),
-        force: true,
-        resume: false,
-        max_steps: None,
-        step_limit: floe_scenario::MAX_RUN_STEPS,
-        provenance: Provenance::of_this_process("test"),
-        laws: floe_friction::LawRegistry::builtin(),
-    }
-}
-
-/// Runs `text` written to `dir/name.toml`; the run file's path or the error.
-fn run_text(dir: &Path, name: &str, text: &str) -> Result<PathBuf, floe_study::Error> {
-    let scenario = dir.join(format!("{name}.toml"));
-    std::fs::write(&scenario, text).unwrap();
-    let out = dir.join(format!("{name}.h5"));
-    run(&args(&scenario, &out, 1), &Quiet).map(|_| out)
 }
 
 const PACK: &str = r#"duration_s = 7200.0
@@ -232,7 +214,7 @@ fn a_gridded_wind_drives_the_floes_as_the_same_wind_given_as_a_time_series() {
     // Two threads give the same file content.
     let scenario = dir.path().join("gridded.toml");
     let two = dir.path().join("two.h5");
-    run(&args(&scenario, &two, 2), &Quiet).unwrap();
+    run(&run_args(&scenario, &two, 2), &Quiet).unwrap();
     let (c, d) = (last_snapshot(&gridded), last_snapshot(&two));
     assert_eq!(format!("{:?}", c.position), format!("{:?}", d.position));
 }
@@ -555,7 +537,7 @@ fn a_floe_blown_off_the_grid_stops_the_run_with_its_checkpoint_intact_and_resume
         scenario: None,
         resume: true,
         force: false,
-        ..args(&d.join("gale.toml"), &out, 1)
+        ..run_args(&d.join("gale.toml"), &out, 1)
     };
     let e = run(&resume, &Quiet).unwrap_err();
     assert_eq!(e.exit_code(), 2);
@@ -572,10 +554,10 @@ fn over_two_processes_a_floe_blown_off_the_grid_ends_the_run_as_in_one() {
     let d = dir.path();
     let scenario = d.join("gale.toml");
     std::fs::write(&scenario, gale(d)).unwrap();
-    let one = run(&args(&scenario, &d.join("one.h5"), 1), &Quiet).unwrap_err();
+    let one = run(&run_args(&scenario, &d.join("one.h5"), 1), &Quiet).unwrap_err();
     assert_eq!(one.exit_code(), 1, "{one}");
     let codes = ThreadComm::run(2, |comm| {
-        let args = args(&scenario, &d.join("two.h5"), 1);
+        let args = run_args(&scenario, &d.join("two.h5"), 1);
         floe_study::run_parallel::run_parallel(&args, &Quiet, &comm, Settings::default())
             .unwrap_err()
             .exit_code()

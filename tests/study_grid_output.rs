@@ -11,8 +11,10 @@ use std::path::{Path, PathBuf};
 use floe_io::RunFile;
 use floe_study::cadence::Cadence;
 use floe_study::grid_output::{write_grid, GridArgs, FILL_VALUE};
-use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
+#[path = "study_support/mod.rs"]
+mod study_support;
 use netcdf::AttributeValue;
+use study_support::run_text;
 
 /// Six floes drifting in a doubly periodic box (20000 s, snapshots every
 /// 2000 s); tests/study_grid_xarray.rs grids it too.
@@ -34,25 +36,7 @@ fn text(value: Option<netcdf::Result<AttributeValue>>) -> String {
 
 /// The box's run, in `dir`.
 fn box_run(dir: &Path) -> PathBuf {
-    let scenario = dir.join("box.toml");
-    std::fs::write(&scenario, BOX).unwrap();
-    let h5 = dir.join("box.h5");
-    run(
-        &RunArgs {
-            scenario: Some(scenario),
-            output: h5.clone(),
-            threads: Some(1),
-            force: false,
-            resume: false,
-            max_steps: None,
-            step_limit: floe_scenario::MAX_RUN_STEPS,
-            provenance: Provenance::of_this_process("test"),
-            laws: floe_friction::LawRegistry::builtin(),
-        },
-        &Quiet,
-    )
-    .unwrap();
-    h5
+    run_text(dir, "box", BOX).unwrap()
 }
 
 #[test]

@@ -8,7 +8,9 @@ use std::process::Command;
 
 use floe_study::cadence::Cadence;
 use floe_study::grid_output::{write_grid, GridArgs};
-use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
+#[path = "study_support/mod.rs"]
+mod study_support;
+use study_support::run_text;
 
 /// The xarray example of docs/output.md opens a gridded-fields file with
 /// its coordinates and units (skipped, with a note, where python3 lacks
@@ -29,24 +31,7 @@ fn xarray_opens_the_file_as_docs_output_md_shows() {
     let at = doc.rfind("```python\n").expect("a python block") + "```python\n".len();
     let example = &doc[at..at + doc[at..].find("```").expect("its end")];
     let dir = tempfile::tempdir().unwrap();
-    let scenario = dir.path().join("box.toml");
-    std::fs::write(&scenario, include_str!("data/grid_box.toml")).unwrap();
-    let h5 = dir.path().join("box.h5");
-    run(
-        &RunArgs {
-            scenario: Some(scenario),
-            output: h5.clone(),
-            threads: Some(1),
-            force: false,
-            resume: false,
-            max_steps: None,
-            step_limit: floe_scenario::MAX_RUN_STEPS,
-            provenance: Provenance::of_this_process("test"),
-            laws: floe_friction::LawRegistry::builtin(),
-        },
-        &Quiet,
-    )
-    .unwrap();
+    let h5 = run_text(dir.path(), "box", include_str!("data/grid_box.toml")).unwrap();
     let nc = dir.path().join("fields.nc");
     write_grid(&GridArgs {
         run: h5,

@@ -12,7 +12,9 @@ use std::process::Command;
 use floe_io::RunFile;
 use floe_study::render::movie::{self, Encoding, MovieArgs};
 use floe_study::render::{render, render_movie, ColourBy, Snapshots};
-use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
+#[path = "study_support/mod.rs"]
+mod study_support;
+use study_support::run_text;
 
 /// Six floes drifting in a walled channel: a few snapshots.
 const BOX: &str = r#"title = "drifting floes between walls"
@@ -47,25 +49,7 @@ snapshot_every_s = 1000.0
 "#;
 
 fn box_run(dir: &Path) -> PathBuf {
-    let scenario = dir.join("box.toml");
-    std::fs::write(&scenario, BOX).unwrap();
-    let h5 = dir.join("box.h5");
-    run(
-        &RunArgs {
-            scenario: Some(scenario),
-            output: h5.clone(),
-            threads: Some(1),
-            force: false,
-            resume: false,
-            max_steps: None,
-            step_limit: floe_scenario::MAX_RUN_STEPS,
-            provenance: Provenance::of_this_process("test"),
-            laws: floe_friction::LawRegistry::builtin(),
-        },
-        &Quiet,
-    )
-    .unwrap();
-    h5
+    run_text(dir, "box", BOX).unwrap()
 }
 
 /// Width and height of a PNG (its IHDR chunk).

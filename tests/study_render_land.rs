@@ -5,7 +5,9 @@
 use floe_io::RunFile;
 use floe_study::render::floe_map::LAND;
 use floe_study::render::{render, ColourBy, Snapshots};
-use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
+#[path = "study_support/mod.rs"]
+mod study_support;
+use study_support::run_text;
 
 /// Land east of x = 7 km with a notch, over the whole height of the view.
 const COAST: &str = r#"{"type": "Feature", "properties": {}, "geometry": {"type": "Polygon",
@@ -39,24 +41,7 @@ snapshot_every_s = 30.0
 fn render_draws_land_in_the_land_colour() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("coast.geojson"), COAST).unwrap();
-    let scenario = dir.path().join("coast.toml");
-    std::fs::write(&scenario, SCENARIO).unwrap();
-    let h5 = dir.path().join("coast.h5");
-    run(
-        &RunArgs {
-            scenario: Some(scenario),
-            output: h5.clone(),
-            threads: Some(1),
-            force: false,
-            resume: false,
-            max_steps: None,
-            step_limit: floe_scenario::MAX_RUN_STEPS,
-            provenance: Provenance::of_this_process("test"),
-            laws: floe_friction::LawRegistry::builtin(),
-        },
-        &Quiet,
-    )
-    .unwrap();
+    let h5 = run_text(dir.path(), "coast", SCENARIO).unwrap();
     let floes = RunFile::open(&h5).unwrap().static_floes().unwrap();
     let land = floes.land.iter().filter(|&&l| l).count();
     let walls = floes
