@@ -18,6 +18,10 @@
 //!   the plane's x/y grid at 2 km, sloping gently down towards +x, packed
 //!   as `short` with `scale_factor`, `add_offset` and `_FillValue`.
 
+#[path = "support/lon_lat_file.rs"]
+mod lon_lat_file;
+use lon_lat_file::lon_lat_file;
+
 use std::path::{Path, PathBuf};
 
 use floe_basin::MapProjection;
@@ -105,28 +109,13 @@ fn write_wind(path: &Path, p: &MapProjection) {
             .collect()
     };
     let hours: Vec<f64> = (0..=WIND_HOURS).map(|h| h as f64).collect();
-    let mut f = netcdf::create(path).expect("create wind");
-    f.add_attribute("Conventions", "CF-1.8").unwrap();
-    f.add_attribute("title", "fuzz basin wind (floe: make_fuzz_basin)")
-        .unwrap();
-    f.add_dimension("time", hours.len()).unwrap();
-    f.add_dimension("latitude", lats.len()).unwrap();
-    f.add_dimension("longitude", lons.len()).unwrap();
-    let mut t = f.add_variable::<f64>("time", &["time"]).unwrap();
-    t.put_attribute("units", "hours since 2024-03-01 00:00:00")
-        .unwrap();
-    t.put_attribute("calendar", "gregorian").unwrap();
-    t.put_attribute("standard_name", "time").unwrap();
-    t.put_values(&hours, ..).unwrap();
-    for (name, values, units, sn) in [
-        ("latitude", &lats, "degrees_north", "latitude"),
-        ("longitude", &lons, "degrees_east", "longitude"),
-    ] {
-        let mut c = f.add_variable::<f64>(name, &[name]).unwrap();
-        c.put_attribute("units", units).unwrap();
-        c.put_attribute("standard_name", sn).unwrap();
-        c.put_values(values, ..).unwrap();
-    }
+    let mut f = lon_lat_file(
+        path,
+        "fuzz basin wind (floe: make_fuzz_basin)",
+        ("hours since 2024-03-01 00:00:00", &hours),
+        &lats,
+        &lons,
+    );
     let (mut u, mut v) = (Vec::new(), Vec::new());
     for &h in &hours {
         // 8 m/s towards +x on the plane, turning to +y over the six hours.

@@ -23,6 +23,10 @@
 //! The plane frame: the strait runs along y; north of the mouth (y > 0)
 //! is the Lincoln Sea side; the channel is 20 km wide, 60 km long.
 
+#[path = "support/lon_lat_file.rs"]
+mod lon_lat_file;
+use lon_lat_file::lon_lat_file;
+
 use std::path::{Path, PathBuf};
 
 use floe_basin::MapProjection;
@@ -180,31 +184,13 @@ fn write_wind(path: &Path, p: &MapProjection, centre: Vec2) {
     let hours: Vec<f64> = (0..=WIND_HOURS).step_by(3).map(|h| h as f64).collect();
     // 2024-03-01 00:00 is 1,088,400 h after 1900-01-01.
     let era5_hours: Vec<f64> = hours.iter().map(|h| 1_088_400.0 + h).collect();
-    let mut f = netcdf::create(path).expect("create wind");
-    f.add_attribute("Conventions", "CF-1.8").unwrap();
-    f.add_attribute(
-        "title",
+    let mut f = lon_lat_file(
+        path,
         "idealised storm over Nares Strait (floe: make_nares_strait)",
-    )
-    .unwrap();
-    f.add_dimension("time", hours.len()).unwrap();
-    f.add_dimension("latitude", lats.len()).unwrap();
-    f.add_dimension("longitude", lons.len()).unwrap();
-    let mut t = f.add_variable::<f64>("time", &["time"]).unwrap();
-    t.put_attribute("units", "hours since 1900-01-01 00:00:00.0")
-        .unwrap();
-    t.put_attribute("calendar", "gregorian").unwrap();
-    t.put_attribute("standard_name", "time").unwrap();
-    t.put_values(&era5_hours, ..).unwrap();
-    for (name, values, units, sn) in [
-        ("latitude", &lats, "degrees_north", "latitude"),
-        ("longitude", &lons, "degrees_east", "longitude"),
-    ] {
-        let mut c = f.add_variable::<f64>(name, &[name]).unwrap();
-        c.put_attribute("units", units).unwrap();
-        c.put_attribute("standard_name", sn).unwrap();
-        c.put_values(values, ..).unwrap();
-    }
+        ("hours since 1900-01-01 00:00:00.0", &era5_hours),
+        &lats,
+        &lons,
+    );
     let (mut u, mut v) = (Vec::new(), Vec::new());
     for &h in &hours {
         for &la in &lats {
