@@ -75,16 +75,14 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         // A prescribed floe is on every process and moves the same on each
         // (its schedule, or its stress control, which reads the forces
         // `share_wall_forces` hands round): only free floes' motion travels.
-        let controlled: Vec<usize> = migrants
+        let mut control_ids: Vec<u64> = (self.drivers.stress_controls.iter())
+            .flat_map(|c| c.floe_ids.iter().copied())
+            .collect();
+        control_ids.sort_unstable();
+        // A search per controlled piece, not of every control per floe.
+        let controlled: Vec<usize> = control_ids
             .iter()
-            .enumerate()
-            .filter(|(_, m)| {
-                self.drivers
-                    .stress_controls
-                    .iter()
-                    .any(|c| c.floe_ids.contains(&m.floe.id))
-            })
-            .map(|(h, _)| h)
+            .filter_map(|id| ids.binary_search(id).ok())
             .collect();
         for (h, m) in migrants.iter().enumerate() {
             if !matches!(m.floe.motion, floe_dem::floes::Motion::Free) {
