@@ -16,6 +16,8 @@ use crate::error::DemError;
 use crate::floes::Floes;
 use crate::load_point::LoadPoint;
 use crate::motion_schedule::ScheduledMotion;
+use crate::pipeline::boundary_motion::{control_speed, with_normal_speed};
+use crate::pipeline::integrator::half_kicked;
 use crate::stress_control::StressControl;
 use crate::Vec2;
 
@@ -138,14 +140,16 @@ impl WorldState {
         let dt = self.dt_s;
         let mut next: Vec<(Vec2, f64)> = (0..f.len())
             .map(|i| {
-                let (v, w) = (f.velocity[i], f.angular_velocity[i]);
+                let motion = (f.velocity[i], f.angular_velocity[i]);
                 if f.is_free(i) {
-                    (
-                        v + self.force[i] / f.mass_kg[i] * (0.5 * dt),
-                        w + self.torque[i] / f.inertia_kg_m2[i] * (0.5 * dt),
+                    half_kicked(
+                        motion,
+                        (self.force[i], self.torque[i]),
+                        (f.mass_kg[i], f.inertia_kg_m2[i]),
+                        dt,
                     )
                 } else {
-                    (v, w)
+                    motion
                 }
             })
             .collect();
@@ -155,16 +159,10 @@ impl WorldState {
             }
         }
         for c in &self.stress_controls {
-            let stress = c.stress(|id| {
-                self.floes
-                    .handle_of(id)
-                    .map_or(Vec2::ZERO, |h| self.force[h])
-            });
-            let (v_n, n) = (c.normal_speed(stress), c.inward_normal);
+            let v_n = control_speed(&self.floes, &self.force, c);
             for &id in &c.floe_ids {
                 if let Some(h) = self.floes.handle_of(id) {
-                    let v = next[h].0;
-                    next[h].0 = v - n * v.dot(n) + n * v_n;
+                    next[h].0 = with_normal_speed(next[h].0, c.inward_normal, v_n);
                 }
             }
         }

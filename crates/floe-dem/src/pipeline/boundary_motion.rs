@@ -48,17 +48,26 @@ pub(crate) fn add_load_point_forces(
 /// keeping their velocity along the wall.
 pub(crate) fn apply_stress_controls(floes: &mut Floes, force: &[Vec2], controls: &[StressControl]) {
     for c in controls {
-        let stress = c.stress(|id| floes.handle_of(id).map_or(Vec2::ZERO, |h| force[h]));
-        let v_n = c.normal_speed(stress);
-        let n = c.inward_normal;
+        let v_n = control_speed(floes, force, c);
         for &id in &c.floe_ids {
             if let Some(h) = floes.handle_of(id) {
-                let v = floes.velocity[h];
-                let velocity = v - n * v.dot(n) + n * v_n;
+                let velocity = with_normal_speed(floes.velocity[h], c.inward_normal, v_n);
                 floes.set_motion(h, Motion::Prescribed { velocity });
                 let w = floes.angular_velocity[h];
                 floes.set_velocity(h, velocity, w);
             }
         }
     }
+}
+
+/// Control `c`'s normal speed for the stress the forces on its pieces
+/// (`force`, per floe of `floes`) make.
+pub(crate) fn control_speed(floes: &Floes, force: &[Vec2], c: &StressControl) -> f64 {
+    c.normal_speed(c.stress(|id| floes.handle_of(id).map_or(Vec2::ZERO, |h| force[h])))
+}
+
+/// Velocity `v` with its component along the unit normal `n` made `v_n`.
+#[inline]
+pub(crate) fn with_normal_speed(v: Vec2, n: Vec2, v_n: f64) -> Vec2 {
+    v - n * v.dot(n) + n * v_n
 }

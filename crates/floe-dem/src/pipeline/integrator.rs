@@ -61,8 +61,12 @@ pub(crate) fn drift(
         .enumerate()
         .map(|(i, (x, v, (theta, omega), trig))| {
             if let Motion::Free = motion[i] {
-                *v += force[i] / mass_kg[i] * (0.5 * dt);
-                *omega += torque[i] / inertia_kg_m2[i] * (0.5 * dt);
+                (*v, *omega) = half_kicked(
+                    (*v, *omega),
+                    (force[i], torque[i]),
+                    (mass_kg[i], inertia_kg_m2[i]),
+                    dt,
+                );
             }
             *x = periodicity.wrap(*x + *v * dt);
             *theta += *omega * dt;
@@ -70,6 +74,21 @@ pub(crate) fn drift(
             broad_phase.moved_beyond_allowance(i, *x, *theta, periodicity)
         })
         .reduce(|| false, |a, b| a || b)
+}
+
+/// A free floe's velocity and angular velocity after the first half kick:
+/// `v + F dt / 2m`, `omega + T dt / 2I`.
+#[inline(always)]
+pub(crate) fn half_kicked(
+    (v, omega): (Vec2, f64),
+    (force, torque): (Vec2, f64),
+    (mass, inertia): (f64, f64),
+    dt: f64,
+) -> (Vec2, f64) {
+    (
+        v + force / mass * (0.5 * dt),
+        omega + torque / inertia * (0.5 * dt),
+    )
 }
 
 /// The step's forces as the second half kick reads and corrects them.
