@@ -250,14 +250,47 @@ fn an_emitted_sweep_is_gathered_from_whatever_ran() {
     }
     let script = std::fs::read_to_string(out.join("array.slurm")).unwrap();
     assert!(script.contains("#SBATCH --array=1-3"), "{script}");
-    // One task of the "array" ran.
+    // Task 2 of the array began and was stopped at its time limit; its
+    // resubmission runs array.slurm, which resumes it.
     ok(&[
         "run",
         &out.join("variant_002.toml").display().to_string(),
         "-o",
         &out.join("variant_002.h5").display().to_string(),
         "--quiet",
+        "--max-steps",
+        "10",
     ]);
+    let bin = out.join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    let floe_on_path = bin.join("floe");
+    std::fs::write(
+        &floe_on_path,
+        format!("#!/bin/sh\nexec '{}' \"$@\"\n", env!("CARGO_BIN_EXE_floe")),
+    )
+    .unwrap();
+    Command::new("chmod")
+        .arg("+x")
+        .arg(&floe_on_path)
+        .status()
+        .unwrap();
+    let job = Command::new("bash")
+        .arg(out.join("array.slurm"))
+        .env(
+            "PATH",
+            format!("{}:{}", bin.display(), std::env::var("PATH").unwrap()),
+        )
+        .env("SLURM_SUBMIT_DIR", &out)
+        .env("SLURM_ARRAY_TASK_ID", "2")
+        .env("SLURM_CPUS_PER_TASK", "1")
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&job.stderr);
+    assert_eq!(job.status.code(), Some(0), "{said}");
+    assert!(
+        said.contains("resum"),
+        "the resubmitted task resumes: {said}"
+    );
     ok(&["sweep", "--gather", "-o", &o]);
     let table = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let status: Vec<String> = csv::Reader::from_reader(table.as_bytes())

@@ -713,10 +713,15 @@ fn a_run_whose_process_died_is_reported_as_stopped() {
         "{}",
         info.stdout
     );
-    let r = floe_in(
-        dir.path(),
-        &["run", "--resume", "-o", "s.h5", "-q", "--max-steps", "5"],
-    );
+    // The suggested command, as printed (and a step budget after it).
+    let start = info
+        .stdout
+        .find("`floe run --resume s.h5`")
+        .expect("how to resume");
+    let said = &info.stdout[start + 6..start + 6 + "run --resume s.h5".len()];
+    let mut args: Vec<&str> = said.split_whitespace().collect();
+    args.extend(["-q", "--max-steps", "5"]);
+    let r = floe_in(dir.path(), &args);
     assert_eq!(r.code, Some(0), "{}", r.stderr);
     assert!(h5.exists());
 }

@@ -12,8 +12,8 @@ use floe_io::RunFile;
 #[path = "run_support/mod.rs"]
 mod run_support;
 use run_support::{
-    assert_no_panic, assert_same_run, bits, bits2, code, interrupted_step, text, wait_for_progress,
-    Case, Launch,
+    assert_no_panic, assert_same_run, bits, bits2, code, interrupted_step, run_suggestion,
+    suggested_command, text, wait_for_progress, Case, Launch,
 };
 
 /// A sheared channel of small diamonds: a few hundred steps, snapshots,
@@ -175,10 +175,9 @@ fn ctrl_c_writes_a_final_snapshot_and_checkpoint_and_resume_is_bitwise() {
     let err = text(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "{err}");
     assert_no_panic(&err);
-    assert!(
-        err.contains("--resume"),
-        "the message says how to go on: {err}"
-    );
+    // The message says how to go on, and that command works as written.
+    let suggestion = suggested_command(&err);
+    assert_eq!(suggestion[..3], ["floe", "run", "--resume"], "{err}");
 
     let file = RunFile::open(Path::new(&target)).unwrap();
     let step = interrupted_step(&file);
@@ -186,7 +185,7 @@ fn ctrl_c_writes_a_final_snapshot_and_checkpoint_and_resume_is_bitwise() {
     assert_eq!(file.snapshot(n - 1).unwrap().step, step, "a final snapshot");
     drop(file);
 
-    let out = case.resume("parts.h5", &["--threads", "1"]);
+    let out = run_suggestion(case.dir.path(), &suggestion);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
     assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
 }

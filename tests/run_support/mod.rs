@@ -102,11 +102,12 @@ impl Case {
         let out = self.run(name, extra);
         assert_eq!(code(&out), 0, "{}", text(&out.stderr));
     }
-    /// `floe run --resume` of `name`.
+    /// `floe run --resume` of `name`, in the documented form
+    /// (`floe run --resume OUT.h5`).
     pub fn resume_with(&self, launch: Launch, name: &str, extra: &[&str]) -> Output {
         launch
             .command()
-            .args(["run", "--resume", "-o", &self.path(name), "-q"])
+            .args(["run", "--resume", &self.path(name), "-q"])
             .args(extra)
             .output()
             .expect("floe starts")
@@ -217,4 +218,25 @@ pub fn interrupted_step(file: &RunFile) -> u64 {
         .unwrap();
     assert_eq!(file.checkpoint().unwrap().unwrap().step, step);
     step
+}
+
+/// The command in the first pair of backticks of `message` that starts
+/// with `floe`, as its words.
+pub fn suggested_command(message: &str) -> Vec<String> {
+    let start = message
+        .find("`floe ")
+        .unwrap_or_else(|| panic!("no suggested command in: {message}"));
+    let rest = &message[start + 1..];
+    let end = rest.find('`').unwrap();
+    rest[..end].split_whitespace().map(str::to_string).collect()
+}
+
+/// Runs a suggested `floe ...` command verbatim in `dir`.
+pub fn run_suggestion(dir: &Path, words: &[String]) -> std::process::Output {
+    assert_eq!(words[0], "floe");
+    Command::new(env!("CARGO_BIN_EXE_floe"))
+        .args(&words[1..])
+        .current_dir(dir)
+        .output()
+        .unwrap()
 }

@@ -46,9 +46,10 @@ pub enum Command {
         /// Scenario file (omit with --resume).
         #[arg(required_unless_present = "resume")]
         scenario: Option<PathBuf>,
-        /// Output HDF5 file.
-        #[arg(long, short)]
-        output: PathBuf,
+        /// Output HDF5 file (with --resume: the file to continue, given
+        /// either way).
+        #[arg(long, short, required_unless_present = "resume")]
+        output: Option<PathBuf>,
         /// Worker threads (default: the scenario's `threads`, else every core).
         /// Results are bitwise identical for any count.
         #[arg(long)]
@@ -56,9 +57,10 @@ pub enum Command {
         /// Replace an existing output file.
         #[arg(long)]
         force: bool,
-        /// Continue the run in OUTPUT from its last checkpoint.
-        #[arg(long)]
-        resume: bool,
+        /// Continue the run in FILE (or in --output) from its last
+        /// checkpoint: `floe run --resume OUT.h5`.
+        #[arg(long, value_name = "FILE", num_args = 0..=1)]
+        resume: Option<Option<PathBuf>>,
         /// Take at most this many steps, then write a checkpoint and stop
         /// (continue with --resume; for batch jobs with a time limit).
         #[arg(long, value_name = "STEPS", value_parser = whole_steps)]
@@ -545,6 +547,28 @@ fn positive_fraction(text: &str) -> Result<f64, String> {
     }
 }
 
+/// The run's output file and whether it resumes, from `-o FILE` and
+/// `--resume [FILE]`: a file given to both must be the same one.
+pub fn run_output(
+    output: Option<PathBuf>,
+    resume: Option<Option<PathBuf>>,
+) -> Result<(PathBuf, bool), CliError> {
+    match (output, resume) {
+        (Some(o), None) => Ok((o, false)),
+        (Some(o), Some(None)) | (None, Some(Some(o))) => Ok((o, true)),
+        (Some(o), Some(Some(r))) if o == r => Ok((o, true)),
+        (Some(o), Some(Some(r))) => Err(floe_study::Error::Usage(format!(
+            "--resume {} and --output {} name two files; give the run file once: `floe run --resume {}`",
+            r.display(),
+            o.display(),
+            r.display()
+        ))),
+        (None, None | Some(None)) => Err(floe_study::Error::Usage(
+            "--resume needs the run file: `floe run --resume OUT.h5`".into(),
+        )),
+    }
+}
+
 fn json<T: serde::Serialize>(value: &T) -> String {
     serde_json::to_string_pretty(value).expect("plain data serialises")
 }
@@ -567,6 +591,8 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
             rebalance_threshold,
             halo_skin,
         } => {
+            let (output, resume) = run_output(output, resume)?;
+            crate::interrupt::set_run_file(&output);
             let args = RunArgs {
                 scenario,
                 output,

@@ -24,7 +24,10 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
         let _ = writeln!(out, "{key:<12} {value}");
     };
     line("file", file.display().to_string());
-    line("status", floe_io::run_status::describe(&run.status()?));
+    line(
+        "status",
+        floe_io::run_status::describe(&run.status()?, file),
+    );
     line("scenario", meta.scenario_path.clone());
     line(
         "created by",

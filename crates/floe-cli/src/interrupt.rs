@@ -9,6 +9,15 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
+/// The run file, named in the second interrupt's message.
+static RUN_FILE: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+
+/// Names the run file that the second interrupt's message tells how to
+/// resume (the first name given is kept).
+pub fn set_run_file(path: &std::path::Path) {
+    let _ = RUN_FILE.set(path.to_path_buf());
+}
+
 /// The flag the stepping loop polls. Installs the signal handler on first
 /// use; if it cannot be installed (another handler owns the signal), runs
 /// go on without one and say so.
@@ -17,10 +26,13 @@ pub fn flag() -> &'static AtomicBool {
     INSTALL.call_once(|| {
         let installed = ctrlc::set_handler(|| {
             if INTERRUPTED.swap(true, Ordering::SeqCst) {
-                crate::stderr::line(
+                crate::stderr::line(&format!(
                     "\nsecond interrupt: stopping now; the last checkpoint stays valid \
-                     (resume with `floe run --resume`)",
-                );
+                     (resume with `floe run --resume {}`)",
+                    RUN_FILE
+                        .get()
+                        .map_or("OUT.h5".into(), |p| p.display().to_string())
+                ));
                 stop_now();
             }
             // Under mpirun every process is signalled; process 0 speaks.

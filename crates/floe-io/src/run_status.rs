@@ -7,14 +7,16 @@ pub fn running() -> String {
     format!("running (pid {} on {})", std::process::id(), this_host())
 }
 
-/// The stored status as a reader should see it: a `running` status whose
-/// process was on this machine and is gone says so; others are as stored.
-pub fn describe(stored: &str) -> String {
+/// The stored status of the run file `path` as a reader should see it: a
+/// `running` status whose process was on this machine and is gone says so
+/// (and how to resume); others are as stored.
+pub fn describe(stored: &str, path: &std::path::Path) -> String {
     match running_process(stored) {
         Some((pid, host)) if host == this_host() && !alive(pid) => format!(
             "{stored}: that process is gone, so the run stopped without a final snapshot \
              (killed, interrupted twice, or stopped by a write error such as a full disk); resume it from its last checkpoint with \
-             `floe run --resume`"
+             `floe run --resume {}`",
+            path.display()
         ),
         _ => stored.to_string(),
     }
@@ -49,6 +51,7 @@ fn alive(pid: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path;
 
     #[test]
     fn this_process_is_running() {
@@ -57,7 +60,7 @@ mod tests {
             running_process(&s).map(|(p, _)| p),
             Some(std::process::id())
         );
-        assert_eq!(describe(&s), s);
+        assert_eq!(describe(&s, Path::new("r.h5")), s);
     }
 
     #[test]
@@ -67,14 +70,12 @@ mod tests {
         let pid = child.id();
         child.wait().unwrap();
         let s = format!("running (pid {pid} on {})", this_host());
-        assert!(
-            describe(&s).contains("that process is gone"),
-            "{}",
-            describe(&s)
-        );
+        let said = describe(&s, Path::new("r.h5"));
+        assert!(said.contains("that process is gone"), "{said}");
+        assert!(said.contains("`floe run --resume r.h5`"), "{said}");
         // On another machine it cannot be told.
         let elsewhere = format!("running (pid {pid} on some-other-node)");
-        assert_eq!(describe(&elsewhere), elsewhere);
-        assert_eq!(describe("completed"), "completed");
+        assert_eq!(describe(&elsewhere, Path::new("r.h5")), elsewhere);
+        assert_eq!(describe("completed", Path::new("r.h5")), "completed");
     }
 }
