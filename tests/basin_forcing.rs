@@ -14,7 +14,9 @@
 //!   that has missing values under a floe at the start, ends in one message
 //!   located at the key naming the file, with exit code 2, before the run
 //!   starts; a floe that drifts off the grid during the run stops it, as a
-//!   blow-up does, with exit code 1 and the message located at the key.
+//!   blow-up does, with exit code 1 and the message located at the key;
+//! - a value beyond what the field can be on Earth (a 1e30 m/s wind) is
+//!   refused when its slice is read, wherever it lies.
 
 use std::path::Path;
 
@@ -458,6 +460,72 @@ fn files_that_do_not_fit_the_run_end_in_one_message_naming_them() {
     );
     assert_eq!(code, 2);
     assert!(msg.contains("junk.nc") && msg.contains("NetCDF"), "{msg}");
+}
+
+/// A wind of 1e30 m/s at one file node, far from every floe (the domain's
+/// corner), at hour `bad_hour` of a file of hours 0, 1 and 2.
+fn wind_with_a_wild_value(path: &Path, bad_hour: f64) {
+    let wild = move |x: f64, y: f64, t: f64| {
+        if x < -1000.0 && y < -1000.0 && (t - bad_hour * 3600.0).abs() < 1.0 {
+            1e30
+        } else {
+            5.0
+        }
+    };
+    write_nc(
+        path,
+        &linspace(-2000.0, 22000.0, 13),
+        &linspace(-2000.0, 14000.0, 9),
+        Some(&[0.0, 1.0, 2.0]),
+        false,
+        &[
+            Var {
+                name: "u",
+                standard_name: "x_wind",
+                units: "m s-1",
+                value: &wild,
+            },
+            Var {
+                name: "v",
+                standard_name: "y_wind",
+                units: "m s-1",
+                value: &|_, _, _| 0.0,
+            },
+        ],
+    );
+}
+
+#[test]
+fn a_wind_beyond_any_on_earth_is_refused_when_read_naming_the_file_variable_and_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario =
+        |file: &str| format!("{PACK}\n[wind]\nfile = \"{file}\"\nvariables = [\"u\", \"v\"]\n");
+    // In the first slice: refused before the run starts.
+    wind_with_a_wild_value(&d.join("first.nc"), 0.0);
+    let (code, msg) = error_of(d, "first", &scenario("first.nc"));
+    assert_eq!(code, 2, "{msg}");
+    for part in [
+        "first.toml:",
+        "wind.file",
+        "first.nc",
+        "variable \"u\"",
+        "1e30 m/s",
+        "150 m/s",
+        "time index 0",
+    ] {
+        assert!(msg.contains(part), "`{part}` in {msg}");
+    }
+    // In the last slice: the run stops when it reads it (hour 1), with its
+    // checkpoint, instead of running on a field no floe happens to sample.
+    wind_with_a_wild_value(&d.join("later.nc"), 2.0);
+    let (code, msg) = error_of(d, "later", &scenario("later.nc"));
+    assert_eq!(code, 1, "{msg}");
+    for part in ["later.toml:", "wind.file", "1e30 m/s", "time index 2"] {
+        assert!(msg.contains(part), "`{part}` in {msg}");
+    }
+    let f = RunFile::open(&d.join("later.h5")).unwrap();
+    assert!(f.snapshot_count().unwrap() >= 2, "it ran until the read");
 }
 
 /// A wind file whose grid covers the PACK domain with 400 m to spare; in

@@ -140,6 +140,7 @@ fn main() {
             region: (lo, hi),
             plane_spacing_m: None,
             margin_m: 0.0,
+            limit: None,
         })
         .expect("source");
         VelocityField::Gridded(Box::new(

@@ -13,7 +13,8 @@
 //!
 //! Forcing: [`cf_file`] reads CF NetCDF (a damaged file is an error naming
 //! it, never a crash: [`classic_header`], [`native_guard`]);
-//! [`netcdf_source`] samples its variables onto the model plane.
+//! [`netcdf_source`] samples its variables onto the model plane, refusing
+//! values beyond a [`value_limit`].
 #![deny(missing_docs)]
 
 pub mod coastline;
@@ -36,7 +37,9 @@ pub mod ice_fields;
 pub mod native_guard;
 pub mod netcdf_source;
 pub mod scalar_grid;
+pub mod value_limit;
 
 pub use ice_fields::{open_concentration, open_thickness, ConcentrationGrid, ConcentrationUnits};
 pub use netcdf_source::{FieldRequest, NetcdfSource};
 pub use scalar_grid::{ScalarGrid, ScalarRequest};
+pub use value_limit::ValueLimit;

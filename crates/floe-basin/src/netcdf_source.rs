@@ -29,6 +29,7 @@ use floe_dem::Vec2;
 use crate::cf_file::{AxisKind, CfFile, RegularAxis, VariableLayout};
 use crate::error::BasinError;
 use crate::projection::MapProjection;
+use crate::value_limit::ValueLimit;
 
 /// Mean Earth radius, m: only to pick a plane spacing like the file's.
 const EARTH_RADIUS_M: f64 = 6.371e6;
@@ -56,6 +57,9 @@ pub struct FieldRequest<'a> {
     /// How far beyond the region the plane grid reaches where the file has
     /// data, m (floes that stray out of an open domain stay on the grid).
     pub margin_m: f64,
+    /// The largest magnitude a value may have; a slice holding a larger
+    /// one is refused when read. `None`: any finite value.
+    pub limit: Option<ValueLimit>,
 }
 
 /// Where plane node `k` samples one component: the file node `(i, j)` of
@@ -92,6 +96,8 @@ pub struct NetcdfSource {
     /// For a source of one chosen record ([`NetcdfSource::open_record`]):
     /// the file's time index that slice 0 reads.
     record: Option<usize>,
+    /// [`FieldRequest::limit`].
+    limit: Option<ValueLimit>,
 }
 
 impl std::fmt::Debug for NetcdfSource {
@@ -257,6 +263,7 @@ impl NetcdfSource {
             components,
             east_north,
             record,
+            limit: request.limit,
         })
     }
 }
@@ -438,16 +445,25 @@ fn component(
 
 impl Component {
     /// Reads the window at time index `t` and samples it at every node.
+    /// Values beyond `limit` are refused, naming the first one found.
     fn sample(
         &self,
         file: &CfFile,
         t: usize,
+        limit: Option<ValueLimit>,
         out: &mut [f64],
         stride: usize,
         offset: usize,
     ) -> Result<(), BasinError> {
         let window = file.read(&self.layout, t, self.rows.clone(), self.cols.clone())?;
         let width = self.cols.len();
+        if let Some(limit) = limit {
+            self.check(&window, t, limit)
+                .map_err(|why| BasinError::File {
+                    path: file.path().to_path_buf(),
+                    why,
+                })?;
+        }
         let height = self.rows.len();
         let value = |i: usize, j: usize| -> f64 {
             let i = if self.wrap { i % width } else { i };
@@ -484,6 +500,33 @@ impl Component {
     }
 }
 
+impl Component {
+    /// The first value of the window read at time index `t` beyond `limit`,
+    /// located at its file node and coordinates.
+    fn check(&self, window: &[f64], t: usize, limit: ValueLimit) -> Result<(), String> {
+        let Some(k) = window.iter().position(|&v| !limit.admits(v)) else {
+            return Ok(());
+        };
+        let width = self.cols.len();
+        let i = (self.cols.start + k % width) % self.layout.x.len;
+        let j = self.rows.start + k / width;
+        let (x, y) = (self.layout.x, self.layout.y);
+        Err(format!(
+            "variable \"{}\": the value {} {} at time index {t}, node ({i}, {j}) ({}, {}), is \
+             beyond what {} can be on Earth (|value| <= {} {}): check the variable, its units, \
+             scale_factor and _FillValue",
+            self.layout.name,
+            ValueLimit::shown(window[k]),
+            limit.units,
+            x.start + i as f64 * x.step,
+            y.start + j as f64 * y.step,
+            limit.what,
+            limit.max_abs,
+            limit.units
+        ))
+    }
+}
+
 impl SliceSource for NetcdfSource {
     fn describe(&self) -> &str {
         &self.describe
@@ -509,11 +552,14 @@ impl SliceSource for NetcdfSource {
         let c = self.components.len();
         let index = self.record.unwrap_or(index);
         for (k, comp) in self.components.iter().enumerate() {
-            comp.sample(&file, index, out, c, k).map_err(|e| match e {
-                // Named as the field's other failures are.
-                BasinError::File { why, .. } => ForcingFailure(format!("{}: {why}", self.describe)),
-                e => ForcingFailure(e.to_string()),
-            })?;
+            comp.sample(&file, index, self.limit, out, c, k)
+                .map_err(|e| match e {
+                    // Named as the field's other failures are.
+                    BasinError::File { why, .. } => {
+                        ForcingFailure(format!("{}: {why}", self.describe))
+                    }
+                    e => ForcingFailure(e.to_string()),
+                })?;
         }
         if !self.east_north.is_empty() {
             for (k, (east, north)) in self.east_north.iter().enumerate() {

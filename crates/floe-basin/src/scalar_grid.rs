@@ -69,6 +69,9 @@ impl ScalarGrid {
             region: request.region,
             plane_spacing_m: None,
             margin_m: 0.0,
+            // Concentration and thickness are checked against their own
+            // ranges once read (crate::ice_fields).
+            limit: None,
         };
         let err = |why: String| BasinError::File {
             path: request.path.to_path_buf(),

@@ -12,7 +12,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use floe_basin::{FieldRequest, MapProjection, NetcdfSource};
+use floe_basin::{FieldRequest, MapProjection, NetcdfSource, ValueLimit};
 use floe_dem::forcing::{GriddedField, VelocityField};
 
 use crate::domain::Domain;
@@ -160,6 +160,7 @@ fn open_field(
     (path, span, key): (PathBuf, Range<usize>, String),
     variables: &[&str],
     plane_spacing_m: Option<f64>,
+    limit: ValueLimit,
 ) -> Result<GriddedField, ScenarioError> {
     let d = ctx.region;
     let request = FieldRequest {
@@ -170,6 +171,7 @@ fn open_field(
         region: (d.min_m, d.min_m + d.size_m),
         plane_spacing_m,
         margin_m: PLANE_MARGIN_FRACTION * d.size_m.x.max(d.size_m.y),
+        limit: Some(limit),
     };
     let context = location(f, span.clone(), &key);
     let source = NetcdfSource::open_located(request, &context)
@@ -243,6 +245,11 @@ pub(crate) fn resolve_gridded_velocity(
         (path, file.span(), format!("{table}.file")),
         &names,
         spacing,
+        if table == "wind" {
+            ValueLimit::WIND
+        } else {
+            ValueLimit::CURRENT
+        },
     )?;
     Ok(Some(VelocityField::Gridded(Box::new(field))))
 }
@@ -285,6 +292,7 @@ pub(crate) fn resolve_sea_surface_height(
         (path, eta.span(), "ocean.sea_surface_height".to_string()),
         &[r.variable.as_str()],
         spacing,
+        ValueLimit::SEA_SURFACE_HEIGHT,
     )
     .map(Some)
 }
