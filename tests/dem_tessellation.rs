@@ -280,6 +280,198 @@ proptest! {
     }
 }
 
+/// A periodic lattice tiles the domain's cylinder or torus: areas add up to
+/// the domain's; along a periodic axis no floe is cut (without jitter every
+/// floe that no open side cuts is the fitted rhombus, four vertices); every
+/// edge is matched, reversed, by exactly one edge of another floe or of a
+/// floe's periodic image, or lies on an open side; each floe's centre lies
+/// within a cell of the domain.
+fn check_periodic_lattice(lattice: &DiamondLattice, periodic: [bool; 2], what: &str) {
+    let dom = lattice.domain;
+    let side = lattice.side_m;
+    let (t, _, fit) = lattice.build_periodic(periodic).unwrap();
+    assert_area_sum(&t, &dom, what);
+    let (lo, hi) = fit.stretch_range();
+    let (d1, d2) = lattice.diagonals_m();
+    let reach = hi * (d1.max(d2) + 2.0 * lattice.jitter_fraction * side);
+    let [[a, b], [c, d]] = fit.map;
+    let fitted_cell = lattice.cell_area_m2() * (a * d - b * c).abs();
+    for (k, p) in t.polygons.iter().enumerate() {
+        assert_convex_ccw(p, side, &format!("{what} floe {k}"));
+        let centre = p.iter().fold(Vec2::ZERO, |s, &v| s + v) / p.len() as f64;
+        for axis in 0..2 {
+            let (min, max) = ([dom.min.x, dom.min.y][axis], [dom.max.x, dom.max.y][axis]);
+            let x = [centre.x, centre.y][axis];
+            assert!(
+                x > min - reach && x < max + reach,
+                "{what}: floe {k} at {centre:?}"
+            );
+        }
+        let cut = p.iter().any(|v| {
+            (!periodic[0] && (v.x == dom.min.x || v.x == dom.max.x))
+                || (!periodic[1] && (v.y == dom.min.y || v.y == dom.max.y))
+        });
+        if !cut {
+            assert_eq!(p.len(), 4, "{what}: floe {k} is not a whole rhombus: {p:?}");
+            if lattice.jitter_fraction == 0.0 {
+                let rel = (area(p) - fitted_cell).abs() / fitted_cell;
+                assert!(
+                    rel < 1e-9,
+                    "{what}: floe {k} area {} vs {fitted_cell}",
+                    area(p)
+                );
+            }
+        }
+    }
+    assert!(lo > 0.8 && hi < 1.25, "{what}: stretch {lo}..{hi}");
+    // Every edge against the edges of the floes and their images.
+    let shifts: Vec<Vec2> = {
+        let xs: &[f64] = if periodic[0] {
+            &[-1.0, 0.0, 1.0]
+        } else {
+            &[0.0]
+        };
+        let ys: &[f64] = if periodic[1] {
+            &[-1.0, 0.0, 1.0]
+        } else {
+            &[0.0]
+        };
+        xs.iter()
+            .flat_map(|&i| {
+                ys.iter()
+                    .map(move |&j| Vec2::new(i * dom.width_m(), j * dom.height_m()))
+            })
+            .collect()
+    };
+    let tol = 1e-7 * side;
+    let cell = 0.5 * side;
+    let key = |p: Vec2| {
+        (
+            ((p.x - dom.min.x) / cell).floor() as i64,
+            ((p.y - dom.min.y) / cell).floor() as i64,
+        )
+    };
+    // Edges (from, to, floe; usize::MAX for an image) by the cell of their
+    // midpoint.
+    type Edges = Vec<(Vec2, Vec2, usize)>;
+    let mut buckets: HashMap<(i64, i64), Edges> = HashMap::new();
+    for (pi, poly) in t.polygons.iter().enumerate() {
+        for &shift in &shifts {
+            for k in 0..poly.len() {
+                let (a, b) = (poly[k] + shift, poly[(k + 1) % poly.len()] + shift);
+                let id = if shift == Vec2::ZERO { pi } else { usize::MAX };
+                buckets
+                    .entry(key((a + b) * 0.5))
+                    .or_default()
+                    .push((a, b, id));
+            }
+        }
+    }
+    let mut open_length = 0.0;
+    for (pi, poly) in t.polygons.iter().enumerate() {
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (kx, ky) = key((a + b) * 0.5);
+            let mut matches = 0;
+            for dx in -1..=1 {
+                for dy in -1..=1 {
+                    for &(fa, fb, fp) in buckets.get(&(kx + dx, ky + dy)).into_iter().flatten() {
+                        if fp != pi && (fa - b).length() <= tol && (fb - a).length() <= tol {
+                            matches += 1;
+                        }
+                    }
+                }
+            }
+            assert!(
+                matches <= 1,
+                "{what}: edge {a:?}->{b:?} matched {matches} times"
+            );
+            if matches == 0 {
+                let side_of = boundary_side(a, b, &dom, tol);
+                assert!(
+                    matches!(side_of, Some(s) if !periodic[s / 2]),
+                    "{what}: edge {a:?}->{b:?} of floe {pi} has no neighbour, nor lies on an open side"
+                );
+                open_length += (b - a).length();
+            }
+        }
+    }
+    let open_perimeter = 2.0
+        * (if periodic[1] { 0.0 } else { dom.width_m() }
+            + if periodic[0] { 0.0 } else { dom.height_m() });
+    assert!(
+        (open_length - open_perimeter).abs() <= 1e-9 * (dom.width_m() + dom.height_m()),
+        "{what}: open sides covered {open_length} of {open_perimeter} m"
+    );
+}
+
+#[test]
+fn periodic_lattices_keep_seam_floes_whole_and_tile_across_the_seam() {
+    for offset in OFFSETS {
+        for periodic in [[true, false], [false, true], [true, true]] {
+            for (angle, orientation) in [(60.0, 0.0), (60.0, 17.0), (75.0, 90.0), (90.0, 33.0)] {
+                for jitter in [0.0, 1.0] {
+                    let lattice = DiamondLattice {
+                        domain: domain(offset),
+                        side_m: 7.3,
+                        acute_angle_deg: angle,
+                        orientation_deg: orientation,
+                        thickness: UNIFORM,
+                        jitter_fraction: jitter * max_jitter_fraction(angle),
+                        seed: 11,
+                    };
+                    let what = format!(
+                        "offset {offset:?} periodic {periodic:?} angle {angle} orientation {orientation} jitter {jitter}"
+                    );
+                    check_periodic_lattice(&lattice, periodic, &what);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_lattice_that_spans_the_period_is_unchanged_and_only_its_seam_cells_differ() {
+    // The demo's lattice: 25 sides of 800 m span the 20 km period.
+    let lattice = DiamondLattice {
+        domain: Rect::from_size(Vec2::ZERO, 20_000.0, 10_000.0),
+        side_m: 800.0,
+        acute_angle_deg: 60.0,
+        orientation_deg: 0.0,
+        thickness: UNIFORM,
+        jitter_fraction: 0.0,
+        seed: 3,
+    };
+    let (open, _) = lattice.build_with_report().unwrap();
+    let (periodic, _, fit) = lattice.build_periodic([true, false]).unwrap();
+    assert!(fit.is_identity(), "{fit:?}");
+    assert_eq!(fit.period_steps, [Some([25, 0]), None]);
+    // Without jitter, cells inside the domain are bitwise those of the
+    // open lattice (same nodes); the open lattice cut the others at x = 0
+    // and x = 20 km. (With jitter the periodic lattice's nodes repeat every
+    // 25 steps, the open one's do not.)
+    let inside = |p: &Vec<Vec2>| p.iter().all(|v| v.x > 1.0 && v.x < 19_999.0);
+    let sorted = |t: &Tessellation| {
+        let mut v: Vec<Vec<[u64; 2]>> = t
+            .polygons
+            .iter()
+            .filter(|p| inside(p))
+            .map(|p| p.iter().map(|v| [v.x.to_bits(), v.y.to_bits()]).collect())
+            .collect();
+        v.sort();
+        v
+    };
+    let (a, b) = (sorted(&open), sorted(&periodic));
+    assert!(a == b, "{} and {} cells inside", a.len(), b.len());
+    let cut = open.polygons.len() - a.len();
+    let whole = periodic.polygons.len() - b.len();
+    assert!(
+        cut > 2 * whole - 30 && whole > 10,
+        "{cut} pieces, {whole} whole seam cells"
+    );
+    check_periodic_lattice(&lattice, [true, false], "demo lattice");
+}
+
 #[test]
 fn boundary_slivers_are_dropped_without_losing_area() {
     // Orientation 0, 60 deg: node columns at x = k side/2. Put the right

@@ -226,3 +226,82 @@ fn the_scenario_docs_hold_the_law_registry_tables() {
          the output of `cargo run -p floe-friction --example law_tables`"
     );
 }
+
+/// The area of convex polygon `p` inside the rectangle `[x0, x1] x [y0, y1]`
+/// (Sutherland-Hodgman against the four sides).
+fn area_in_rect(p: &[Vec2], [x0, x1, y0, y1]: [f64; 4]) -> f64 {
+    let mut poly = p.to_vec();
+    let sides: [(Vec2, f64); 4] = [
+        (Vec2::new(1.0, 0.0), x0),
+        (Vec2::new(-1.0, 0.0), -x1),
+        (Vec2::new(0.0, 1.0), y0),
+        (Vec2::new(0.0, -1.0), -y1),
+    ];
+    for (n, c) in sides {
+        let mut out = Vec::new();
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (da, db) = (n.dot(a) - c, n.dot(b) - c);
+            if da >= 0.0 {
+                out.push(a);
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                out.push(a + (b - a) * (da / (da - db)));
+            }
+        }
+        poly = out;
+        if poly.len() < 3 {
+            return 0.0;
+        }
+    }
+    let o = poly[0];
+    0.5 * (1..poly.len() - 1)
+        .map(|k| (poly[k] - o).perp_dot(poly[k + 1] - o))
+        .sum::<f64>()
+}
+
+/// A periodic diamond pack has no seam: away from the walls every 1 km
+/// column across the channel, those beside the periodic seam included, is
+/// covered exactly once (floes and their periodic images), and every floe
+/// there is a whole diamond.
+#[test]
+fn periodic_diamond_packs_have_no_seam() {
+    for name in [
+        "demo.toml",
+        "jam_flow.toml",
+        "shear_zone.toml",
+        "wind_pause.toml",
+    ] {
+        let s = scenario(name);
+        let d = s.domain();
+        assert_eq!(d.periodic, [true, false], "{name}");
+        let setup = s.build().unwrap();
+        let floes = setup.world.floes();
+        let period = d.size_m.x;
+        // The band across the channel, 1.5 km clear of the walls.
+        let (y0, y1) = (d.min_m.y + 1500.0, d.min_m.y + d.size_m.y - 1500.0);
+        let columns = (period / 1000.0).round() as usize;
+        let mut covered = vec![0.0; columns];
+        for i in 0..floes.len() {
+            let p = floes.world_vertices(i);
+            let in_band = p.iter().all(|v| v.y > y0 && v.y < y1);
+            if in_band {
+                assert_eq!(p.len(), 4, "{name}: floe {i} is not a whole diamond: {p:?}");
+            }
+            for shift in [-period, 0.0, period] {
+                let image: Vec<Vec2> = p.iter().map(|&v| v + Vec2::new(shift, 0.0)).collect();
+                for (k, c) in covered.iter_mut().enumerate() {
+                    let x0 = d.min_m.x + 1000.0 * k as f64;
+                    *c += area_in_rect(&image, [x0, x0 + 1000.0, y0, y1]);
+                }
+            }
+        }
+        for (k, c) in covered.iter().enumerate() {
+            let concentration = c / (1000.0 * (y1 - y0));
+            assert!(
+                (concentration - 1.0).abs() < 1e-9,
+                "{name}: column {k} of {columns} has concentration {concentration}"
+            );
+        }
+    }
+}

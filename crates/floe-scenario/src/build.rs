@@ -13,8 +13,8 @@ use floe_dem::geometry::FloeShape;
 use floe_dem::motion_schedule::MotionSchedule;
 use floe_dem::pipeline::integrator::{damping_step_factor, STABILITY_SAFETY};
 use floe_dem::tessellation::{
-    fit_sizes, DiamondLattice, PowerLawFit, PowerLawFloes, PowerLawSizes, Rect, Tessellation,
-    VoronoiFloes, MAX_FLOES,
+    fit_sizes, DiamondLattice, PeriodFit, PowerLawFit, PowerLawFloes, PowerLawSizes, Rect,
+    Tessellation, VoronoiFloes, MAX_FLOES,
 };
 use floe_dem::world::stable_time_step;
 use floe_dem::Vec2;
@@ -61,6 +61,46 @@ fn rect_polygon(center: Vec2, size: [f64; 2]) -> Vec<Vec2> {
         center + h,
         center + Vec2::new(-h.x, h.y),
     ]
+}
+
+/// The report line of a lattice fitted to the domain's periods: how many
+/// cells span each period and how much the lattice was changed for it.
+fn describe_period_fit(lattice: &DiamondLattice, fit: &PeriodFit) -> String {
+    let (e1, e2) = lattice.edge_vectors_m();
+    let spans: Vec<String> = fit
+        .period_steps
+        .iter()
+        .zip(["x", "y"])
+        .filter_map(|(steps, axis)| {
+            steps.map(|[m, n]| format!("{m} e1 + {n} e2 span the period along {axis}"))
+        })
+        .collect();
+    let change = if fit.is_identity() {
+        "the lattice is unchanged".to_string()
+    } else {
+        let (lo, hi) = fit.stretch_range();
+        let (d1, d2) = (fit.apply(e1 + e2).length(), fit.apply(e2 - e1).length());
+        let stretch = if hi - lo <= 1e-9 * hi {
+            format!("scaled by {}", sig(lo))
+        } else {
+            format!("stretched by {} to {}", sig(lo), sig(hi))
+        };
+        let turn = fit.rotation_deg();
+        let turn = if turn.abs() < 1e-9 {
+            String::new()
+        } else {
+            format!(" and turned by {} deg", sig(turn))
+        };
+        format!(
+            "the lattice is {stretch}{turn} to fit (diagonals now {} x {} m)",
+            sig(d1),
+            sig(d2)
+        )
+    };
+    format!(
+        "  periodic: {}; {change}; floes straddling the seam are whole",
+        spans.join(", ")
+    )
 }
 
 /// The free (and double-shear prescribed) pieces and report lines.
@@ -137,7 +177,14 @@ fn generate(
                     seed: r.seed,
                 },
             };
-            let (mut t, lr) = lattice.build_with_report().map_err(dem)?;
+            let periodic = r.domain.periodic;
+            let (mut t, lr, fit) = if periodic.contains(&true) {
+                let (t, lr, fit) = lattice.build_periodic(periodic).map_err(dem)?;
+                (t, lr, Some(fit))
+            } else {
+                let (t, lr) = lattice.build_with_report().map_err(dem)?;
+                (t, lr, None)
+            };
             let cell = lattice.cell_area_m2();
             let drop = t.drop_floes_smaller_than(r.min_area_fraction * cell);
             let (d_along, d_across) = lattice.diagonals_m();
@@ -151,6 +198,9 @@ fn generate(
                 sig(lattice.orientation_deg),
                 lattice.jitter_fraction
             ));
+            if let Some(fit) = fit {
+                report.push(describe_period_fit(&lattice, &fit));
+            }
             report.push(format!(
                 "  {} clipped at the edges of the ice region; {} slivers dropped by the lattice",
                 thousands(lr.clipped_floes),

@@ -1,5 +1,6 @@
 //! Rhombus ("diamond") lattice of floes, clipped to the domain.
 
+use super::lattice_periods::{fit_periods, IndexPeriods, PeriodFit};
 use super::{
     clip_convex, polygon_area, streams, unit, NeumaierSum, Rect, Tessellation,
     ThicknessDistribution, MAX_FLOES,
@@ -236,12 +237,65 @@ impl DiamondLattice {
     /// [`Self::build`], plus what was clipped and dropped.
     pub fn build_with_report(&self) -> Result<(Tessellation, LatticeReport), DemError> {
         self.validate()?;
+        let (e1, e2) = self.edge_vectors_m();
+        let jitter_r = self.jitter_fraction * self.side_m;
+        self.build_cells((e1, e2), self.cell_area_m2(), jitter_r, None)
+    }
+
+    /// The tessellation of a domain periodic along x (`periodic[0]`) and/or
+    /// y, for a world that wraps there: the lattice is fitted to the
+    /// periods ([`fit_periods`]: unchanged when a lattice vector already
+    /// spans the period, e.g. 25 sides of 800 m in 20 km), cells and node
+    /// jitter are identified modulo the period vectors, and no cell is
+    /// clipped along a periodic axis. Each cell appears once, whole, with
+    /// the centre of its unjittered rhombus inside the domain; one that
+    /// straddles the seam reaches beyond it, where its periodic image
+    /// meets its neighbours edge to edge. The areas still add up to the
+    /// domain's. Along open axes cells are clipped as by [`Self::build`].
+    pub fn build_periodic(
+        &self,
+        periodic: [bool; 2],
+    ) -> Result<(Tessellation, LatticeReport, PeriodFit), DemError> {
+        self.validate()?;
         let dom = self.domain;
         let (e1, e2) = self.edge_vectors_m();
+        let periods_m = [
+            periodic[0].then(|| dom.width_m()),
+            periodic[1].then(|| dom.height_m()),
+        ];
+        let fit = fit_periods(e1, e2, periods_m)?;
+        let [[a, b], [c, d]] = fit.map;
+        let cell_area = self.cell_area_m2() * (a * d - b * c).abs();
+        // The jitter shrinks with the lattice's smallest stretch, so that
+        // cells stay convex (see max_jitter_fraction).
+        let jitter_r = self.jitter_fraction * self.side_m * fit.stretch_range().0;
+        let periods = IndexPeriods::new(&fit);
+        let (t, report) = self.build_cells(
+            (fit.apply(e1), fit.apply(e2)),
+            cell_area,
+            jitter_r,
+            Some(periods),
+        )?;
+        Ok((t, report, fit))
+    }
+
+    /// The cells of the lattice with edge vectors `(e1, e2)`, cells of area
+    /// `cell_area` and node jitter `jitter_r`, clipped to the domain along
+    /// the axes that `periods` leaves open (all without `periods`).
+    fn build_cells(
+        &self,
+        (e1, e2): (Vec2, Vec2),
+        cell_area: f64,
+        jitter_r: f64,
+        periods: Option<IndexPeriods>,
+    ) -> Result<(Tessellation, LatticeReport), DemError> {
+        let dom = self.domain;
         let det = e1.perp_dot(e2);
-        let cell_area = self.cell_area_m2();
         let (w, h) = (dom.width_m(), dom.height_m());
-        let jitter_r = self.jitter_fraction * self.side_m;
+        let open = [
+            periods.is_none_or(|p| p.along(0).is_none()),
+            periods.is_none_or(|p| p.along(1).is_none()),
+        ];
         // Cells are enumerated over the domain grown by the jitter radius:
         // a jittered cell lies within jitter_r of its unjittered rhombus.
         let margin = jitter_r + 1e-6 * self.side_m;
@@ -317,7 +371,9 @@ impl DiamondLattice {
             jitter_r,
             rng: (jitter_r > 0.0)
                 .then(|| ChaCha8Rng::seed_from_u64(super::derive_seed(self.seed, streams::JITTER))),
+            periods,
         };
+        let mut seen = std::collections::HashSet::new();
         let mut report = LatticeReport {
             candidate_cells: candidates as usize,
             ..Default::default()
@@ -330,15 +386,25 @@ impl DiamondLattice {
             let Some((i0, i1)) = row_range(j) else {
                 continue;
             };
-            nodes.fill(&mut lower, i0, i1, j);
-            nodes.fill(&mut upper, i0, i1, j + 1);
+            if periods.is_none() {
+                nodes.fill(&mut lower, i0, i1, j);
+                nodes.fill(&mut upper, i0, i1, j + 1);
+            }
             for k in 0..(i1 - i0) as usize {
-                let quad = [lower[k], lower[k + 1], upper[k + 1], upper[k]];
+                let quad = match periods {
+                    None => [lower[k], lower[k + 1], upper[k + 1], upper[k]],
+                    Some(p) => {
+                        let i = i0 + k as i64;
+                        if !seen.insert(p.canonical(i, j)) {
+                            continue;
+                        }
+                        let (i, j) = member_in_domain(p, (e1, e2), dom, i, j);
+                        nodes.cell(i, j)
+                    }
+                };
                 let inside = quad.iter().all(|p| {
-                    p.x - dom.min.x > eps
-                        && dom.max.x - p.x > eps
-                        && p.y - dom.min.y > eps
-                        && dom.max.y - p.y > eps
+                    (!open[0] || (p.x - dom.min.x > eps && dom.max.x - p.x > eps))
+                        && (!open[1] || (p.y - dom.min.y > eps && dom.max.y - p.y > eps))
                 });
                 if inside {
                     polygons.push(quad.to_vec());
@@ -346,10 +412,14 @@ impl DiamondLattice {
                 }
                 buf.clear();
                 buf.extend_from_slice(&quad);
-                clip_axis(&mut buf, &mut out, Axis::X, dom.min.x, true, eps);
-                clip_axis(&mut buf, &mut out, Axis::X, dom.max.x, false, eps);
-                clip_axis(&mut buf, &mut out, Axis::Y, dom.min.y, true, eps);
-                clip_axis(&mut buf, &mut out, Axis::Y, dom.max.y, false, eps);
+                if open[0] {
+                    clip_axis(&mut buf, &mut out, Axis::X, dom.min.x, true, eps);
+                    clip_axis(&mut buf, &mut out, Axis::X, dom.max.x, false, eps);
+                }
+                if open[1] {
+                    clip_axis(&mut buf, &mut out, Axis::Y, dom.min.y, true, eps);
+                    clip_axis(&mut buf, &mut out, Axis::Y, dom.max.y, false, eps);
+                }
                 if buf.len() < 3 {
                     report.dropped_empty += 1;
                     continue;
@@ -404,6 +474,28 @@ fn too_many(requested: f64) -> DemError {
     }
 }
 
+/// The member of `(i, j)`'s class modulo the periods whose unjittered
+/// cell has its centre in `dom` along each periodic axis.
+fn member_in_domain(
+    periods: IndexPeriods,
+    (e1, e2): (Vec2, Vec2),
+    dom: Rect,
+    mut i: i64,
+    mut j: i64,
+) -> (i64, i64) {
+    let size = [dom.width_m(), dom.height_m()];
+    for axis in 0..2 {
+        if let Some([m, n]) = periods.along(axis) {
+            let centre = e1 * (i as f64 + 0.5) + e2 * (j as f64 + 0.5);
+            let along = [centre.x, centre.y][axis];
+            let t = (along / size[axis]).floor() as i64;
+            i -= t * m;
+            j -= t * n;
+        }
+    }
+    (i, j)
+}
+
 /// Generator of lattice node positions, row by row.
 struct NodeRows {
     origin: Vec2,
@@ -411,6 +503,9 @@ struct NodeRows {
     e2: Vec2,
     jitter_r: f64,
     rng: Option<ChaCha8Rng>,
+    /// Nodes identified modulo these take the jitter of their canonical
+    /// index.
+    periods: Option<IndexPeriods>,
 }
 
 impl NodeRows {
@@ -429,13 +524,33 @@ impl NodeRows {
         for i in i0..=i1 {
             let mut local = self.e1 * i as f64 + row;
             if let Some(rng) = self.rng.as_mut() {
-                let r = self.jitter_r * unit(rng).sqrt();
-                let (s, c) = (std::f64::consts::TAU * unit(rng)).sin_cos();
-                local += Vec2::new(c, s) * r;
+                local += jitter(rng, self.jitter_r);
             }
             buf.push(self.origin + local);
         }
     }
+
+    /// The nodes of cell `(i, j)` (counter-clockwise), each jittered as its
+    /// canonical index modulo the periods is.
+    fn cell(&mut self, i: i64, j: i64) -> [Vec2; 4] {
+        [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(i, j)| {
+            let mut local = self.e1 * i as f64 + self.e2 * j as f64;
+            if let Some(rng) = self.rng.as_mut() {
+                let (ci, cj) = self.periods.map_or((i, j), |p| p.canonical(i, j));
+                rng.set_stream(cj as u64);
+                rng.set_word_pos((ci as i128 + (1i128 << 62)) as u128 * 4);
+                local += jitter(rng, self.jitter_r);
+            }
+            self.origin + local
+        })
+    }
+}
+
+/// A node's jitter: uniform in the disc of radius `r` (two draws).
+fn jitter(rng: &mut ChaCha8Rng, r: f64) -> Vec2 {
+    let r = r * unit(rng).sqrt();
+    let (s, c) = (std::f64::consts::TAU * unit(rng)).sin_cos();
+    Vec2::new(c, s) * r
 }
 
 #[derive(Clone, Copy)]
@@ -546,6 +661,7 @@ mod tests {
             e2,
             jitter_r: 0.2,
             rng: Some(ChaCha8Rng::seed_from_u64(3)),
+            periods: None,
         };
         let (mut a, mut b) = (Vec::new(), Vec::new());
         nodes.fill(&mut a, -5, 5, 3);

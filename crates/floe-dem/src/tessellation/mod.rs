@@ -30,6 +30,7 @@ mod concentration;
 mod diamond;
 mod disk_grid;
 mod laguerre;
+mod lattice_periods;
 mod power_law;
 mod power_law_floes;
 mod voronoi;
@@ -45,6 +46,7 @@ pub use diamond::{
     max_jitter_fraction, DiamondLattice, LatticeReport, SLIVER_AREA_FRACTION,
     SLIVER_BUDGET_FRACTION,
 };
+pub use lattice_periods::{fit_periods, PeriodFit, MAX_PERIOD_STRETCH};
 pub use voronoi::VoronoiFloes;
 
 use crate::error::DemError;
