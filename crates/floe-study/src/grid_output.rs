@@ -58,25 +58,25 @@ pub(crate) const FIELDS: [(&str, &str, &str, &str); 11] = [
         "concentration",
         "sea_ice_area_fraction",
         "1",
-        "ice area over cell area",
+        "ice area over cell area (the floes' union: a place under two floes counted once)",
     ),
     (
         "thickness",
         "sea_ice_thickness",
         "m",
-        "mean thickness of the ice in the cell",
+        "the floes' volume in the cell over its ice area",
     ),
     (
         "u",
         "sea_ice_x_velocity",
         "m s-1",
-        "area-mean ice velocity along x",
+        "ice velocity along x: the floes' momentum in the cell over their mass",
     ),
     (
         "v",
         "sea_ice_y_velocity",
         "m s-1",
-        "area-mean ice velocity along y",
+        "ice velocity along y: the floes' momentum in the cell over their mass",
     ),
     (
         "stress_xx",
@@ -209,7 +209,7 @@ fn define(file: &mut FileMut, run: &Path, grid: &Grid) -> Result<(), netcdf::Err
         ("Conventions", "CF-1.8".to_string()),
         ("title", format!("floe run {} on a grid", run.display())),
         ("source", format!("floe {} (floe grid)", env!("CARGO_PKG_VERSION"))),
-        ("comment", "floes coarse-grained onto the grid: each floe clipped exactly to the cells; prescribed floes (walls, blocks, glued rows) left out".to_string()),
+        ("comment", "floes coarse-grained onto the grid: each floe clipped exactly to the cells, a place under overlapping floes counted once in the concentration; prescribed floes (walls, blocks, glued rows) left out".to_string()),
     ] {
         file.add_attribute(name, text)?;
     }
