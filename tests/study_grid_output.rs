@@ -6,7 +6,8 @@
 //! each computed here from the run file on its own. In a pack squeezed
 //! between walls, where soft contacts overlap, each cell's ice is the union
 //! of the floes in it (at most the cell). With a cadence of its own, the
-//! records are the snapshots it names.
+//! records are the snapshots it names; with a `start_time`, the time axis
+//! has dates.
 
 use std::path::{Path, PathBuf};
 
@@ -79,6 +80,10 @@ fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
     assert_eq!(units("divergence"), "s-1");
     assert_eq!(units("stress_xx"), "N m-1");
     assert_eq!(units("x"), "m");
+    // Without a start_time, seconds from the start of the run: no dates.
+    assert_eq!(units("time"), "s");
+    assert!(var("time").attribute("calendar").is_none());
+    assert!(text(var("time").attribute_value("long_name")).contains("start of the run"));
     assert_eq!(text(var("x").attribute_value("axis")), "X");
     assert_eq!(
         text(var("concentration").attribute_value("standard_name")),
@@ -448,4 +453,38 @@ fn overlapping_floes_of_a_squeezed_pack_are_ice_once() {
         "the floes' own areas overfill a cell: {most_floe_area}"
     );
     assert!(most_floes_over_a_place >= 3, "places under three floes");
+}
+
+/// With the scenario's `start_time`, the time axis is seconds since that
+/// date in the proleptic Gregorian calendar, as CF readers decode dates
+/// from (tests/study_grid_xarray.rs decodes them with Python).
+#[test]
+fn a_start_time_makes_the_time_axis_dates() {
+    let dir = tempfile::tempdir().unwrap();
+    let dated = BOX.replace(
+        "seed = 1\n",
+        "seed = 1\nstart_time = \"2024-02-28T23:00Z\"\n",
+    );
+    assert_ne!(dated, BOX);
+    let h5 = run_text(dir.path(), "dated", &dated).unwrap();
+    let nc = dir.path().join("dated.nc");
+    write_grid(&GridArgs {
+        run: h5.clone(),
+        output: nc.clone(),
+        cell_m: 1000.0,
+        cadence: Cadence::All,
+        force: false,
+    })
+    .unwrap();
+    let data = netcdf::open(&nc).unwrap();
+    let time = data.variable("time").unwrap();
+    let attr = |name: &str| text(time.attribute_value(name));
+    assert_eq!(attr("units"), "seconds since 2024-02-28 23:00:00");
+    assert_eq!(attr("calendar"), "proleptic_gregorian");
+    assert_eq!(attr("standard_name"), "time");
+    assert_eq!(attr("axis"), "T");
+    assert_eq!(
+        f64s(&data, "time"),
+        RunFile::open(&h5).unwrap().snapshot_times().unwrap()
+    );
 }
