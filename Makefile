@@ -17,7 +17,7 @@ endif
 
 ## Tools and system packages: Rust's tools, HDF5, NetCDF-C, pkg-config and (unless
 ## MPI=0) Open MPI with libclang for its bindings (apt-installed when missing), and
-## optionally h5py for the Python example of docs/output.md.
+## optionally h5py, xarray and netCDF4 for the Python examples of docs/output.md.
 deps: check-tools system-deps python-deps
 
 check-tools:
@@ -63,15 +63,15 @@ system-deps:
 ## (tests/io_h5py.rs skips without them). Never fails.
 python-deps:
 	@if ! command -v python3 >/dev/null 2>&1; then \
-	  echo "note: no python3: the h5py example is skipped (optional)"; \
-	elif python3 -c "import h5py, numpy, matplotlib" >/dev/null 2>&1; then \
+	  echo "note: no python3: the h5py and xarray examples are skipped (optional)"; \
+	elif python3 -c "import h5py, numpy, matplotlib, xarray, netCDF4" >/dev/null 2>&1; then \
 	  :; \
 	elif python3 -m pip --version >/dev/null 2>&1; then \
-	  python3 -m pip install --user -q h5py numpy matplotlib >/dev/null 2>&1 \
-	  || python3 -m pip install --user --break-system-packages -q h5py numpy matplotlib >/dev/null 2>&1 \
-	  || echo "note: could not pip-install h5py numpy matplotlib (optional: tests/io_h5py.rs skips)"; \
+	  python3 -m pip install --user -q h5py numpy matplotlib xarray netCDF4 >/dev/null 2>&1 \
+	  || python3 -m pip install --user --break-system-packages -q h5py numpy matplotlib xarray netCDF4 >/dev/null 2>&1 \
+	  || echo "note: could not pip-install h5py numpy matplotlib xarray netCDF4 (optional: tests/io_h5py.rs and tests/study_grid_xarray.rs skip)"; \
 	else \
-	  echo "note: no pip for python3: the h5py example is skipped (optional; apt-get install python3-h5py python3-matplotlib)"; \
+	  echo "note: no pip for python3: the h5py and xarray examples are skipped (optional; apt-get install python3-h5py python3-matplotlib python3-xarray python3-netcdf4)"; \
 	fi
 
 ## The main job: a DEM run of the default scenario (a few hundred diamond

@@ -7,6 +7,8 @@ use floe_analysis::profile::{shear_band, velocity_profile};
 use floe_analysis::slip_events::{log_histogram, SlipEvent, SlipEventDetector, SlipEventRule};
 use floe_analysis::stress::{channel_stress, invariants, peak_to_steady};
 use proptest::prelude::*;
+#[path = "union_support/mod.rs"]
+mod union_support;
 
 /// `per_bin` evenly spaced samples in each of `bins` bins of [0, w): each
 /// bin's mean position is its centre.
@@ -597,7 +599,7 @@ fn fields_of(
 fn gridded_concentration_integrates_to_the_ice_area_and_stress_is_conserved() {
     use floe_analysis::grid_fields::{grid_fields, FloeSnapshot, Grid};
     // Pentagons of several sizes and turns at scattered places inside a
-    // 10 km grid of 1 km cells (overlaps do not matter to the identity).
+    // 10 km grid of 1 km cells, overlapping in pairs, triples and more.
     let grid = Grid {
         origin_m: [0.0, 0.0],
         cell_m: [1000.0, 1250.0],
@@ -635,7 +637,10 @@ fn gridded_concentration_integrates_to_the_ice_area_and_stress_is_conserved() {
             .sum::<f64>()
             .abs()
     };
-    let ice: f64 = polys.iter().map(|p| shoelace(p)).sum();
+    let floes_area: f64 = polys.iter().map(|p| shoelace(p)).sum();
+    // The ice is the union: the floes' area minus their overlaps'.
+    let ice = union_support::union_area(&polys);
+    assert!(ice < 0.95 * floes_area, "the pentagons overlap");
     let position: Vec<[f64; 2]> = polys.iter().map(|p| centroid(p)).collect();
     let zeros2 = vec![[0.0; 2]; polys.len()];
     let moments: Vec<[f64; 4]> = (0..polys.len())
@@ -656,9 +661,23 @@ fn gridded_concentration_integrates_to_the_ice_area_and_stress_is_conserved() {
     let cell = 1000.0 * 1250.0;
     let integral: f64 = f.concentration.iter().sum::<f64>() * cell;
     assert!(
-        (integral - ice).abs() < 1e-9 * ice,
+        (integral - ice).abs() < 1e-12 * ice,
         "{integral} against {ice}"
     );
+    // Each cell's ice is the union of the floes' parts in it.
+    for j in 0..8 {
+        for i in 0..10 {
+            let lo = [1000.0 * i as f64, 1250.0 * j as f64];
+            let part =
+                union_support::union_area_in_box(&polys, lo, [lo[0] + 1000.0, lo[1] + 1250.0]);
+            let c = f.concentration[grid.index(i, j)];
+            assert!(
+                (c - part / cell).abs() < 1e-12,
+                "cell ({i}, {j}): {c} against {}",
+                part / cell
+            );
+        }
+    }
     for k in 0..4 {
         let total: f64 = f.stress_n_per_m.iter().map(|s| s[k]).sum::<f64>() * cell;
         let expected: f64 = moments.iter().map(|m| m[k]).sum();
@@ -667,14 +686,21 @@ fn gridded_concentration_integrates_to_the_ice_area_and_stress_is_conserved() {
             "{k}: {total} {expected}"
         );
     }
-    // Ice of one thickness has that thickness wherever there is ice.
+    // The volume is every floe's own: ice of one thickness is that thick
+    // where floes do not overlap, and thicker where they do.
+    let mut volume = 0.0;
     for (c, h) in f.concentration.iter().zip(&f.thickness_m) {
-        assert!(if *c > 0.0 {
-            (h - 2.0).abs() < 1e-12
+        if *c > 0.0 {
+            assert!(*h >= 2.0 * (1.0 - 1e-12), "{h}");
+            volume += c * h * cell;
         } else {
-            h.is_nan()
-        });
+            assert!(h.is_nan());
+        }
     }
+    assert!(
+        (volume - 2.0 * floes_area).abs() < 1e-12 * volume,
+        "{volume}"
+    );
     // Floes partly outside the grid: only the part inside counts.
     let half_out = vec![vec![
         [-500.0, 0.0],

@@ -1,10 +1,13 @@
 //! `floe grid` (floe_study::grid_output): a run's snapshots on a grid as CF
 //! NetCDF, read back with the `netcdf` crate. In a doubly periodic box of
 //! drifting, spinning floes that cross its edges, every record holds all
-//! the ice (concentration x cell area sums to the floes' area) and all the
-//! momentum (the area-weighted velocity sums to sum A v, the rigid-body
-//! mean), both computed here from the run file on their own. With a
-//! cadence of its own, the records are the snapshots it names.
+//! the ice (concentration x cell area sums to the floes' area), all their
+//! volume and all their momentum (`c h u` x cell area sums to sum A h v),
+//! each computed here from the run file on its own. In a pack squeezed
+//! between walls, where soft contacts overlap, each cell's ice is the union
+//! of the floes in it (at most the cell). With a cadence of its own, the
+//! records are the snapshots it names; with a `start_time`, the time axis
+//! has dates.
 
 use std::path::{Path, PathBuf};
 
@@ -15,6 +18,8 @@ use floe_study::grid_output::{write_grid, GridArgs, FILL_VALUE};
 mod study_support;
 use netcdf::AttributeValue;
 use study_support::run_text;
+#[path = "union_support/mod.rs"]
+mod union_support;
 
 /// Six floes drifting in a doubly periodic box (20000 s, snapshots every
 /// 2000 s); tests/study_grid_xarray.rs grids it too.
@@ -75,6 +80,10 @@ fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
     assert_eq!(units("divergence"), "s-1");
     assert_eq!(units("stress_xx"), "N m-1");
     assert_eq!(units("x"), "m");
+    // Without a start_time, seconds from the start of the run: no dates.
+    assert_eq!(units("time"), "s");
+    assert!(var("time").attribute("calendar").is_none());
+    assert!(text(var("time").attribute_value("long_name")).contains("start of the run"));
     assert_eq!(text(var("x").attribute_value("axis")), "X");
     assert_eq!(
         text(var("concentration").attribute_value("standard_name")),
@@ -93,36 +102,45 @@ fn gridded_records_hold_all_the_ice_and_its_momentum_across_periodic_edges() {
     let snapshots = file.snapshot_count().unwrap();
     assert_eq!(data.dimension_len("time"), Some(snapshots));
     let time = f64s(&data, "time");
-    let (conc, u, v) = (
+    let (conc, thick, u, v) = (
         f64s(&data, "concentration"),
+        f64s(&data, "thickness"),
         f64s(&data, "u"),
         f64s(&data, "v"),
     );
     let per = 9 * 7;
     let ice: f64 = floes.area_m2.iter().sum();
+    let volume: f64 = (0..floes.len())
+        .map(|i| floes.area_m2[i] * floes.thickness_m[i])
+        .sum();
     let mut crossed = false;
     for (k, &t) in time.iter().enumerate() {
         let snap = file.snapshot(k).unwrap();
         assert_eq!(t, snap.time_s);
-        let (mut area, mut px, mut py) = (0.0, 0.0, 0.0);
+        let (mut area, mut vol, mut px, mut py) = (0.0, 0.0, 0.0, 0.0);
         for c in k * per..(k + 1) * per {
             if conc[c] > 0.0 {
+                let here = conc[c] * cell * thick[c];
                 area += conc[c] * cell;
-                px += conc[c] * cell * u[c];
-                py += conc[c] * cell * v[c];
+                vol += here;
+                px += here * u[c];
+                py += here * v[c];
             } else {
                 assert!(u[c] > 1e36, "a cell without ice holds the fill value");
             }
         }
+        // Momentum over the ice's density.
         let (qx, qy) = (0..floes.len()).fold((0.0, 0.0), |(x, y), i| {
-            (
-                x + floes.area_m2[i] * snap.velocity[i][0],
-                y + floes.area_m2[i] * snap.velocity[i][1],
-            )
+            let w = floes.area_m2[i] * floes.thickness_m[i];
+            (x + w * snap.velocity[i][0], y + w * snap.velocity[i][1])
         });
         assert!(
             (area - ice).abs() < 1e-9 * ice,
             "record {k}: {area} against {ice}"
+        );
+        assert!(
+            (vol - volume).abs() < 1e-9 * volume,
+            "record {k}: {vol} against {volume}"
         );
         assert!(
             (px - qx).abs() < 1e-9 * qx.abs().max(1.0),
@@ -260,4 +278,213 @@ fn a_cadence_of_its_own_takes_the_snapshots_it_names() {
         assert!(e.to_string().contains(flag) && e.exit_code() == 2, "{e}");
         assert!(!nc.exists() && !dir.path().join("bad.nc.partial").exists());
     }
+}
+
+/// A Voronoi pack squeezed between walls 50 m inside the grid's edges (its
+/// floes of one thickness): the soft contacts overlap, in pairs and in
+/// threes at the floes' corners.
+const SQUEEZED: &str = r#"title = "a Voronoi pack squeezed between walls"
+duration_s = 900.0
+seed = 7
+
+[domain]
+size_m = [3000.0, 3000.0]
+
+[tessellation]
+kind = "voronoi"
+floe_scale_m = 400.0
+relax_iterations = 2
+
+[ice]
+thickness_m = 1.0
+
+[[wall]]
+side = "left"
+inset_m = 50.0
+
+[[wall]]
+side = "right"
+inset_m = 50.0
+
+[[wall]]
+side = "bottom"
+inset_m = 50.0
+velocity_m_per_s = [0.0, 0.05]
+
+[[wall]]
+side = "top"
+inset_m = 50.0
+velocity_m_per_s = [0.0, -0.05]
+
+[output]
+snapshot_every_s = 300.0
+"#;
+
+/// Where floes overlap, a cell's concentration is the area of their union
+/// in it over its area, found here on its own by vertical slabs from the
+/// run file's floes: at most 1, while the floes' own areas (`c h` with
+/// floes 1 m thick) add up to more than the cell. Their volume and
+/// momentum are every floe's own.
+#[test]
+fn overlapping_floes_of_a_squeezed_pack_are_ice_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let h5 = run_text(dir.path(), "squeezed", SQUEEZED).unwrap();
+    let nc = dir.path().join("squeezed.nc");
+    write_grid(&GridArgs {
+        run: h5.clone(),
+        output: nc.clone(),
+        cell_m: 250.0,
+        cadence: Cadence::All,
+        force: false,
+    })
+    .unwrap();
+    let data = netcdf::open(&nc).unwrap();
+    let (conc, thick, u, v) = (
+        f64s(&data, "concentration"),
+        f64s(&data, "thickness"),
+        f64s(&data, "u"),
+        f64s(&data, "v"),
+    );
+    let (n, cell) = (12, 250.0 * 250.0);
+    let file = RunFile::open(&h5).unwrap();
+    let floes = file.static_floes().unwrap();
+    let free: Vec<usize> = (0..floes.len()).filter(|&i| !floes.prescribed[i]).collect();
+    let (mut most_floe_area, mut most_floes_over_a_place): (f64, usize) = (0.0, 1);
+    for k in 0..file.snapshot_count().unwrap() {
+        let snap = file.snapshot(k).unwrap();
+        let polys: Vec<Vec<[f64; 2]>> = free
+            .iter()
+            .map(|&i| snap.world_vertices(&floes, i))
+            .collect();
+        let (lo, hi) = polys
+            .iter()
+            .flatten()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[0]).min(p[1]), b.max(p[0]).max(p[1]))
+            });
+        assert!(
+            lo >= 0.0 && hi <= 3000.0,
+            "the floes are inside the grid: {lo} {hi}"
+        );
+        let record = k * n * n..(k + 1) * n * n;
+        // The same floes through floe-analysis: its count of overlaps.
+        let position: Vec<[f64; 2]> = free.iter().map(|&i| snap.position[i]).collect();
+        let fields = floe_analysis::grid_fields::grid_fields(
+            &floe_analysis::grid_fields::Grid {
+                origin_m: [0.0, 0.0],
+                cell_m: [250.0, 250.0],
+                shape: [n, n],
+            },
+            &floe_analysis::grid_fields::FloeSnapshot {
+                vertices: &polys,
+                position: &position,
+                velocity: &free.iter().map(|&i| snap.velocity[i]).collect::<Vec<_>>(),
+                angular_velocity: &free
+                    .iter()
+                    .map(|&i| snap.angular_velocity[i])
+                    .collect::<Vec<_>>(),
+                thickness_m: &free
+                    .iter()
+                    .map(|&i| floes.thickness_m[i])
+                    .collect::<Vec<_>>(),
+                stress_moment_n_m: None,
+            },
+        )
+        .unwrap();
+        assert_eq!(fields.concentration, conc[record.clone()]);
+        eprintln!(
+            "record {k}: sets of 2, 3, ... floes with a common overlap: {:?}",
+            fields.overlap_sets
+        );
+        most_floes_over_a_place = most_floes_over_a_place.max(fields.overlap_sets.len() + 1);
+        let (mut ice, mut volume, mut px, mut py) = (0.0, 0.0, 0.0, 0.0);
+        for (c, at) in record.clone().enumerate() {
+            let lo = [250.0 * (c % n) as f64, 250.0 * (c / n) as f64];
+            let union =
+                union_support::union_area_in_box(&polys, lo, [lo[0] + 250.0, lo[1] + 250.0]);
+            assert!(
+                (conc[at] - union / cell).abs() < 1e-12,
+                "record {k}, cell {c}: {} against {}",
+                conc[at],
+                union / cell
+            );
+            assert!(
+                conc[at] <= 1.0 + 1e-12,
+                "record {k}, cell {c}: {}",
+                conc[at]
+            );
+            if conc[at] > 0.0 {
+                most_floe_area = most_floe_area.max(conc[at] * thick[at]);
+                ice += conc[at] * cell;
+                volume += conc[at] * thick[at] * cell;
+                px += conc[at] * thick[at] * cell * u[at];
+                py += conc[at] * thick[at] * cell * v[at];
+            }
+        }
+        // The floes' area minus their overlaps' area, counted once.
+        let union = union_support::union_area(&polys);
+        assert!(
+            (ice - union).abs() < 1e-12 * union,
+            "record {k}: {ice} against {union}"
+        );
+        let own: f64 = free
+            .iter()
+            .map(|&i| floes.area_m2[i] * floes.thickness_m[i])
+            .sum();
+        assert!(
+            (volume - own).abs() < 1e-12 * own,
+            "record {k}: {volume} against {own}"
+        );
+        let (qx, qy) = free.iter().fold((0.0, 0.0), |(x, y), &i| {
+            let w = floes.area_m2[i] * floes.thickness_m[i];
+            (x + w * snap.velocity[i][0], y + w * snap.velocity[i][1])
+        });
+        let scale = free
+            .iter()
+            .map(|&i| floes.area_m2[i] * snap.velocity[i][0].hypot(snap.velocity[i][1]))
+            .sum::<f64>();
+        assert!(
+            (px - qx).abs() <= 1e-12 * scale && (py - qy).abs() <= 1e-12 * scale,
+            "record {k}: ({px}, {py}) against ({qx}, {qy})"
+        );
+    }
+    assert!(
+        most_floe_area > 1.02,
+        "the floes' own areas overfill a cell: {most_floe_area}"
+    );
+    assert!(most_floes_over_a_place >= 3, "places under three floes");
+}
+
+/// With the scenario's `start_time`, the time axis is seconds since that
+/// date in the proleptic Gregorian calendar, as CF readers decode dates
+/// from (tests/study_grid_xarray.rs decodes them with Python).
+#[test]
+fn a_start_time_makes_the_time_axis_dates() {
+    let dir = tempfile::tempdir().unwrap();
+    let dated = BOX.replace(
+        "seed = 1\n",
+        "seed = 1\nstart_time = \"2024-02-28T23:00Z\"\n",
+    );
+    assert_ne!(dated, BOX);
+    let h5 = run_text(dir.path(), "dated", &dated).unwrap();
+    let nc = dir.path().join("dated.nc");
+    write_grid(&GridArgs {
+        run: h5.clone(),
+        output: nc.clone(),
+        cell_m: 1000.0,
+        cadence: Cadence::All,
+        force: false,
+    })
+    .unwrap();
+    let data = netcdf::open(&nc).unwrap();
+    let time = data.variable("time").unwrap();
+    let attr = |name: &str| text(time.attribute_value(name));
+    assert_eq!(attr("units"), "seconds since 2024-02-28 23:00:00");
+    assert_eq!(attr("calendar"), "proleptic_gregorian");
+    assert_eq!(attr("standard_name"), "time");
+    assert_eq!(attr("axis"), "T");
+    assert_eq!(
+        f64s(&data, "time"),
+        RunFile::open(&h5).unwrap().snapshot_times().unwrap()
+    );
 }

@@ -25,6 +25,21 @@ pub enum AnalysisError {
         /// What is wrong with it.
         reason: &'static str,
     },
+    /// More polygons over one place than the overlap sums are built for
+    /// ([`crate::grid_fields::MAX_OVERLAP_ORDER`]): not a pack of soft floes.
+    #[error(
+        "{count} floes overlap near ({:.1}, {:.1}) m: more than the {most} the gridded \
+         concentration counts a place under (a pack of soft contacts puts 2 to 4 there)",
+        near[0], near[1]
+    )]
+    TooManyOverlaps {
+        /// How many were found over the place (at least `most + 1`).
+        count: usize,
+        /// The most counted.
+        most: usize,
+        /// A point of the place, m.
+        near: [f64; 2],
+    },
     /// Not enough data for the metric (e.g. an empty series).
     #[error("{0}")]
     NotEnoughData(&'static str),

@@ -3,20 +3,36 @@
 //! continuum models and satellite deformation products (RGPS) give.
 //!
 //! Each floe (a convex polygon) is clipped exactly to every cell it
-//! overlaps. A cell's concentration is the ice area in it over its area;
-//! its thickness the ice-area-weighted mean thickness; its velocity the
-//! area-weighted mean of the floes' rigid-body velocity `v + w x (x - c)`
-//! over the ice in it (a linear field, so the mean over a piece is its value
-//! at the piece's centroid); its stress the floes' Love-Weber stress
-//! moments shared out by the fraction of each floe's area in the cell, over
-//! the cell's area (vertically integrated, N/m). Strain rates come from the
-//! gridded velocity by centred differences (one-sided at the grid's edges):
-//! divergence `u_x + v_y`, maximum shear rate `sqrt((u_x - v_y)^2 +
-//! (u_y + v_x)^2)` and total deformation `sqrt(div^2 + shear^2)`, all 1/s.
-//! Cells without ice have no velocity (NaN), and neither have the strain
-//! rates that need them.
+//! overlaps. Soft contacts let floes overlap; each field says how it
+//! counts the overlap, and keeps an exact integral over the cells:
+//!
+//! * concentration: the area of the union of the floes in the cell (a
+//!   place under two floes counted once) over the cell's area, by
+//!   inclusion-exclusion over the floes' overlaps of every order
+//!   (`polygon_overlaps`), so at most 1 to round-off. Sum over cells of
+//!   `c A_cell` = the floes' area minus their overlaps' area.
+//! * thickness: the floes' volume in the cell (each floe's own, so an
+//!   overlap holds the volume of both: mass is conserved) over the ice
+//!   area `c A_cell`. Sum of `c h A_cell` = the floes' volume.
+//! * velocity: the floes' momentum in the cell over their mass (volume
+//!   weights; one ice density), each floe's rigid-body velocity
+//!   `v + w x (x - c)` over its part in the cell (a linear field, so the
+//!   mean over a piece is its value at the piece's centroid). Sum of
+//!   `c h u A_cell` = sum of `V v`, the floes' momentum over the density.
+//! * stress: the floes' Love-Weber stress moments shared out by the
+//!   fraction of each floe's area in the cell, over the cell's area
+//!   (vertically integrated, N/m); each floe's moment is counted once.
+//!   Sum of `sigma A_cell` = the sum of the moments.
+//!
+//! Strain rates come from the gridded velocity by centred differences
+//! (one-sided at the grid's edges): divergence `u_x + v_y`, maximum shear
+//! rate `sqrt((u_x - v_y)^2 + (u_y + v_x)^2)` and total deformation
+//! `sqrt(div^2 + shear^2)`, all 1/s. Cells without ice have no velocity
+//! (NaN), and neither have the strain rates that need them.
 
-use crate::polygon::{clip, polygon_area, polygon_centroid};
+use crate::polygon::{bounds, clip, polygon_area, polygon_centroid};
+use crate::polygon_overlaps::for_each_overlap;
+pub use crate::polygon_overlaps::MAX_OVERLAP_ORDER;
 use crate::AnalysisError;
 
 /// A regular grid of `shape[0] x shape[1]` cells along x and y.
@@ -76,11 +92,11 @@ pub struct FloeSnapshot<'a> {
 /// Gridded fields, each an array over cells (x fastest, see [`Grid::index`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct GridFields {
-    /// Ice area over cell area.
+    /// Ice area (the union of the floes) over cell area.
     pub concentration: Vec<f64>,
-    /// Mean thickness of the ice in the cell, m (NaN without ice).
+    /// The floes' volume in the cell over its ice area, m (NaN without ice).
     pub thickness_m: Vec<f64>,
-    /// Mean ice velocity, m/s (NaN without ice).
+    /// The floes' momentum in the cell over their mass, m/s (NaN without ice).
     pub velocity: Vec<[f64; 2]>,
     /// Mean stress `[xx, xy, yx, yy]`, N/m (zero without a stress input).
     pub stress_n_per_m: Vec<[f64; 4]>,
@@ -90,6 +106,10 @@ pub struct GridFields {
     pub shear_per_s: Vec<f64>,
     /// Total deformation rate, 1/s.
     pub total_deformation_per_s: Vec<f64>,
+    /// Entry `k - 2` counts the sets of `k` floes (`k >= 2`) whose common
+    /// overlap reaches the grid: the terms of the concentration's
+    /// inclusion-exclusion.
+    pub overlap_sets: Vec<usize>,
 }
 
 /// Coarse-grains `floes` onto `grid`. Floe parts outside the grid are left
@@ -129,10 +149,25 @@ pub fn grid_fields(grid: &Grid, floes: &FloeSnapshot) -> Result<GridFields, Anal
     if grid.is_empty() {
         return Err(AnalysisError::NotEnoughData("a grid needs cells"));
     }
+    if let Some(&h) = floes
+        .thickness_m
+        .iter()
+        .find(|h| !(h.is_finite() && **h > 0.0))
+    {
+        return Err(AnalysisError::InvalidParameter {
+            name: "thickness_m",
+            value: h,
+            reason: "floe thicknesses are finite and > 0",
+        });
+    }
     let cells = grid.len();
     let cell_area = grid.cell_m[0] * grid.cell_m[1];
+    // Per cell: the floes' area (each floe's own), the largest floe piece,
+    // the union's area, volume, volume x velocity and stress.
     let mut area = vec![0.0; cells];
-    let mut thick = vec![0.0; cells];
+    let mut largest = vec![0.0_f64; cells];
+    let mut union = vec![0.0; cells];
+    let mut volume = vec![0.0; cells];
     let mut momentum = vec![[0.0; 2]; cells];
     let mut stress = vec![[0.0; 4]; cells];
     for p in 0..n {
@@ -141,59 +176,61 @@ pub fn grid_fields(grid: &Grid, floes: &FloeSnapshot) -> Result<GridFields, Anal
         if floe_area <= 0.0 {
             continue;
         }
-        let (lo, hi) = bounds(poly);
-        let range = |axis: usize| {
-            let first = ((lo[axis] - grid.origin_m[axis]) / grid.cell_m[axis]).floor();
-            let last = ((hi[axis] - grid.origin_m[axis]) / grid.cell_m[axis]).floor();
-            let top = grid.shape[axis] as f64 - 1.0;
-            (first.max(0.0), last.min(top))
-        };
-        let ((i0, i1), (j0, j1)) = (range(0), range(1));
-        if i0 > i1 || j0 > j1 {
-            continue;
-        }
-        for j in j0 as usize..=j1 as usize {
-            for i in i0 as usize..=i1 as usize {
-                let x0 = grid.origin_m[0] + i as f64 * grid.cell_m[0];
-                let y0 = grid.origin_m[1] + j as f64 * grid.cell_m[1];
-                let piece = clip_to_box(poly, [x0, y0], [x0 + grid.cell_m[0], y0 + grid.cell_m[1]]);
-                let a = polygon_area(&piece);
-                if a <= 0.0 {
-                    continue;
-                }
-                let c = polygon_centroid(&piece, a);
-                let k = grid.index(i, j);
-                let (v, w, x) = (
-                    floes.velocity[p],
-                    floes.angular_velocity[p],
-                    floes.position[p],
-                );
-                // Rigid-body velocity at the piece's centroid.
-                let u = [v[0] - w * (c[1] - x[1]), v[1] + w * (c[0] - x[0])];
-                area[k] += a;
-                thick[k] += a * floes.thickness_m[p];
-                momentum[k][0] += a * u[0];
-                momentum[k][1] += a * u[1];
-                if let Some(moments) = floes.stress_moment_n_m {
-                    let share = a / floe_area / cell_area;
-                    for (s, m) in stress[k].iter_mut().zip(moments[p]) {
-                        *s += share * m;
-                    }
+        let (v, w, x, h) = (
+            floes.velocity[p],
+            floes.angular_velocity[p],
+            floes.position[p],
+            floes.thickness_m[p],
+        );
+        for_each_piece(grid, poly, |k, piece, a| {
+            let c = polygon_centroid(piece, a);
+            // Rigid-body velocity at the piece's centroid.
+            let u = [v[0] - w * (c[1] - x[1]), v[1] + w * (c[0] - x[0])];
+            area[k] += a;
+            largest[k] = largest[k].max(a);
+            union[k] += a;
+            volume[k] += a * h;
+            momentum[k][0] += a * h * u[0];
+            momentum[k][1] += a * h * u[1];
+            if let Some(moments) = floes.stress_moment_n_m {
+                let share = a / floe_area / cell_area;
+                for (s, m) in stress[k].iter_mut().zip(moments[p]) {
+                    *s += share * m;
                 }
             }
-        }
+        });
     }
-    let concentration: Vec<f64> = area.iter().map(|a| a / cell_area).collect();
-    let per_ice = |sum: f64, a: f64| if a > 0.0 { sum / a } else { f64::NAN };
-    let thickness_m = thick
-        .iter()
-        .zip(&area)
-        .map(|(t, a)| per_ice(*t, *a))
+    // The union: minus the pairs' overlaps, plus the triples', ...
+    let (grid_lo, grid_hi) = (
+        grid.origin_m,
+        [0, 1].map(|a| grid.origin_m[a] + grid.shape[a] as f64 * grid.cell_m[a]),
+    );
+    let in_grid =
+        |lo: [f64; 2], hi: [f64; 2]| (0..2).all(|a| hi[a] >= grid_lo[a] && lo[a] <= grid_hi[a]);
+    let mut overlap_sets = Vec::new();
+    for_each_overlap(floes.vertices, in_grid, |order, overlap| {
+        if overlap_sets.len() < order - 1 {
+            overlap_sets.resize(order - 1, 0);
+        }
+        overlap_sets[order - 2] += 1;
+        let sign = if order % 2 == 0 { -1.0 } else { 1.0 };
+        for_each_piece(grid, overlap, |k, _, a| union[k] += sign * a);
+    })?;
+    // Within the union's exact bounds (the largest piece, the sum of the
+    // pieces) against round-off.
+    let ice: Vec<f64> = (0..cells)
+        .map(|k| union[k].clamp(largest[k], area[k]))
         .collect();
-    let velocity: Vec<[f64; 2]> = momentum
-        .iter()
-        .zip(&area)
-        .map(|(m, a)| [per_ice(m[0], *a), per_ice(m[1], *a)])
+    let concentration: Vec<f64> = ice.iter().map(|a| a / cell_area).collect();
+    let per = |sum: f64, by: f64| if by > 0.0 { sum / by } else { f64::NAN };
+    let thickness_m = (0..cells).map(|k| per(volume[k], ice[k])).collect();
+    let velocity: Vec<[f64; 2]> = (0..cells)
+        .map(|k| {
+            [
+                per(momentum[k][0], volume[k]),
+                per(momentum[k][1], volume[k]),
+            ]
+        })
         .collect();
     let (divergence_per_s, shear_per_s, total_deformation_per_s) = strain_rates(grid, &velocity);
     Ok(GridFields {
@@ -204,7 +241,35 @@ pub fn grid_fields(grid: &Grid, floes: &FloeSnapshot) -> Result<GridFields, Anal
         divergence_per_s,
         shear_per_s,
         total_deformation_per_s,
+        overlap_sets,
     })
+}
+
+/// Calls `f(cell, piece, area)` for each cell of `grid` where the convex
+/// `poly` has a part of positive area, with that part (world coordinates).
+fn for_each_piece(grid: &Grid, poly: &[[f64; 2]], mut f: impl FnMut(usize, &[[f64; 2]], f64)) {
+    let (lo, hi) = bounds(poly);
+    let range = |axis: usize| {
+        let first = ((lo[axis] - grid.origin_m[axis]) / grid.cell_m[axis]).floor();
+        let last = ((hi[axis] - grid.origin_m[axis]) / grid.cell_m[axis]).floor();
+        let top = grid.shape[axis] as f64 - 1.0;
+        (first.max(0.0), last.min(top))
+    };
+    let ((i0, i1), (j0, j1)) = (range(0), range(1));
+    if i0 > i1 || j0 > j1 {
+        return;
+    }
+    for j in j0 as usize..=j1 as usize {
+        for i in i0 as usize..=i1 as usize {
+            let x0 = grid.origin_m[0] + i as f64 * grid.cell_m[0];
+            let y0 = grid.origin_m[1] + j as f64 * grid.cell_m[1];
+            let piece = clip_to_box(poly, [x0, y0], [x0 + grid.cell_m[0], y0 + grid.cell_m[1]]);
+            let a = polygon_area(&piece);
+            if a > 0.0 {
+                f(grid.index(i, j), &piece, a);
+            }
+        }
+    }
 }
 
 /// Divergence, shear and total deformation of a gridded velocity field.
@@ -241,18 +306,6 @@ fn strain_rates(grid: &Grid, velocity: &[[f64; 2]]) -> (Vec<f64>, Vec<f64>, Vec<
         }
     }
     (div, shear, total)
-}
-
-fn bounds(poly: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
-    poly.iter().fold(
-        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-        |(lo, hi), p| {
-            (
-                [lo[0].min(p[0]), lo[1].min(p[1])],
-                [hi[0].max(p[0]), hi[1].max(p[1])],
-            )
-        },
-    )
 }
 
 /// The part of a convex polygon inside the box `[lo, hi]`.

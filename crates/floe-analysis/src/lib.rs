@@ -18,6 +18,7 @@ pub mod grid_fields;
 pub mod jam;
 pub mod love_weber;
 mod polygon;
+mod polygon_overlaps;
 pub mod profile;
 pub mod rheology;
 pub mod slip_events;

@@ -201,6 +201,30 @@ pub fn offset_and_unit(
     Ok((seconds(origin) - seconds(start_dt), unit_s))
 }
 
+/// `text` (`YYYY-MM-DD[ HH:MM[:SS[.fff]]]`, `T` or a space between, an
+/// optional `Z`, `UTC` or `+00:00`) as CF writes a reference date,
+/// `YYYY-MM-DD HH:MM:SS` (fractional seconds kept), if it is a date of the
+/// proleptic Gregorian calendar.
+pub fn cf_date(text: &str) -> Option<String> {
+    let dt = parse_datetime(text)?;
+    if dt.d > Calendar::Gregorian.month_length(dt.y, dt.m) || !(0..=9999).contains(&dt.y) {
+        return None;
+    }
+    // Whole microseconds, within the day.
+    let micros = ((dt.seconds_of_day * 1e6).round() as i64).min(86_400_000_000 - 1);
+    let whole = micros / 1_000_000;
+    let (h, mi, s) = (whole / 3600, whole / 60 % 60, whole % 60);
+    let seconds = match micros % 1_000_000 {
+        0 => format!("{s:02}"),
+        // "05.25", not "5.250000".
+        f => format!("{s:02}.{f:06}").trim_end_matches('0').to_string(),
+    };
+    Some(format!(
+        "{:04}-{:02}-{:02} {h:02}:{mi:02}:{seconds}",
+        dt.y, dt.m, dt.d
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -241,6 +265,22 @@ mod tests {
         // 360_day has a 30 February.
         let (o, u) = offset_and_unit("days since 2000-02-30", "360_day", "2000-03-01").unwrap();
         assert_eq!(o / u, -1.0);
+    }
+
+    #[test]
+    fn dates_are_written_as_cf_reference_dates() {
+        for (text, cf) in [
+            ("2024-03-01 00:00:00", Some("2024-03-01 00:00:00")),
+            ("2024-3-1T06:30Z", Some("2024-03-01 06:30:00")),
+            ("2024-02-29 23:59:59.25 UTC", Some("2024-02-29 23:59:59.25")),
+            ("2024-02-29 00:00:05.5", Some("2024-02-29 00:00:05.5")),
+            ("1500-01-01", Some("1500-01-01 00:00:00")),
+            ("2023-02-29", None),
+            ("2024-03-01 24:00:00", None),
+            ("yesterday", None),
+        ] {
+            assert_eq!(cf_date(text).as_deref(), cf, "{text}");
+        }
     }
 
     #[test]

@@ -46,6 +46,7 @@ pub mod settings;
 mod size_distribution;
 pub mod source_file;
 pub mod spec;
+pub mod start_time;
 
 pub use domain::Domain;
 pub use error::ScenarioError;

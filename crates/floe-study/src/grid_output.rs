@@ -4,7 +4,8 @@
 //! classic data model, so that each record is compressed (deflate and
 //! shuffle, as the run files) while classic tools' conversions
 //! (`nccopy -k classic`) still work. One record per snapshot taken (a
-//! [`Cadence`] of its own) along the unlimited `time` dimension; variables
+//! [`Cadence`] of its own) along the unlimited `time` dimension (dates
+//! when the scenario has a `start_time`); variables
 //! on `(time, y, x)` with CF standard names and units where CF has them;
 //! cells without ice hold the fill value (`_FillValue`, NetCDF's default
 //! for doubles, 9.97e36, rather than NaN, which compares unequal to
@@ -58,25 +59,25 @@ pub(crate) const FIELDS: [(&str, &str, &str, &str); 11] = [
         "concentration",
         "sea_ice_area_fraction",
         "1",
-        "ice area over cell area",
+        "ice area over cell area (the floes' union: a place under two floes counted once)",
     ),
     (
         "thickness",
         "sea_ice_thickness",
         "m",
-        "mean thickness of the ice in the cell",
+        "the floes' volume in the cell over its ice area",
     ),
     (
         "u",
         "sea_ice_x_velocity",
         "m s-1",
-        "area-mean ice velocity along x",
+        "ice velocity along x: the floes' momentum in the cell over their mass",
     ),
     (
         "v",
         "sea_ice_y_velocity",
         "m s-1",
-        "area-mean ice velocity along y",
+        "ice velocity along y: the floes' momentum in the cell over their mass",
     ),
     (
         "stress_xx",
@@ -157,6 +158,8 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
     };
     let times = run.snapshot_times()?;
     let taken = args.cadence.select(&times)?;
+    let start_time = floe_scenario::start_time::stored_start_time(&meta.scenario_toml)
+        .map_err(|e| Error::Usage(format!("{}: {e}", args.run.display())))?;
 
     // Written beside the target and renamed at the end: a failure leaves
     // no half file under the output's name.
@@ -168,7 +171,7 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
     partial.create()?;
     let mut file =
         netcdf::create_with(partial.path(), Options::NETCDF4 | Options::CLASSIC).map_err(nc)?;
-    define(&mut file, &args.run, &grid).map_err(nc)?;
+    define(&mut file, &args.run, &grid, start_time.as_deref()).map_err(nc)?;
     // The classic model has a define mode to leave before writing data.
     file.enddef().map_err(nc)?;
     let centres =
@@ -199,8 +202,14 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
     partial.commit()
 }
 
-/// The dimensions, variables and attributes of a gridded-fields file.
-fn define(file: &mut FileMut, run: &Path, grid: &Grid) -> Result<(), netcdf::Error> {
+/// The dimensions, variables and attributes of a gridded-fields file;
+/// with the scenario's `start_time`, a time axis of dates.
+fn define(
+    file: &mut FileMut,
+    run: &Path,
+    grid: &Grid,
+    start_time: Option<&str>,
+) -> Result<(), netcdf::Error> {
     let [nx, ny] = grid.shape;
     file.add_unlimited_dimension("time")?;
     file.add_dimension("y", ny)?;
@@ -209,13 +218,27 @@ fn define(file: &mut FileMut, run: &Path, grid: &Grid) -> Result<(), netcdf::Err
         ("Conventions", "CF-1.8".to_string()),
         ("title", format!("floe run {} on a grid", run.display())),
         ("source", format!("floe {} (floe grid)", env!("CARGO_PKG_VERSION"))),
-        ("comment", "floes coarse-grained onto the grid: each floe clipped exactly to the cells; prescribed floes (walls, blocks, glued rows) left out".to_string()),
+        ("comment", "floes coarse-grained onto the grid: each floe clipped exactly to the cells, a place under overlapping floes counted once in the concentration; prescribed floes (walls, blocks, glued rows) left out".to_string()),
     ] {
         file.add_attribute(name, text)?;
     }
     let mut time = file.add_variable::<f64>("time", &["time"])?;
-    time.put_attribute("units", "s")?;
-    time.put_attribute("long_name", "time since the start of the run")?;
+    match start_time {
+        // Model time is seconds after start_time, a UTC date the scenario
+        // reads in the proleptic Gregorian calendar (also before 1582, where
+        // CF's "standard" would turn Julian).
+        Some(date) => {
+            time.put_attribute("units", format!("seconds since {date}"))?;
+            time.put_attribute("calendar", "proleptic_gregorian")?;
+            time.put_attribute("standard_name", "time")?;
+            time.put_attribute("axis", "T")?;
+            time.put_attribute("long_name", "time of the snapshot")?;
+        }
+        None => {
+            time.put_attribute("units", "s")?;
+            time.put_attribute("long_name", "time since the start of the run")?;
+        }
+    }
     for (axis, dim) in [("X", "x"), ("Y", "y")] {
         let mut coordinate = file.add_variable::<f64>(dim, &[dim])?;
         coordinate.put_attribute("units", "m")?;
