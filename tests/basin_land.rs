@@ -1,16 +1,23 @@
 //! Land from GeoJSON (floe-basin): the convex decomposition is exact (the
 //! pieces are convex, their areas sum to the polygon's, and they do not
 //! overlap), also after cutting the pieces to a floe's size; and a
-//! longitude-latitude file lands where the map projection puts it.
+//! longitude-latitude file lands where the map projection puts it; a
+//! vertex of a long coast moved onto another edge or vertex is refused as
+//! a pairwise test says.
 //! `cargo test --release -p floe-basin --test basin_land -- --nocapture`
 //! prints the piece counts.
+
+#[path = "land_support/mod.rs"]
+mod land_support;
 
 use floe_basin::coastline::{parse_land, Coordinates};
 use floe_basin::convex_pieces::{convex_pieces, split_to_size, MAX_PIECE_VERTICES};
 use floe_basin::planar::{centroid, convex_intersection_area, orient, signed_area};
+use floe_basin::ring_crossing::segments_meet;
 use floe_basin::simple_ring::simple_ring;
 use floe_basin::{Land, MapProjection};
 use floe_dem::Vec2;
+use land_support::{coast_ring, CoastStyle, Shape};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -219,4 +226,60 @@ fn longitude_latitude_land_is_where_the_projection_puts_it() {
     assert!(!l.contains(map.forward(-55.0, 81.8).unwrap()));
     let a: f64 = l.pieces.iter().map(|p| signed_area(&p.vertices)).sum();
     assert!((a - l.area_m2()).abs() <= 1e-9 * a);
+}
+
+#[test]
+fn one_vertex_moved_onto_an_edge_or_a_vertex_of_a_long_coast_is_refused() {
+    // Every pair of edges tested: the reference for the sweep line.
+    let meets_any = |ring: &[Vec2]| {
+        let n = ring.len();
+        let v = |i: usize| ring[i % n];
+        (0..n).any(|i| {
+            orient(v(i), v(i + 1), v(i + 2)) == 0.0
+                && (v(i + 1) - v(i)).dot(v(i + 2) - v(i + 1)) < 0.0
+        }) || (0..n).any(|i| {
+            (i + 2..n)
+                .any(|j| !(i == 0 && j == n - 1) && segments_meet(v(i), v(i + 1), v(j), v(j + 1)))
+        })
+    };
+    let ring = simple_ring(&coast_ring(1_500, 4, Shape::Island, CoastStyle::DEGENERATE)).unwrap();
+    let n = ring.len();
+    assert!(!meets_any(&ring));
+    // Grid-aligned edges: a point on one is exactly on it.
+    let straight: Vec<usize> = (0..n)
+        .filter(|&k| ring[k].y == ring[(k + 1) % n].y)
+        .collect();
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    let (mut refused, mut kept) = (0, 0);
+    for trial in 0..150 {
+        let k = rng.gen_range(0..n);
+        let mut moved = ring.clone();
+        moved[k] = match trial % 3 {
+            // Onto the middle of a grid-aligned edge.
+            0 => {
+                let e = straight[rng.gen_range(0..straight.len())];
+                let (a, b) = (ring[e], ring[(e + 1) % n]);
+                Vec2::new(0.5 * (a.x + b.x), a.y)
+            }
+            // Onto another vertex.
+            1 => ring[rng.gen_range(0..n)],
+            // Somewhere near: it crosses an edge or not.
+            _ => ring[k] + Vec2::new(rng.gen_range(-150.0..150.0), rng.gen_range(-150.0..150.0)),
+        };
+        let neighbour = |p: Vec2| p == moved[(k + 1) % n] || p == moved[(k + n - 1) % n];
+        if neighbour(moved[k]) {
+            continue;
+        }
+        let want = meets_any(&moved);
+        let got = simple_ring(&moved);
+        assert_eq!(got.is_err(), want, "vertex {k} to {:?}: {got:?}", moved[k]);
+        if let Err(why) = got {
+            assert!(why.contains("not simple"), "{why}");
+            refused += 1;
+        } else {
+            kept += 1;
+        }
+    }
+    println!("{refused} refused, {kept} still simple");
+    assert!(refused > 60 && kept > 10);
 }
