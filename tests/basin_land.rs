@@ -3,9 +3,10 @@
 //! overlap), also after cutting the pieces to a floe's size; generated
 //! coastlines of 1e4 vertices (straight runs, needles 1e-7 m wide, a long
 //! shore closed far behind) are tiled exactly, edge for edge; the pieces do
-//! not depend on where the ring starts or which way it turns; a vertex
-//! moved onto another edge or vertex is refused as a pairwise test says;
-//! and a longitude-latitude file lands where the map projection puts it.
+//! not depend on where the ring starts or which way it turns; the piece
+//! limit holds for thin pieces; a vertex moved onto another edge or vertex
+//! is refused as a pairwise test says; and a longitude-latitude file lands
+//! where the map projection puts it.
 //! `cargo test --release -p floe-basin --test basin_land -- --nocapture`
 //! prints the piece counts.
 
@@ -314,6 +315,40 @@ fn the_pieces_do_not_depend_on_where_the_ring_starts_or_which_way_it_turns() {
         moved.rotate_left(raw.len() / 2);
         assert!(land(moved) == land(raw), "{shape:?}: land pieces");
     }
+}
+
+#[test]
+fn the_piece_limit_holds_for_thin_pieces() {
+    // A long shore closed far behind: triangles from the shore far along
+    // it or to the corners, long and thin, are cut into about their length
+    // over the radius each, not their area over its square.
+    const R: f64 = 1000.0;
+    let ring = simple_ring(&coast_ring(3_000, 2, Shape::Shore, CoastStyle::NATURAL)).unwrap();
+    let polygon = || LandPolygon {
+        feature: 0,
+        ring: ring.clone(),
+    };
+    let free = Land::with_piece_limit(vec![polygon()], R, usize::MAX).unwrap();
+    // A limit that area / r^2 pieces of radius r would keep at r = R, but
+    // the pieces cut to R break.
+    let area = signed_area(&ring);
+    let by_area = area / (R * R);
+    let limit = ((by_area + free.pieces.len() as f64) / 2.0) as usize;
+    println!(
+        "{} convex pieces; area / ({R} m)^2 = {by_area:.0}; cut to {R} m: {}",
+        free.convex_count,
+        free.pieces.len(),
+    );
+    assert!(by_area < limit as f64 && limit < free.pieces.len());
+    let held = Land::with_piece_limit(vec![polygon()], R, limit).unwrap();
+    println!(
+        "limited to {limit}: {} of radius {:.1} m",
+        held.pieces.len(),
+        held.piece_radius_m
+    );
+    assert!(held.pieces.len() <= limit);
+    let pieces: Vec<Vec<Vec2>> = held.pieces.into_iter().map(|p| p.vertices).collect();
+    assert_areas_add_up("limited", &ring, &pieces);
 }
 
 #[test]
