@@ -5,8 +5,9 @@
 //! shore closed far behind) are tiled exactly, edge for edge; the pieces do
 //! not depend on where the ring starts or which way it turns; the piece
 //! limit holds for thin pieces; a vertex moved onto another edge or vertex
-//! is refused as a pairwise test says; and a longitude-latitude file lands
-//! where the map projection puts it.
+//! is refused as a pairwise test says; a file with a byte-order mark reads
+//! as one without; and a longitude-latitude file lands where the map
+//! projection puts it.
 //! `cargo test --release -p floe-basin --test basin_land -- --nocapture`
 //! prints the piece counts.
 
@@ -406,6 +407,43 @@ fn longitude_latitude_land_is_where_the_projection_puts_it() {
     assert!(!l.contains(map.forward(-55.0, 81.8).unwrap()));
     let a: f64 = l.pieces.iter().map(|p| signed_area(&p.vertices)).sum();
     assert!((a - l.area_m2()).abs() <= 1e-9 * a);
+}
+
+#[test]
+fn a_land_file_with_a_byte_order_mark_reads_as_one_without() {
+    let text = r#"{"type": "FeatureCollection", "features": [
+  {"type": "Feature", "properties": {}, "geometry": {"type": "Polygon",
+   "coordinates": [[[0, 0], [4000, 0], [4000, 3000], [2000, 1000], [0, 3000], [0, 0]]]}}]}
+"#;
+    // A comma missing on line 3, after the second vertex.
+    let broken = text.replace("[4000, 0], [4000, 3000]", "[4000, 0] [4000, 3000]");
+    let dir = tempfile::tempdir().unwrap();
+    let read = |name: &str, body: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, body).unwrap();
+        floe_basin::read_land(&path, Coordinates::Xy, None)
+    };
+    let plain = read("plain.geojson", text).unwrap();
+    let marked = read("marked.geojson", &format!("\u{feff}{text}")).unwrap();
+    assert_eq!(plain, marked);
+    let pieces = |p| Land::new(p, 500.0).unwrap().pieces;
+    assert!(pieces(plain) == pieces(marked));
+    let why = |e: floe_basin::BasinError| match e {
+        floe_basin::BasinError::File { why, .. } => why,
+        other => panic!("{other}"),
+    };
+    let plain = why(read("plain.geojson", &broken).unwrap_err());
+    let marked = why(read("marked.geojson", &format!("\u{feff}{broken}")).unwrap_err());
+    // serde_json counts columns in bytes from 1, at the character where
+    // the comma should be.
+    let line = broken.lines().nth(2).unwrap();
+    let column = line.find("[4000, 3000]").unwrap() + 1;
+    println!("{marked}");
+    assert!(
+        plain.contains(&format!("at line 3 column {column}")),
+        "{plain}"
+    );
+    assert_eq!(plain, marked);
 }
 
 #[test]
