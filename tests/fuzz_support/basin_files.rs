@@ -384,7 +384,7 @@ fn geojson_mutants() -> Vec<BasinMutant> {
             F,
             "a UTF-8 byte-order mark first",
             Content::Bytes(bom),
-            Anything,
+            Success,
         ),
         file_mutant(F, "JSON `[]`", geojson("[]"), Refusal),
         file_mutant(F, "JSON `{}`", geojson("{}"), Refusal),

@@ -11,6 +11,8 @@
 //! plane between the (projected) vertices, so a long edge given in
 //! longitude and latitude should be densified in the file.
 //!
+//! The file is UTF-8, with or without a byte-order mark.
+//!
 //! Holes (interior rings: lakes, lagoons) are refused: water enclosed by
 //! land could not exchange ice with the rest of the domain anyway; give
 //! the land around it as separate polygons. Each outer ring must be simple
@@ -95,6 +97,9 @@ pub fn parse_land(
         (Coordinates::LonLat, Some(p)) => Some(p),
         (Coordinates::Xy, _) => None,
     };
+    // A UTF-8 byte-order mark (some Windows tools write one) is not JSON;
+    // dropped, lines and columns in messages are those an editor shows.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let json: GeoJson = text.parse().map_err(|e| format!("not GeoJSON: {e}"))?;
     let geometries: Vec<(usize, Option<Geometry>)> = match json {
         GeoJson::FeatureCollection(c) => c

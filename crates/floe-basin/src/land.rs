@@ -1,7 +1,8 @@
 //! Land as the engine sees it: the polygons of the coastline files cut
-//! into convex pieces no larger than a floe ([`crate::convex_pieces`]), and
-//! queries against them (overlap area with a floe, whether a point is on
-//! land) through a grid of the pieces' bounding boxes.
+//! into convex pieces no larger than a floe ([`crate::convex_pieces`]), at
+//! most [`MAX_LAND_PIECES`] of them, and queries against them (overlap
+//! area with a floe through a grid of the pieces' bounding boxes; whether
+//! a point is on land).
 
 use std::collections::HashMap;
 
@@ -49,6 +50,23 @@ impl Land {
     /// The reason, naming the polygon's feature, if a polygon cannot be
     /// decomposed (not simple), or `max_radius_m` is not positive.
     pub fn new(polygons: Vec<LandPolygon>, max_radius_m: f64) -> Result<Land, String> {
+        Land::with_piece_limit(polygons, max_radius_m, MAX_LAND_PIECES)
+    }
+
+    /// As [`Land::new`], with at most `max_pieces` pieces instead of
+    /// [`MAX_LAND_PIECES`] (unless the convex pieces alone are more): the
+    /// radius grows until the pieces are few enough. Thin convex pieces
+    /// (a long shore's triangles reaching far inland) are cut into about
+    /// their length over the radius, not their area over its square, so
+    /// the count is checked, not foretold.
+    ///
+    /// # Errors
+    /// As [`Land::new`].
+    pub fn with_piece_limit(
+        polygons: Vec<LandPolygon>,
+        max_radius_m: f64,
+        max_pieces: usize,
+    ) -> Result<Land, String> {
         if !(max_radius_m > 0.0 && max_radius_m.is_finite()) {
             return Err(format!("piece radius {max_radius_m} m must be positive"));
         }
@@ -64,19 +82,26 @@ impl Land {
         }
         let convex_count = convex.len();
         let area: f64 = polygons.iter().map(|p| signed_area(&p.ring)).sum();
+        let max_pieces = max_pieces.max(1);
         // About area / r^2 pieces of radius r.
-        let radius = max_radius_m.max((area / MAX_LAND_PIECES as f64).sqrt());
-        let mut pieces = Vec::new();
-        for (k, v) in convex {
-            pieces.extend(
-                split_to_size(vec![v], radius)
-                    .into_iter()
-                    .map(|vertices| LandPiece {
-                        polygon: k,
-                        vertices,
-                    }),
-            );
-        }
+        let mut radius = max_radius_m.max((area / max_pieces as f64).sqrt());
+        let pieces = loop {
+            let pieces: Vec<LandPiece> = convex
+                .iter()
+                .flat_map(|(k, v)| {
+                    split_to_size(vec![v.clone()], radius)
+                        .into_iter()
+                        .map(|vertices| LandPiece {
+                            polygon: *k,
+                            vertices,
+                        })
+                })
+                .collect();
+            if pieces.len() <= max_pieces || pieces.len() == convex_count {
+                break pieces;
+            }
+            radius *= (pieces.len() as f64 / max_pieces as f64).sqrt().max(1.1);
+        };
         let cell_m = 2.0 * radius;
         let mut cells: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
         for (i, p) in pieces.iter().enumerate() {

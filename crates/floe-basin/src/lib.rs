@@ -7,9 +7,11 @@
 //! puts longitude and latitude onto the model plane.
 //!
 //! Land: [`coastline`] reads the polygons of a GeoJSON file onto the model
-//! plane, checked simple by [`simple_ring`]; [`convex_pieces`] cuts each
-//! exactly into convex pieces of at most a given size; [`land`] holds the
-//! pieces with a grid for overlap queries.
+//! plane, checked simple by [`simple_ring`] (a sweep line,
+//! [`ring_crossing`]); [`convex_pieces`] cuts each exactly into convex
+//! pieces of at most a given size (from a triangulation,
+//! [`ring_triangulation`]); [`land`] holds the pieces with a grid for
+//! overlap queries.
 //!
 //! Forcing: [`cf_file`] reads CF NetCDF (a damaged file is an error naming
 //! it, never a crash: [`classic_header`], [`native_guard`]);
@@ -23,6 +25,8 @@ pub mod error;
 pub mod land;
 pub mod planar;
 pub mod projection;
+pub mod ring_crossing;
+pub mod ring_triangulation;
 pub mod simple_ring;
 
 pub use coastline::{read_land, Coordinates, LandPolygon};

@@ -1,8 +1,10 @@
 //! Small planar-geometry helpers shared by the land modules: signed area,
-//! exact orientation, point in polygon, and the intersection of two convex
-//! polygons. Areas are computed about the polygon's first vertex, so that
-//! a polygon far from the origin (projected coordinates reach 1e6 m) keeps
-//! its digits.
+//! exact orientation, the lexicographic order of points, point in polygon,
+//! and the intersection of two convex polygons. Areas are computed about
+//! the polygon's first vertex, so that a polygon far from the origin
+//! (projected coordinates reach 1e6 m) keeps its digits.
+
+use std::cmp::Ordering;
 
 use floe_dem::Vec2;
 
@@ -11,6 +13,14 @@ use floe_dem::Vec2;
 pub fn orient(a: Vec2, b: Vec2, c: Vec2) -> f64 {
     let p = |v: Vec2| robust::Coord { x: v.x, y: v.y };
     robust::orient2d(p(a), p(b), p(c))
+}
+
+/// Lexicographic order of points (x, then y; `-0.0` equals `0.0`); for
+/// finite coordinates.
+pub fn lexicographic(a: Vec2, b: Vec2) -> Ordering {
+    a.x.partial_cmp(&b.x)
+        .unwrap_or(Ordering::Equal)
+        .then(a.y.partial_cmp(&b.y).unwrap_or(Ordering::Equal))
 }
 
 /// Signed area of a polygon (positive counter-clockwise), m^2.
