@@ -439,3 +439,54 @@ fn floes_far_apart_do_not_grow_the_grid() {
     let w = world(floes, Periodicity::default());
     assert_eq!(w.contacts().len(), 1);
 }
+
+/// Two prescribed floes never touch (the narrow phase skips them), so the
+/// list leaves them out: a block of fixed squares, as a coastline's pieces
+/// are, with free floes along its edge, gives exactly the pairs with a
+/// free floe that bounding circles within the skin give, found here by
+/// testing every pair.
+#[test]
+fn pairs_of_two_prescribed_floes_are_left_out_and_no_other() {
+    let mut polys = Vec::new();
+    for j in 0..30 {
+        for i in 0..30 {
+            polys.push(bar(Vec2::new(10.0 * i as f64, 10.0 * j as f64), 10.0, 10.0));
+        }
+    }
+    // Free floes along the block's top edge, touching it.
+    for i in 0..30 {
+        polys.push(bar(Vec2::new(10.0 * i as f64 + 3.0, 299.9), 9.0, 9.0));
+    }
+    let n = polys.len();
+    let mut floes = Floes::from_polygons(&polys, &vec![1.0; n], RHO_ICE).unwrap();
+    for h in 0..900 {
+        floes.set_motion(
+            h,
+            floe_dem::floes::Motion::Prescribed {
+                velocity: Vec2::ZERO,
+            },
+        );
+    }
+    let skin = 0.5;
+    let mut broad = BroadPhase::new(skin);
+    broad.set_max_rotation_rad(f64::INFINITY).unwrap();
+    broad.rebuild(floes.columns(), &sin_cos(&floes), Periodicity::default());
+    let f = floes.columns();
+    let mut expected = Vec::new();
+    for a in 0..n {
+        for b in (a + 1)..n {
+            let near =
+                (f.position[b] - f.position[a]).length() <= f.radius_m[a] + f.radius_m[b] + skin;
+            if near && (f.is_free(a) || f.is_free(b)) {
+                expected.push((a as u32, b as u32));
+            }
+        }
+    }
+    let found: Vec<(u32, u32)> = broad.pairs.iter().map(|p| (p.a, p.b)).collect();
+    assert!(
+        expected.len() > 60,
+        "{} pairs with a free floe",
+        expected.len()
+    );
+    assert_eq!(found, expected);
+}

@@ -5,7 +5,9 @@
 //! equal sizes, for which a grid of cells one floe diameter wide finds all
 //! neighbours in the 3x3 block around a cell, is rebuilt in linear time and
 //! needs no tree balancing (the cost is in docs/performance.md).
-//! Pairs are produced sorted by (a, b) with a < b, whatever the thread count.
+//! Pairs are produced sorted by (a, b) with a < b, whatever the thread count;
+//! pairs of two prescribed floes (walls, land), which never interact, are
+//! left out.
 //!
 //! Bounding circles alone keep pairs that cannot touch before the next
 //! rebuild: in a 60-degree rhombus lattice a third of the circle pairs are
@@ -267,6 +269,26 @@ impl BroadPhase {
             members[fill[c] as usize] = i as u32;
             fill[c] += 1;
         }
+        // The free floes of each cell too: two prescribed floes never touch
+        // (the narrow phase skips them), and a coastline of 1e5 fixed
+        // pieces would otherwise pair each piece with every piece near it.
+        let mut free_start = vec![0u32; nx * ny + 1];
+        for (i, &c) in cells.iter().enumerate() {
+            if floes.is_free(i) {
+                free_start[c + 1] += 1;
+            }
+        }
+        for c in 0..nx * ny {
+            free_start[c + 1] += free_start[c];
+        }
+        let mut fill = free_start.clone();
+        let mut free_members = vec![0u32; free_start[nx * ny] as usize];
+        for (i, &c) in cells.iter().enumerate() {
+            if floes.is_free(i) {
+                free_members[fill[c] as usize] = i as u32;
+                fill[c] += 1;
+            }
+        }
         let wrap_x = periodic.x.is_some();
         let wrap_y = periodic.y.is_some();
         let neighbours = |c: usize| {
@@ -350,17 +372,26 @@ impl BroadPhase {
                     separation_lower_bound(&near[..n_near], &other[..n_other]) <= reachable
                 };
                 let mut found: Vec<CandidatePair> = Vec::new();
+                let i_free = floes.is_free(i);
                 if brute_force {
-                    found.extend(((i + 1)..n).filter(|&j| reach(j, &mut other)).map(|j| {
-                        CandidatePair {
-                            a: i as u32,
-                            b: j as u32,
-                        }
-                    }));
+                    found.extend(
+                        ((i + 1)..n)
+                            .filter(|&j| (i_free || floes.is_free(j)) && reach(j, &mut other))
+                            .map(|j| CandidatePair {
+                                a: i as u32,
+                                b: j as u32,
+                            }),
+                    );
                 } else {
                     let (cells_near, k) = neighbours(cells[i]);
+                    // A prescribed floe pairs with free floes only.
+                    let (list, first) = if i_free {
+                        (&members, &start)
+                    } else {
+                        (&free_members, &free_start)
+                    };
                     for &c in &cells_near[..k] {
-                        for &j in &members[start[c] as usize..start[c + 1] as usize] {
+                        for &j in &list[first[c] as usize..first[c + 1] as usize] {
                             let j = j as usize;
                             if j > i && reach(j, &mut other) {
                                 found.push(CandidatePair {
