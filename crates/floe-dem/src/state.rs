@@ -16,7 +16,7 @@ use crate::error::DemError;
 use crate::floes::Floes;
 use crate::load_point::LoadPoint;
 use crate::motion_schedule::ScheduledMotion;
-use crate::pipeline::boundary_motion::{control_speed, with_normal_speed};
+use crate::pipeline::boundary_motion::{wall_stress, with_normal_speed};
 use crate::pipeline::integrator::half_kicked;
 use crate::stress_control::StressControl;
 use crate::Vec2;
@@ -159,7 +159,7 @@ impl WorldState {
             }
         }
         for c in &self.stress_controls {
-            let v_n = control_speed(&self.floes, &self.force, c);
+            let v_n = c.next_speed(wall_stress(&self.floes, &self.force, c), dt);
             for &id in &c.floe_ids {
                 if let Some(h) = self.floes.handle_of(id) {
                     next[h].0 = with_normal_speed(next[h].0, c.inward_normal, v_n);

@@ -393,7 +393,7 @@ impl<F: ExternalForces> World<F> {
         let p = &mut self.pipeline;
         let dt = s.dt_s;
         boundary_motion::apply(&mut s.floes, &s.schedules, s.time_s, dt);
-        boundary_motion::apply_stress_controls(&mut s.floes, &s.force, &s.stress_controls);
+        boundary_motion::apply_stress_controls(&mut s.floes, &s.force, &mut s.stress_controls, dt);
         p.moved_far = integrator::drift(
             s.floes.columns_mut(),
             (&s.force, &s.torque),

@@ -21,9 +21,12 @@
 //! no new format. Bytes after the payload are ignored (a slot is reused
 //! for smaller states without shrinking).
 //!
-//! Version 6 (written now) appends the stress-controlled walls (their
-//! pieces' ids, inward normal, length, target stress, gain) to version 5,
-//! which appended the load points (floe id, stiffness, anchor, segments) to
+//! Version 7 (written now) stores a stress-controlled wall's law as a tag
+//! (0 proportional: its gain; 1 servo: mass, stress damping, filter time,
+//! speed, filtered stress) where version 6, which appended the stress-controlled walls
+//! (their pieces' ids, inward normal, length, target stress, gain) to
+//! version 5, stored the proportional gain alone. Version 5 appended the
+//! load points (floe id, stiffness, anchor, segments) to
 //! version 4, which appended the motion schedules (per
 //! scheduled floe its id, then its segments: duration, start and end
 //! velocity, start and end angular velocity). Version 3 added the time step
@@ -39,14 +42,14 @@ use floe_dem::floes::{FloeColumns, Floes, Motion};
 use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::{MotionSchedule, MotionSegment, ScheduledMotion};
 use floe_dem::state::WorldState;
-use floe_dem::stress_control::StressControl;
+use floe_dem::stress_control::{ControlLaw, ServoWall, StressControl};
 use floe_dem::Vec2;
 use floe_friction::{ContactState, LAW_STATE_SLOTS};
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
 /// Version of the encoding written.
-pub const FORMAT_VERSION: u32 = 6;
+pub const FORMAT_VERSION: u32 = 7;
 /// The oldest version read; older and newer ones are refused.
 pub const OLDEST_READABLE_VERSION: u32 = 1;
 /// Bytes before the payload.
@@ -97,6 +100,39 @@ impl Enc {
     }
     fn len(&mut self, n: usize) {
         self.u64(n as u64);
+    }
+    /// Version 6: the proportional gain alone; 7: a tag (0 proportional,
+    /// 1 servo) and the law's parameters and state.
+    fn control_law(&mut self, law: &ControlLaw, version: u32) {
+        match *law {
+            ControlLaw::Proportional {
+                gain_m_per_s_per_n_per_m,
+            } => {
+                if version >= 7 {
+                    self.u8(0);
+                }
+                self.f64(gain_m_per_s_per_n_per_m);
+            }
+            ControlLaw::Servo(ServoWall {
+                mass_kg,
+                stress_damping_s,
+                stress_filter_s,
+                speed_m_per_s,
+                filtered_stress_n_per_m,
+            }) => {
+                assert!(version >= 7, "a servo wall needs format 7");
+                self.u8(1);
+                for x in [
+                    mass_kg,
+                    stress_damping_s,
+                    stress_filter_s,
+                    speed_m_per_s,
+                    filtered_stress_n_per_m,
+                ] {
+                    self.f64(x);
+                }
+            }
+        }
     }
     fn f64s(&mut self, v: &[f64]) {
         self.len(v.len());
@@ -336,12 +372,19 @@ pub fn encode_version(
     if version >= 6 {
         e.len(stress_controls.len());
         for c in stress_controls {
-            e.len(c.floe_ids.len());
-            c.floe_ids.iter().for_each(|&id| e.u64(id));
-            e.v2(c.inward_normal);
-            e.f64(c.length_m);
-            e.f64(c.target_stress_n_per_m);
-            e.f64(c.gain_m_per_s_per_n_per_m);
+            let StressControl {
+                floe_ids,
+                inward_normal,
+                length_m,
+                target_stress_n_per_m,
+                law,
+            } = c;
+            e.len(floe_ids.len());
+            floe_ids.iter().for_each(|&id| e.u64(id));
+            e.v2(*inward_normal);
+            e.f64(*length_m);
+            e.f64(*target_stress_n_per_m);
+            e.control_law(law, version);
         }
     }
 
@@ -401,6 +444,31 @@ impl<'a> Dec<'a> {
     }
     fn f64(&mut self) -> DecResult<f64> {
         Ok(f64::from_bits(self.u64()?))
+    }
+    /// [`Enc::control_law`].
+    fn control_law(&mut self) -> DecResult<ControlLaw> {
+        let tag = if self.version >= 7 { self.u8()? } else { 0 };
+        match tag {
+            0 => Ok(ControlLaw::Proportional {
+                gain_m_per_s_per_n_per_m: self.f64()?,
+            }),
+            1 => {
+                let mut x = [0.0; 5];
+                for v in &mut x {
+                    *v = self.f64()?;
+                }
+                let [mass_kg, stress_damping_s, stress_filter_s, speed_m_per_s, filtered_stress_n_per_m] =
+                    x;
+                Ok(ControlLaw::Servo(ServoWall {
+                    mass_kg,
+                    stress_damping_s,
+                    stress_filter_s,
+                    speed_m_per_s,
+                    filtered_stress_n_per_m,
+                }))
+            }
+            t => Err(format!("a stress-controlled wall of unknown law {t}")),
+        }
     }
     fn v2(&mut self) -> DecResult<Vec2> {
         Ok(Vec2::new(self.f64()?, self.f64()?))
@@ -672,8 +740,9 @@ pub fn decode(
             d.vec(48, |d| {
                 let ids = d.vec(8, |d| d.u64())?;
                 let (normal, length) = (d.v2()?, d.f64()?);
-                let (target, gain) = (d.f64()?, d.f64()?);
-                StressControl::new(ids, normal, length, target, gain)
+                let target = d.f64()?;
+                let law = d.control_law()?;
+                StressControl::new(ids, normal, length, target, law)
                     .map_err(|e| format!("a stress-controlled wall: {e}"))
             })?
         } else {
@@ -766,14 +835,18 @@ mod tests {
         let (back, _) = decode(&v3, || panic!("version 3 stores dt"), Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
         // A version from the future is refused, by name.
-        let mut v7 = v3.clone();
-        v7[8..12].copy_from_slice(&7u32.to_le_bytes());
-        let e = decode(&v7, dt, None).expect_err("version 7");
-        assert!(e.contains("format version 7"), "{e}");
+        let mut future = v3.clone();
+        future[8..12].copy_from_slice(&(FORMAT_VERSION + 1).to_le_bytes());
+        let e = decode(&future, dt, None).expect_err("a future version");
+        assert!(
+            e.contains(&format!("format version {}", FORMAT_VERSION + 1)),
+            "{e}"
+        );
     }
 
-    /// Version 6 keeps the motion schedules, load points and stress
-    /// controls bitwise; versions 5, 4 and 3 still read, without what they
+    /// Version 7 keeps the motion schedules, load points and stress
+    /// controls (a servo wall's state too) bitwise; version 6 reads a
+    /// proportional wall; versions 5, 4 and 3 still read, without what they
     /// lack.
     #[test]
     fn boundaries_round_trip_and_older_versions_read_without_them() {
@@ -814,7 +887,8 @@ mod tests {
             )
             .unwrap();
         let normal = Vec2::new(0.6, 0.8);
-        let control = StressControl::new(vec![wall], normal, 98.0, 1e3 / 3.0, 1e-7).unwrap();
+        let servo = ControlLaw::Servo(ServoWall::new(3e4, 7.0, 2.0).unwrap());
+        let control = StressControl::new(vec![wall], normal, 98.0, 1e3 / 3.0, servo).unwrap();
         world.add_stress_control(control).unwrap();
         for _ in 0..3 {
             world.step();
@@ -831,6 +905,23 @@ mod tests {
         let counts = OutputCounts::default();
         let (back, _) = decode(&encode(&state, &counts, 3), || None, Some(3)).unwrap();
         assert_eq!(format!("{back:?}"), format!("{state:?}"));
+        let ControlLaw::Servo(moved) = state.stress_controls[0].law else {
+            panic!("a servo wall")
+        };
+        assert!(
+            moved.speed_m_per_s != 0.0,
+            "the servo's state is not trivial"
+        );
+        // Version 6: a proportional wall, without the law's tag.
+        let mut proportional = state.clone();
+        proportional.stress_controls[0].law = ControlLaw::Proportional {
+            gain_m_per_s_per_n_per_m: 1e-7,
+        };
+        let v6 = encode_version(&proportional, &counts, 3, 6);
+        let v7 = encode_version(&proportional, &counts, 3, 7);
+        assert_eq!(v7.len(), v6.len() + 1);
+        let (back, _) = decode(&v6, || None, Some(3)).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{proportional:?}"));
         // Version 5: no stress controls; 4: nor load points; 3: nor
         // schedules.
         let mut without = state.clone();

@@ -698,7 +698,7 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
                 span: Some(w.span.clone()),
             });
         }
-        if let Some((target, gain)) = w.stress {
+        if let Some((target, control)) = w.stress {
             let along = 1 - w.side.axis();
             let inward = match w.side {
                 Side::Left => Vec2::X,
@@ -721,7 +721,8 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
                 inward_normal: inward,
                 length_m: region.max[along] - region.min[along],
                 target_n_per_m: target,
-                gain,
+                control,
+                span: w.span.clone(),
             });
         }
     }

@@ -37,6 +37,8 @@ pub(crate) struct StressWall {
     pub length_m: f64,
     /// Compressive stress to hold, N/m.
     pub target_n_per_m: f64,
-    /// The file's gain, (m/s)/(N/m), if given.
-    pub gain: Option<f64>,
+    /// The control's keys as the file gives them.
+    pub control: crate::stress_wall::ControlKeys,
+    /// The `[[wall]]` table in the file.
+    pub span: std::ops::Range<usize>,
 }

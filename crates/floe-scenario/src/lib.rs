@@ -47,6 +47,7 @@ mod size_distribution;
 pub mod source_file;
 pub mod spec;
 pub mod start_time;
+pub mod stress_wall;
 
 pub use domain::Domain;
 pub use error::ScenarioError;

@@ -3,6 +3,7 @@
 //! building the world ([`super::build`]) only has to check what depends on
 //! several values together ([`super::checks`]).
 
+use crate::stress_wall::{resolve_control_keys, ControlKeys};
 use std::ops::Not;
 use std::ops::Range;
 use std::path::Path;
@@ -96,8 +97,9 @@ pub(crate) struct Wall {
     pub velocity: Vec2,
     /// `[[wall.segment]]`, when given.
     pub schedule: Option<MotionSchedule>,
-    /// `normal_stress_n_per_m` and the gain, when the wall holds a stress.
-    pub stress: Option<(f64, Option<f64>)>,
+    /// `normal_stress_n_per_m` and the control's keys, when the wall holds
+    /// a stress.
+    pub stress: Option<(f64, ControlKeys)>,
     /// Floes whose centroid lies within this distance of the wall's face
     /// move with it (a rough wall), m; 0: none.
     pub glue_depth_m: f64,
@@ -1773,18 +1775,10 @@ fn resolve_walls(
             }
             (None, None) => Vec2::ZERO,
         };
-        let stress = match &r.normal_stress_n_per_m {
-            None => {
-                if let Some(g) = &r.stress_gain_m_per_s_per_n_per_m {
-                    return Err(f.error(
-                        g.span(),
-                        key("stress_gain_m_per_s_per_n_per_m"),
-                        "a gain without normal_stress_n_per_m: give the stress the wall holds",
-                    ));
-                }
-                None
-            }
-            Some(target) => {
+        let control = resolve_control_keys(f, r, i)?;
+        let stress = match (&r.normal_stress_n_per_m, control) {
+            (None, _) | (_, None) => None,
+            (Some(target), Some(control)) => {
                 let target = f.in_range(
                     target,
                     &key("normal_stress_n_per_m"),
@@ -1811,12 +1805,7 @@ fn resolve_walls(
                          stress asks: give its velocity along the wall only",
                     ));
                 }
-                let gain = r
-                    .stress_gain_m_per_s_per_n_per_m
-                    .as_ref()
-                    .map(|g| f.positive(g, &key("stress_gain_m_per_s_per_n_per_m")))
-                    .transpose()?;
-                Some((target, gain))
+                Some((target, control))
             }
         };
         walls.push(Wall {

@@ -25,6 +25,7 @@ pub use crate::output_cadence::{OutputCadence, OutputWindow};
 use crate::resolve::MAX_RUN_STEPS;
 use crate::resolve::{self, FloeSource, Resolved};
 use crate::source_file::SourceFile;
+use crate::stress_wall::{control_law, stress_gain_limit, MeanFloe};
 
 /// A built scenario, ready to step.
 pub struct Setup {
@@ -261,23 +262,22 @@ impl Scenario {
         }
         if !built.stress_walls.is_empty() {
             // The same for every wall (the mean free floe's): found once.
-            let limit = stress_gain_limit(&world, dt_s);
+            let tuning = (MeanFloe::of(&world), stress_gain_limit(&world, dt_s));
             for w in built.stress_walls {
-                let gain = w.gain.unwrap_or(STRESS_GAIN_FRACTION * limit);
+                let (law, words) = control_law(w.control, tuning, w.length_m, dt_s)
+                    .map_err(|why| f.error(w.span.clone(), format!("wall[{}]", w.index), why))?;
                 report.push(format!(
-                    "wall[{}]: holds a normal stress of {} N/m over {} m; gain {} (m/s)/(N/m), {} of the stability limit",
+                    "wall[{}]: holds a normal stress of {} N/m over {} m; {words}",
                     w.index,
                     sig(w.target_n_per_m),
                     sig(w.length_m),
-                    sig(gain),
-                    sig(gain / limit)
                 ));
                 let control = StressControl::new(
                     w.floe_ids,
                     w.inward_normal,
                     w.length_m,
                     w.target_n_per_m,
-                    gain,
+                    law,
                 )?;
                 world.add_stress_control(control)?;
             }
@@ -328,35 +328,4 @@ fn directory_of(path: &Path) -> std::path::PathBuf {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => std::path::PathBuf::from("."),
     }
-}
-
-/// The default gain of a stress-controlled wall as a fraction of the
-/// stability limit [`stress_gain_limit`].
-pub const STRESS_GAIN_FRACTION: f64 = 0.25;
-
-/// The largest stable gain of a stress-controlled wall, (m/s)/(N/m), for
-/// the mean free floe of `world` at time step `dt_s`. A stress error `e`
-/// moves the wall `G e dt` in a step, which raises the elastic stress by
-/// `kappa G e dt` (`kappa = E h / sqrt(area)`, the wall contact's
-/// stiffness per unit area): stable for `G dt kappa < 2`. And the wall's
-/// new speed `G e` raises the dashpot's stress at once by `G e c'`, with
-/// `c' = 2 zeta sqrt(kappa rho h r)` the dashpot per unit contact length
-/// (`r = sqrt(area)`): stable for `G c' < 1`. The limit is the smaller.
-pub fn stress_gain_limit<F: floe_dem::forcing::ExternalForces>(world: &World<F>, dt_s: f64) -> f64 {
-    let f = world.floes();
-    let (mut area, mut thickness, mut mass, mut n) = (0.0, 0.0, 0.0, 0usize);
-    for i in (0..f.len()).filter(|&i| f.is_free(i)) {
-        area += f.area_m2[i];
-        thickness += f.thickness_m[i];
-        mass += f.mass_kg[i];
-        n += 1;
-    }
-    let n = n.max(1) as f64;
-    let (area, h, mass) = (area / n, thickness / n, mass / n);
-    let model = world.model();
-    let kappa = model.youngs_modulus_pa * h / area.sqrt();
-    let r = area.sqrt();
-    let rho_h = mass / area;
-    let dashpot = 2.0 * model.damping_ratio() * (kappa * rho_h * r).sqrt();
-    (2.0 / (dt_s * kappa)).min(1.0 / dashpot)
 }

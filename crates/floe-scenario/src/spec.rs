@@ -264,7 +264,10 @@ pub(crate) struct RawWall {
     pub thickness_m: Num,
     pub segment: Option<Vec<Spanned<RawSegment>>>,
     pub normal_stress_n_per_m: Num,
+    pub stress_control: Option<Spanned<String>>,
     pub stress_gain_m_per_s_per_n_per_m: Num,
+    pub servo_mass_kg_per_m: Num,
+    pub servo_damping_ratio: Num,
     pub glue_depth_m: Num,
 }
 

@@ -43,12 +43,19 @@ pub(crate) fn add_load_point_forces(
     }
 }
 
-/// Sets the normal velocity of each stress-controlled wall's pieces from
-/// the stress the last force gathering measured on it (`force`, per floe),
-/// keeping their velocity along the wall.
-pub(crate) fn apply_stress_controls(floes: &mut Floes, force: &[Vec2], controls: &[StressControl]) {
+/// Sets the normal velocity of each stress-controlled wall's pieces for
+/// the step of `dt_s` from the stress the last force gathering measured on
+/// it (`force`, per floe), keeping their velocity along the wall; a servo
+/// wall's state moves on.
+pub(crate) fn apply_stress_controls(
+    floes: &mut Floes,
+    force: &[Vec2],
+    controls: &mut [StressControl],
+    dt_s: f64,
+) {
     for c in controls {
-        let v_n = control_speed(floes, force, c);
+        let stress = wall_stress(floes, force, c);
+        let v_n = c.advance(stress, dt_s);
         for &id in &c.floe_ids {
             if let Some(h) = floes.handle_of(id) {
                 let velocity = with_normal_speed(floes.velocity[h], c.inward_normal, v_n);
@@ -60,10 +67,10 @@ pub(crate) fn apply_stress_controls(floes: &mut Floes, force: &[Vec2], controls:
     }
 }
 
-/// Control `c`'s normal speed for the stress the forces on its pieces
-/// (`force`, per floe of `floes`) make.
-pub(crate) fn control_speed(floes: &Floes, force: &[Vec2], c: &StressControl) -> f64 {
-    c.normal_speed(c.stress(|id| floes.handle_of(id).map_or(Vec2::ZERO, |h| force[h])))
+/// The stress the forces on control `c`'s pieces (`force`, per floe of
+/// `floes`) make on it, N/m.
+pub(crate) fn wall_stress(floes: &Floes, force: &[Vec2], c: &StressControl) -> f64 {
+    c.stress(|id| floes.handle_of(id).map_or(Vec2::ZERO, |h| force[h]))
 }
 
 /// Velocity `v` with its component along the unit normal `n` made `v_n`.

@@ -128,7 +128,8 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             external_torque,
             schedules: d.schedules.clone(),
             load_points: d.load_points.clone(),
-            stress_controls: d.stress_controls.clone(),
+            // As the steps have moved them on (the same on every process).
+            stress_controls: self.local().stress_controls().to_vec(),
         }))
     }
 

@@ -167,6 +167,9 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         self.rebalance_if_needed()?;
         let world = self.world.take().expect("present between calls");
         let (state, model, forcing, periodicity) = world.into_parts();
+        // A servo wall's state moved on with every step, the same on every
+        // process: the rebuilt world takes it as it is now.
+        self.drivers.stress_controls = state.stress_controls.clone();
         let f = state.floes.columns();
         let grid = self.outline_grid(f);
         let k = self.comm.size();
