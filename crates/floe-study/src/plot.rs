@@ -184,6 +184,13 @@ impl Ranged for TickAxis {
     }
 }
 
+/// The margin right of a chart: at least `least`, and room for the half
+/// of the last x label that reaches past the plot's right edge.
+pub(crate) fn right_margin(x: &Ticks, least: u32) -> u32 {
+    let last = x.labels.last().map_or(0, |l| text_width(l, LABEL_FONT));
+    least.max(last / 2 + 4)
+}
+
 /// The width of the area left of a chart that its y labels (right-aligned
 /// at plotters' 10 pixels from the axis) and its rotated title need.
 pub(crate) fn y_label_area(ticks: &Ticks) -> u32 {
@@ -207,6 +214,7 @@ fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
     let mut chart = ChartBuilder::on(area)
         .caption(axes.title, ("sans-serif", 20))
         .margin(12)
+        .margin_right(right_margin(&xt, 12))
         .x_label_area_size(45)
         .y_label_area_size(y_label_area(&yt))
         .build_cartesian_2d(xr, yr)

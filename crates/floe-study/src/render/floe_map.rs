@@ -8,7 +8,7 @@ use plotters::prelude::*;
 use super::colour::ColourScale;
 use super::colour_bar::{self, ColourBarLayout};
 use crate::error::Error;
-use crate::plot::{register_font, y_label_area, TickAxis};
+use crate::plot::{register_font, right_margin, y_label_area, TickAxis};
 
 /// Grey of floes that have no value (no contacts) and of walls.
 const NO_VALUE: RGBColor = RGBColor(200, 200, 200);
@@ -91,6 +91,7 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, map: &FloeMap) -> 
     let mut chart = ChartBuilder::on(&left)
         .caption(map.title, ("sans-serif", 20))
         .margin(10)
+        .margin_right(right_margin(&xt, 10))
         .x_label_area_size(40)
         .y_label_area_size(y_label_area(&yt))
         .build_cartesian_2d(xr, yr)

@@ -1,13 +1,16 @@
-//! The colour bar of a map (floe_study::render::floe_map), read back from
-//! the pixels drawn: the tick labels stand clear of the bar and its tick
-//! marks (no glyph runs into them), and the title and labels lie whole
-//! inside the bar's panel (none cut at the image's edge or written over
-//! the map). Three bars that went wrong: the demo's gridded shear rates
-//! (2e-7 to 3e-5 /s), its concentration (0.85 to 1), and theta (a
-//! diverging scale with a long title).
+//! The text of floe's pictures, read back from the pixels drawn. The
+//! colour bar of a map (floe_study::render::floe_map): the tick labels
+//! stand clear of the bar and its tick marks (no glyph runs into them),
+//! and the title and labels lie whole inside the bar's panel (none cut at
+//! the image's edge or written over the map); three bars that went wrong:
+//! the demo's gridded shear rates (2e-7 to 3e-5 /s), its concentration
+//! (0.85 to 1), and theta (a diverging scale with a long title). A plot
+//! (floe_study::plot): the last x label, centred on the plot's right
+//! edge, is not cut by the image's edge.
 
 use std::path::Path;
 
+use floe_study::plot::{panels, Axes, Line};
 use floe_study::render::colour::ColourScale;
 use floe_study::render::floe_map::{draw_rgb, frame_size, FloeMap};
 
@@ -199,4 +202,36 @@ fn colour_bar_labels_and_titles_are_whole_and_clear_of_the_bar() {
         -2.6 + 2.9 * wave(i, j)
     });
     check("theta", &theta);
+}
+
+#[test]
+fn the_last_x_label_of_a_plot_is_not_cut_at_the_image_edge() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("plot.png");
+    // x from -5 to 10 s: the last label, 10.0, sits on the right edge.
+    let line: Vec<(f64, f64)> = (0..=150)
+        .map(|k| (-5.0 + 0.1 * k as f64, (0.1 * k as f64).sin()))
+        .collect();
+    let axes = Axes {
+        title: "a hold",
+        x: "time from the end of the hold (s)",
+        y: "mu",
+    };
+    panels(&path, &[(axes, vec![Line::new("", line)])]).unwrap();
+    let decoder = png::Decoder::new(std::fs::File::open(&path).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    let img = Image {
+        width: info.width,
+        height: info.height,
+        rgb: buf[..info.buffer_size()].to_vec(),
+    };
+    // Text in the last columns is a glyph the edge cut.
+    for x in img.width - 2..img.width {
+        for y in 0..img.height {
+            assert!(!img.ink(x, y), "ink at ({x}, {y}), the image's edge");
+        }
+    }
 }
