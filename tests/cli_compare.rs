@@ -120,13 +120,26 @@ fn compare_runs_the_same_ice_under_each_law() {
         "| rate |",
         "| rate-state |",
         "histories.png",
-        "3e-3 m/s",
+        "0.003 m/s",
     ] {
         assert!(
             report.contains(expected),
             "`{expected}` in report:\n{report}"
         );
     }
+    // The report shows C1 = A - B to six significant digits (no
+    // floating-point noise); the variant's scenario file keeps it exact.
+    let c1 = p.a - p.b;
+    let shown = format!("c1 = {}", (c1 * 1e6).round() / 1e6);
+    assert!(
+        report.contains(&format!("{shown}\n")),
+        "`{shown}` in report:\n{report}"
+    );
+    let file: toml::Table = std::fs::read_to_string(out.join("rate.toml"))
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(file["friction"]["c1"].as_float(), Some(c1));
     for png in ["histories.png", "profile.png", "slip_events.png"] {
         assert!(is_png(&out.join(png)), "{png}");
     }
@@ -199,6 +212,32 @@ fn a_parallel_sweep_equals_runs_made_one_by_one() {
     for r in &rows {
         assert_eq!(&r[3], "completed", "{r:?}");
     }
+    // results.csv is data: every digit. Variant 2's frictional dissipation
+    // is its run's last observable, in MJ.
+    let column = header
+        .iter()
+        .position(|h| h == "friction_dissipation_mj")
+        .unwrap();
+    let dissipation = RunFile::open(&out.join("variant_002.h5"))
+        .unwrap()
+        .observable("friction_dissipation")
+        .unwrap();
+    let last = *dissipation.value.last().unwrap();
+    assert_eq!(rows[1][column].parse::<f64>().unwrap(), last * 1e-6);
+    // results.md is for reading: the same number to four significant digits.
+    let md = std::fs::read_to_string(out.join("results.md")).unwrap();
+    let row = md
+        .lines()
+        .find(|l| l.starts_with("| variant_002 |"))
+        .unwrap();
+    let shown = row.split('|').map(str::trim).nth(column + 1).unwrap();
+    let mantissa = shown.split('e').next().unwrap();
+    let digits = mantissa
+        .trim_start_matches(['-', '0', '.'])
+        .replace('.', "");
+    assert!(digits.len() <= 4, "{shown}");
+    let relative = (shown.parse::<f64>().unwrap() / (last * 1e-6) - 1.0).abs();
+    assert!(relative < 5e-4, "{shown} for {}", last * 1e-6);
     // variant_002: a = 0.30, seed = 4, as its scenario says.
     let text = std::fs::read_to_string(out.join("variant_002.toml")).unwrap();
     let t: toml::Table = text.parse().unwrap();

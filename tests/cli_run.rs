@@ -81,6 +81,22 @@ fn a_run_writes_a_file_that_info_describes() {
     }
     let floes = file.static_floes().unwrap().len().to_string();
     assert!(info.contains(&floes), "floe count {floes} in:\n{info}");
+    // The observables' last values as numbers read: a count as a whole
+    // number, a fraction to five significant digits (not `9.5500e2`).
+    let last_value = |name: &str| {
+        let line = info
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("{name} ")))
+            .unwrap_or_else(|| panic!("{name} in:\n{info}"));
+        line.split_whitespace().nth(1).unwrap().to_string()
+    };
+    let contacts = *file.observable("contacts").unwrap().value.last().unwrap();
+    assert_eq!(last_value("contacts"), format!("{}", contacts as u64));
+    let mu = *file.observable("mean_mu").unwrap().value.last().unwrap();
+    let shown = last_value("mean_mu");
+    assert!(!shown.contains('e'), "{shown}");
+    let relative = (shown.parse::<f64>().unwrap() / mu - 1.0).abs();
+    assert!(relative <= 5e-5, "{shown} for {mu}");
 }
 
 #[test]

@@ -4,6 +4,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 use floe_io::RunFile;
+use floe_scenario::numbers::{parameter, significant};
 
 use crate::CliError;
 use floe_dem::run::format_sim_time;
@@ -69,10 +70,10 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
         "domain",
         format!(
             "{} km x {} km from ({}, {}) m, periodic in {}",
-            d.size_m[0] / 1e3,
-            d.size_m[1] / 1e3,
-            d.min_m[0],
-            d.min_m[1],
+            parameter(d.size_m[0] / 1e3),
+            parameter(d.size_m[1] / 1e3),
+            parameter(d.min_m[0]),
+            parameter(d.min_m[1]),
             if periodic.is_empty() {
                 "neither".to_string()
             } else {
@@ -127,7 +128,7 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
             .then(|| s.value.chunks_exact(width).nth(samples - 1))
             .flatten();
         if let Some(last) = last {
-            let shown: Vec<String> = last.iter().map(|v| format!("{v:.4e}")).collect();
+            let shown: Vec<String> = last.iter().map(|&v| significant(v, 5)).collect();
             values.push(format!("  {name:<24} {}", shown.join(" ")));
         }
     }

@@ -25,7 +25,7 @@ use crate::checks;
 use crate::error::ScenarioError;
 use crate::ice_grid::{place_from_grids, GridFrame};
 use crate::land_build;
-use crate::numbers::{short, sig, thousands};
+use crate::numbers::{parameter, short, sig, thousands};
 pub(crate) use crate::piece::Piece;
 use crate::resolve::{
     dem_error, voronoi_work, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION,
@@ -672,7 +672,11 @@ pub(crate) fn build_floes(f: &SourceFile, r: &Resolved) -> Result<BuiltFloes, Sc
             match &w.schedule {
                 Some(s) => describe_schedule(s),
                 None if w.velocity == Vec2::ZERO => "fixed".to_string(),
-                None => format!("moving at [{}, {}] m/s", w.velocity.x, w.velocity.y),
+                None => format!(
+                    "moving at [{}, {}] m/s",
+                    parameter(w.velocity.x),
+                    parameter(w.velocity.y)
+                ),
             },
             segments.len(),
             sig(segments.first().map_or(0.0, |s| {
@@ -901,7 +905,7 @@ pub(crate) fn time_step(
                 "the stable time step of {culprit_name} is {limit} s: its mass or the contact \
                  stiffness (E = {} Pa) is out of range; check the thickness, density and \
                  contact.youngs_modulus_pa",
-                short(r.model.youngs_modulus_pa)
+                parameter(r.model.youngs_modulus_pa)
             ),
         ));
     }
@@ -915,7 +919,7 @@ pub(crate) fn time_step(
         (
             format!(
                 "E = {} Pa, restitution {} (which shortens the step {} times)",
-                short(r.model.youngs_modulus_pa),
+                parameter(r.model.youngs_modulus_pa),
                 short(r.model.restitution),
                 sig(1.0 / damping)
             ),
@@ -923,7 +927,7 @@ pub(crate) fn time_step(
         )
     } else {
         (
-            format!("E = {} Pa", short(r.model.youngs_modulus_pa)),
+            format!("E = {} Pa", parameter(r.model.youngs_modulus_pa)),
             "soften contact.youngs_modulus_pa",
         )
     };

@@ -4,7 +4,7 @@ use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
 use floe_dem::Vec2;
 
-use crate::numbers::sig;
+use crate::numbers::{parameter as p, sig};
 use crate::resolve::Resolved;
 
 pub(crate) fn describe_thickness(r: &Resolved) -> String {
@@ -13,19 +13,23 @@ pub(crate) fn describe_thickness(r: &Resolved) -> String {
         return format!("from {} in `{}`", g.variable, g.written);
     }
     match r.thickness {
-        T::Uniform { thickness_m } => format!("{thickness_m} m"),
-        T::UniformRange { min_m, max_m } => format!("uniform in [{min_m}, {max_m}] m"),
-        T::LogNormal { mean_m, std_m } => format!("log-normal, mean {mean_m} m, std {std_m} m"),
+        T::Uniform { thickness_m } => format!("{} m", p(thickness_m)),
+        T::UniformRange { min_m, max_m } => format!("uniform in [{}, {}] m", p(min_m), p(max_m)),
+        T::LogNormal { mean_m, std_m } => {
+            format!("log-normal, mean {} m, std {} m", p(mean_m), p(std_m))
+        }
     }
 }
 
 pub(crate) fn describe_contact(m: &ContactModel) -> String {
     use floe_friction::{Form, Law, StateLaw};
     let law = match &m.law {
-        Law::Amontons(a) => format!("Amontons mu = {}", a.mu),
+        Law::Amontons(a) => format!("Amontons mu = {}", p(a.mu)),
         Law::RateDependent(r) => format!(
             "rate-dependent mu0 = {}, c1 = {}, V* = {} m/s",
-            r.mu0, r.c1, r.v_star_m_per_s
+            p(r.mu0),
+            p(r.c1),
+            p(r.v_star_m_per_s)
         ),
         Law::Custom(_) => format!("custom law `{}`", m.law.name()),
         Law::RateState(rs) => format!(
@@ -38,16 +42,18 @@ pub(crate) fn describe_contact(m: &ContactModel) -> String {
                 StateLaw::Slip => "slip",
                 StateLaw::Aging => "aging",
             },
-            rs.params.mu0,
-            rs.params.a,
-            rs.params.b,
-            rs.params.v_star_m_per_s,
-            rs.params.critical_slip_m
+            p(rs.params.mu0),
+            p(rs.params.a),
+            p(rs.params.b),
+            p(rs.params.v_star_m_per_s),
+            p(rs.params.critical_slip_m)
         ),
     };
     format!(
         "contacts: E = {} Pa, nu = {}, restitution {}; friction: {law}",
-        m.youngs_modulus_pa, m.poisson_ratio, m.restitution
+        p(m.youngs_modulus_pa),
+        p(m.poisson_ratio),
+        p(m.restitution)
     )
 }
 
@@ -55,7 +61,7 @@ pub(crate) fn describe_forcing(fo: &Forcing) -> String {
     use floe_dem::forcing::VelocityField as V;
     let field = |v: &V| match v {
         V::Uniform(u) if *u == Vec2::ZERO => "at rest".to_string(),
-        V::Uniform(u) => format!("uniform [{}, {}] m/s", u.x, u.y),
+        V::Uniform(u) => format!("uniform [{}, {}] m/s", p(u.x), p(u.y)),
         V::TimeSeries { times_s, .. } => format!("time series of {} samples", times_s.len()),
         V::LinearShear { .. } => "linear shear".to_string(),
         V::Gyre { .. } => "gyre".to_string(),
@@ -66,13 +72,37 @@ pub(crate) fn describe_forcing(fo: &Forcing) -> String {
     format!(
         "forcing: wind {} (Cd {}), ocean {} (Cd {}), Coriolis {}",
         field(&fo.wind),
-        fo.air.drag_coefficient,
+        p(fo.air.drag_coefficient),
         field(&fo.current),
-        fo.ocean.drag_coefficient,
+        p(fo.ocean.drag_coefficient),
         if f == 0.0 {
             "off".to_string()
         } else {
             format!("f = {} /s", sig(f))
         }
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use floe_friction::{Law, RateDependent};
+
+    #[test]
+    fn the_build_report_shows_derived_parameters_without_floating_point_noise() {
+        // C1 = A - B of Lishman et al.'s lab law, as `floe compare` derives it.
+        let c1 = 0.31 - 0.382;
+        assert_eq!(c1, -0.07200000000000001);
+        let model = ContactModel::default().with_law(Law::RateDependent(RateDependent {
+            mu0: 0.872,
+            c1,
+            v_star_m_per_s: 1e-5,
+            v_floor_m_per_s: 1e-5,
+        }));
+        assert_eq!(
+            describe_contact(&model),
+            "contacts: E = 6e6 Pa, nu = 0.3, restitution 0.5; \
+             friction: rate-dependent mu0 = 0.872, c1 = -0.072, V* = 1e-5 m/s"
+        );
+    }
 }

@@ -5,9 +5,10 @@
 use std::path::Path;
 
 use floe_friction::{FrictionLaw, Law, LawRegistry};
-use toml_edit::{value, DocumentMut, Item, Table};
+use toml_edit::{value, DocumentMut, Item, Table, Value};
 
 use crate::error::ScenarioError;
+use crate::numbers::parameter;
 use crate::source_file::SourceFile;
 
 /// A law to compare, as named on the command line.
@@ -96,7 +97,9 @@ pub fn reference_law(
     Ok((build_law(&text)?, text))
 }
 
-/// The scenario text for `choice`, and its `[friction]` table alone (for the report).
+/// The scenario text for `choice` (every number exact), and its
+/// `[friction]` table alone as the report shows it (numbers to six
+/// significant digits, see [`crate::numbers::parameter`]).
 pub fn variant(
     scenario_text: &str,
     origin: &Path,
@@ -184,7 +187,34 @@ fn friction_table(text: &str, origin: &Path) -> Result<String, ScenarioError> {
     let doc = parse(text, origin)?;
     let mut only = DocumentMut::new();
     if let Some(t) = doc.get("friction") {
-        only.insert("friction", t.clone());
+        let mut t = t.clone();
+        if let Some(table) = t.as_table_like_mut() {
+            for (_, item) in table.iter_mut() {
+                if let Some(v) = item.as_value_mut() {
+                    round_for_people(v);
+                }
+            }
+        }
+        only.insert("friction", t);
     }
     Ok(only.to_string())
+}
+
+/// `v` with its floats (also inside arrays and inline tables) rounded as
+/// [`crate::numbers::parameter`] shows them, comments kept.
+fn round_for_people(v: &mut Value) {
+    match v {
+        Value::Float(f) => {
+            let x = *f.value();
+            let shown: f64 = parameter(x).parse().unwrap_or(x);
+            if shown != x {
+                let decor = f.decor().clone();
+                *v = Value::from(shown);
+                *v.decor_mut() = decor;
+            }
+        }
+        Value::Array(a) => a.iter_mut().for_each(round_for_people),
+        Value::InlineTable(t) => t.iter_mut().for_each(|(_, v)| round_for_people(v)),
+        _ => {}
+    }
 }

@@ -20,7 +20,7 @@ use crate::describe::{describe_contact, describe_forcing, describe_thickness};
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::gridded_inputs::InputFile;
-use crate::numbers::{sig, thousands};
+use crate::numbers::{parameter, sig, thousands};
 pub use crate::output_cadence::{OutputCadence, OutputWindow};
 use crate::resolve::MAX_RUN_STEPS;
 use crate::resolve::{self, FloeSource, Resolved};
@@ -235,7 +235,7 @@ impl Scenario {
             "  {} free floes, {} prescribed (walls, fixed blocks, land); ice density {} kg/m^3, thickness {}",
             thousands(built.free),
             thousands(built.floes.len() - built.free),
-            r.density_kg_per_m3,
+            parameter(r.density_kg_per_m3),
             describe_thickness(r)
         ));
         report.push(dt_line);

@@ -23,5 +23,6 @@ pub mod run_parallel;
 pub mod same_file;
 mod side_by_side;
 pub mod sweep;
+pub mod ticks;
 
 pub use error::Error;

@@ -5,10 +5,13 @@ use std::path::Path;
 use std::sync::Once;
 
 use floe_friction::spring_slider::Sample;
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use crate::error::Error;
+use crate::ticks::Ticks;
 
 /// One named line on a chart.
 #[derive(Debug, Clone)]
@@ -77,6 +80,16 @@ pub(crate) fn register_font() {
     });
 }
 
+/// The width in pixels of `text` in the embedded font at `size` pixels
+/// (the sum of the glyphs' advances: the ink never reaches past it).
+pub(crate) fn text_width(text: &str, size: f64) -> u32 {
+    register_font();
+    ("sans-serif", size)
+        .into_font()
+        .box_size(text)
+        .map_or(0, |(w, _)| w)
+}
+
 const PALETTE: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -106,33 +119,114 @@ fn bounds(lines: &[Line]) -> ((f64, f64), (f64, f64)) {
     if !x0.is_finite() {
         return ((0.0, 1.0), (0.0, 1.0));
     }
-    let pad = |a: f64, b: f64| {
+    let pad = |a: f64, b: f64, fraction: f64| {
         let d = if b > a {
-            0.05 * (b - a)
+            fraction * (b - a)
+        } else if a == 0.0 {
+            1.0
         } else {
-            0.5 * a.abs().max(1e-12)
+            0.5 * a.abs()
         };
         (a - d, b + d)
     };
-    ((x0, if x1 > x0 { x1 } else { x0 + 1.0 }), pad(y0, y1))
+    // Markers are drawn whole: room for them at the ends of x too.
+    let x = if lines.iter().any(|l| l.markers) {
+        pad(x0, x1, 0.03)
+    } else {
+        (x0, if x1 > x0 { x1 } else { x0 + 1.0 })
+    };
+    (x, pad(y0, y1, 0.05))
+}
+
+/// Font size of tick labels and axis titles, pixels.
+const LABEL_FONT: f64 = 14.0;
+
+/// An axis of a chart for plotters: a linear range whose mesh lines are
+/// [`Ticks`] (bold) and the values between them (light).
+pub(crate) struct TickAxis {
+    linear: RangedCoordf64,
+    bold: Vec<f64>,
+    light: Vec<f64>,
+}
+
+impl TickAxis {
+    /// The axis over `[lo, hi]` with about `target` ticks, and the ticks
+    /// (for the labels and the title).
+    pub(crate) fn over(lo: f64, hi: f64, target: usize) -> (Self, Ticks) {
+        let ticks = Ticks::over(lo, hi, target);
+        let axis = Self {
+            linear: (lo..hi).into(),
+            bold: ticks.values.clone(),
+            light: ticks.light_values(lo, hi),
+        };
+        (axis, ticks)
+    }
+}
+
+impl Ranged for TickAxis {
+    type FormatOption = DefaultFormatting;
+    type ValueType = f64;
+
+    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
+        self.linear.map(value, limit)
+    }
+
+    fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
+        if hint.weight().allow_light_points() {
+            self.light.clone()
+        } else {
+            self.bold.clone()
+        }
+    }
+
+    fn range(&self) -> std::ops::Range<f64> {
+        self.linear.range()
+    }
+}
+
+/// The margin right of a chart: at least `least`, and room for the half
+/// of the last x label that reaches past the plot's right edge.
+pub(crate) fn right_margin(x: &Ticks, least: u32) -> u32 {
+    let last = x.labels.last().map_or(0, |l| text_width(l, LABEL_FONT));
+    least.max(last / 2 + 4)
+}
+
+/// The width of the area left of a chart that its y labels (right-aligned
+/// at plotters' 10 pixels from the axis) and its rotated title need.
+pub(crate) fn y_label_area(ticks: &Ticks) -> u32 {
+    let widest = ticks
+        .labels
+        .iter()
+        .map(|l| text_width(l, LABEL_FONT))
+        .max()
+        .unwrap_or(0);
+    widest + 10 + LABEL_FONT as u32 + 10
 }
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
 fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
-    let ((x0, x1), (y0, y1)) = bounds(lines);
+    let (x, y) = bounds(lines);
+    let (width, height) = area.dim_in_pixel();
+    let targets = ((width / 90).max(2) as usize, (height / 60).max(2) as usize);
+    let (xr, xt) = TickAxis::over(x.0, x.1, targets.0);
+    let (yr, yt) = TickAxis::over(y.0, y.1, targets.1);
     let mut chart = ChartBuilder::on(area)
         .caption(axes.title, ("sans-serif", 20))
         .margin(12)
+        .margin_right(right_margin(&xt, 12))
         .x_label_area_size(45)
-        .y_label_area_size(65)
-        .build_cartesian_2d(x0..x1, y0..y1)
+        .y_label_area_size(y_label_area(&yt))
+        .build_cartesian_2d(xr, yr)
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
-        .x_desc(axes.x)
-        .y_desc(axes.y)
-        .label_style(("sans-serif", 14))
+        .x_desc(xt.title(axes.x))
+        .y_desc(yt.title(axes.y))
+        .x_label_formatter(&|v| xt.label_of(*v))
+        .y_label_formatter(&|v| yt.label_of(*v))
+        .label_style(("sans-serif", LABEL_FONT))
+        .axis_desc_style(("sans-serif", LABEL_FONT))
         .draw()
         .map_err(|e| e.to_string())?;
     for (i, line) in lines.iter().enumerate() {

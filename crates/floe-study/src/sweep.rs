@@ -16,6 +16,7 @@ use crate::compare::metrics::{measure, MetricOptions, RunMetrics};
 use crate::error::Error;
 use crate::same_file::refuse_overwriting_input;
 use floe_friction::LawRegistry;
+use floe_scenario::numbers::sig;
 use floe_scenario::settings::{apply, cartesian, label, Setting};
 use floe_scenario::Scenario;
 
@@ -228,25 +229,17 @@ const COLUMNS: [&str; 8] = [
     "friction_dissipation_mj",
 ];
 
-fn metric_cells(m: &RunMetrics) -> Vec<String> {
-    let opt = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or(String::new(), f);
-    let mean_sliding = m.mean_sliding_fraction();
+/// The metrics of a run in the order of [`COLUMNS`] after `status`
+/// (empty: not measurable).
+fn metric_values(m: &RunMetrics) -> Vec<Option<f64>> {
     vec![
-        opt(m.peak_to_steady.map(|p| p.ratio), &|x| format!("{x:.4}")),
-        opt(m.peak_to_steady.map(|p| p.steady * 1e-3), &|x| {
-            format!("{x:.4}")
-        }),
-        opt(m.band.map(|b| b.equivalent_width_m * 1e-3), &|x| {
-            format!("{x:.3}")
-        }),
-        opt(m.band.map(|b| b.width_10_90_m * 1e-3), &|x| {
-            format!("{x:.3}")
-        }),
-        m.slip_events.len().to_string(),
-        format!("{mean_sliding:.4}"),
-        opt(m.friction_dissipation_j.last().map(|x| x * 1e-6), &|x| {
-            format!("{x:.4}")
-        }),
+        m.peak_to_steady.map(|p| p.ratio),
+        m.peak_to_steady.map(|p| p.steady * 1e-3),
+        m.band.map(|b| b.equivalent_width_m * 1e-3),
+        m.band.map(|b| b.width_10_90_m * 1e-3),
+        Some(m.slip_events.len() as f64),
+        Some(m.mean_sliding_fraction()),
+        m.friction_dissipation_j.last().map(|x| x * 1e-6),
     ]
 }
 
@@ -262,25 +255,33 @@ pub fn gather(dir: &Path, options: &MetricOptions) -> Result<PathBuf, Error> {
         .iter()
         .map(String::from)
         .collect();
-    let mut table = Vec::new();
+    // Rows of the CSV (every digit: a data file) and of the markdown table
+    // (four significant digits: for reading).
+    let (mut table, mut shown) = (Vec::new(), Vec::new());
     for rec in reader.records() {
         let rec = rec.map_err(|e| csv_error(&manifest, e))?;
         let mut row: Vec<String> = rec.iter().map(String::from).collect();
         let output = dir.join(format!("{}.h5", row[0]));
-        let (status, cells) = if !output.exists() {
+        let (status, values) = if !output.exists() {
             ("missing".to_string(), Vec::new())
         } else {
             let status = RunFile::open(&output).and_then(|f| f.status())?;
             if status == "completed" {
-                (status, metric_cells(&measure(&output, options)?))
+                (status, metric_values(&measure(&output, options)?))
             } else {
                 (status, Vec::new())
             }
         };
         row.push(status);
-        row.extend(cells);
-        row.resize(header.len() + COLUMNS.len(), String::new());
+        let mut md_row = row.clone();
+        let cells = |f: fn(f64) -> String| values.iter().map(move |v| v.map_or(String::new(), f));
+        row.extend(cells(|x| format!("{x}")));
+        md_row.extend(cells(sig));
+        for r in [&mut row, &mut md_row] {
+            r.resize(header.len() + COLUMNS.len(), String::new());
+        }
         table.push(row);
+        shown.push(md_row);
     }
     let mut full_header = header.clone();
     full_header.extend(COLUMNS.iter().map(|c| c.to_string()));
@@ -297,7 +298,7 @@ pub fn gather(dir: &Path, options: &MetricOptions) -> Result<PathBuf, Error> {
         full_header.join(" | "),
         "---|".repeat(full_header.len())
     );
-    for row in &table {
+    for row in &shown {
         md.push_str(&format!("| {} |\n", row.join(" | ")));
     }
     let md_path = dir.join("results.md");

@@ -14,7 +14,7 @@ use crate::error::Error;
 use crate::render::{render, ColourBy, Snapshots};
 use crate::run_file::{run, thread_count, Provenance, RunArgs, RunHooks};
 use crate::same_file::refuse_overwriting_input;
-use floe_scenario::numbers::{short, sig};
+use floe_scenario::numbers::{parameter, short, sig};
 use floe_scenario::Scenario;
 use metrics::{measure, MetricOptions};
 use report::{figures, markdown, Variant};
@@ -128,29 +128,28 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
     std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
 
     let mut notes = Vec::new();
+    let v = args.matching.reference_slip_m_per_s;
     if args.laws.contains(&LawChoice::Amontons) {
         notes.push(match args.matching.amontons_mu {
-            Some(mu) => format!("Amontons: mu = {mu} as given."),
-            None => {
-                let v = args.matching.reference_slip_m_per_s;
-                format!(
-                    "Amontons: mu = {:.4}, the rate-and-state steady state at the reference slip speed {v:e} m/s (`--reference-slip-speed`).",
-                    reference.mu_steady(v)
-                )
-            }
+            Some(mu) => format!("Amontons: mu = {} as given.", parameter(mu)),
+            None => format!(
+                "Amontons: mu = {}, the rate-and-state steady state at the reference slip speed {} m/s (`--reference-slip-speed`).",
+                parameter(reference.mu_steady(v)),
+                parameter(v)
+            ),
         });
     }
     if args.laws.contains(&LawChoice::Rate) {
         if let floe_friction::Law::RateState(rs) = &reference {
-            let v = args.matching.reference_slip_m_per_s;
             notes.push(format!(
-                "Rate law: the rate-and-state mu0 = {} and V* = {} m/s, with C1 = A - B = {:.4}: the steady state of the published form, without memory. At the reference slip speed {v:e} m/s it gives mu = {:.4}; the rate-and-state law used here ({:?} form) gives {:.4} in steady state.",
-                rs.params.mu0,
-                rs.params.v_star_m_per_s,
-                rs.params.a - rs.params.b,
-                rs.params.mu_steady_published(v),
+                "Rate law: the rate-and-state mu0 = {} and V* = {} m/s, with C1 = A - B = {}: the steady state of the published form, without memory. At the reference slip speed {} m/s it gives mu = {}; the rate-and-state law used here ({:?} form) gives {} in steady state.",
+                parameter(rs.params.mu0),
+                parameter(rs.params.v_star_m_per_s),
+                parameter(rs.params.a - rs.params.b),
+                parameter(v),
+                sig(rs.params.mu_steady_published(v)),
                 rs.form,
-                reference.mu_steady(v)
+                sig(reference.mu_steady(v))
             ));
         }
     }

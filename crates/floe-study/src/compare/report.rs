@@ -8,6 +8,7 @@ use floe_analysis::slip_events::log_histogram;
 use super::metrics::RunMetrics;
 use crate::error::Error;
 use crate::plot::{grid, Axes, Line};
+use floe_scenario::numbers::sig;
 
 /// One variant of the comparison: its label, what was changed, its metrics.
 #[derive(Debug, Clone)]
@@ -150,9 +151,9 @@ fn is_plug_flow(m: &RunMetrics) -> bool {
 
 fn width(x: f64, plug: bool) -> String {
     if plug {
-        format!("{:.2} (plug)", x * 1e-3)
+        format!("{} (plug)", sig(x * 1e-3))
     } else {
-        format!("{:.2}", x * 1e-3)
+        sig(x * 1e-3)
     }
 }
 
@@ -188,28 +189,18 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
         any_plug |= plug;
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.3} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             v.name,
-            or_dash(m.peak_to_steady.map(|p| p.ratio), |r| format!("{r:.3}")),
-            or_dash(m.peak_to_steady.map(|p| p.steady * 1e-3), |x| format!(
-                "{x:.2}"
-            )),
-            or_dash(
-                m.normal_stress_n_per_m.last().map(|x| x * 1e-3),
-                |x| format!("{x:.2}")
-            ),
-            or_dash(m.band.map(|b| b.velocity_jump_m_per_s), |x| format!(
-                "{x:.2e}"
-            )),
+            or_dash(m.peak_to_steady.map(|p| p.ratio), sig),
+            or_dash(m.peak_to_steady.map(|p| p.steady * 1e-3), sig),
+            or_dash(m.normal_stress_n_per_m.last().map(|x| x * 1e-3), sig),
+            or_dash(m.band.map(|b| b.velocity_jump_m_per_s), sig),
             or_dash(m.band.map(|b| b.equivalent_width_m), |x| width(x, plug)),
             or_dash(m.band.map(|b| b.width_10_90_m), |x| width(x, plug)),
             m.slip_events.len(),
-            or_dash(median, |x| format!("{x:.3e}")),
-            mean_sliding,
-            or_dash(m.friction_dissipation_j.last().copied(), |x| format!(
-                "{:.3}",
-                x * 1e-6
-            )),
+            or_dash(median, sig),
+            sig(mean_sliding),
+            or_dash(m.friction_dissipation_j.last().map(|x| x * 1e-6), sig),
         );
     }
     if any_plug {
@@ -223,7 +214,10 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
         s,
         "\n![histories](histories.png)\n\n![velocity profile](profile.png)\n\n![slip events](slip_events.png)\n"
     );
-    let _ = writeln!(s, "## Variants\n");
+    let _ = writeln!(
+        s,
+        "## Variants\n\nNumbers in the tables below are shown to six significant digits; each variant's scenario file (`NAME.toml`, also stored in its output) holds them exactly.\n"
+    );
     for v in variants {
         let _ = writeln!(
             s,

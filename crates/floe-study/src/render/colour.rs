@@ -49,7 +49,8 @@ pub struct ColourScale {
 impl ColourScale {
     /// A scale covering the 1st to 99th percentile of the finite values
     /// (one runaway floe should not wash out the map); symmetric about zero
-    /// when `diverging`.
+    /// when `diverging`. Values that are never negative get a scale that
+    /// does not reach below zero, also when they are all the same.
     pub fn fit(values: impl Iterator<Item = f64>, diverging: bool) -> Self {
         let mut v: Vec<f64> = values.filter(|x| x.is_finite()).collect();
         if v.is_empty() {
@@ -67,8 +68,13 @@ impl ColourScale {
             (lo, hi) = (-m, m);
         }
         if hi <= lo {
-            let pad = lo.abs().max(1e-12);
-            (lo, hi) = (lo - pad, hi + pad);
+            // One value throughout: a range about it, on its side of zero.
+            let pad = if lo == 0.0 { 1.0 } else { lo.abs() };
+            (lo, hi) = match (lo >= 0.0 && !diverging, hi < 0.0) {
+                (true, _) => (lo - pad.min(lo), hi + pad),
+                (_, true) => (lo - pad, hi + pad.min(-hi)),
+                _ => (lo - pad, hi + pad),
+            };
         }
         Self { lo, hi, diverging }
     }
@@ -101,5 +107,22 @@ mod tests {
         let d = ColourScale::fit([-1.0, 3.0].into_iter(), true);
         assert_eq!((d.lo, d.hi), (-3.0, 3.0));
         assert_eq!(d.colour(0.0), RGBColor(247, 247, 247));
+    }
+
+    #[test]
+    fn a_field_that_is_never_negative_gets_a_scale_from_zero_up() {
+        let range = |v: &[f64], diverging| {
+            let s = ColourScale::fit(v.iter().copied(), diverging);
+            (s.lo, s.hi)
+        };
+        // Zero shear everywhere (a pack at rest), one thickness everywhere.
+        assert_eq!(range(&[0.0; 50], false), (0.0, 1.0));
+        assert_eq!(range(&[1.5; 50], false), (0.0, 3.0));
+        assert_eq!(range(&[-2.0; 50], false), (-4.0, 0.0));
+        assert_eq!(range(&[0.0; 50], true), (-1.0, 1.0));
+        // Otherwise the data's percentiles, which are not below zero either.
+        let shear: Vec<f64> = (0..1000).map(|k| 1e-7 * k as f64).collect();
+        let (lo, hi) = range(&shear, false);
+        assert_eq!((lo, hi), (shear[10], shear[989]));
     }
 }

@@ -6,8 +6,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::colour::ColourScale;
+use super::colour_bar::{self, ColourBarLayout};
 use crate::error::Error;
-use crate::plot::register_font;
+use crate::plot::{register_font, right_margin, y_label_area, TickAxis};
 
 /// Grey of floes that have no value (no contacts) and of walls.
 const NO_VALUE: RGBColor = RGBColor(200, 200, 200);
@@ -79,23 +80,31 @@ pub fn draw_rgb(
 fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, map: &FloeMap) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let ((x0, x1), (y0, y1)) = map.view;
-    let width = root.dim_in_pixel().0;
+    let (width, height) = root.dim_in_pixel();
     root.fill(&WHITE).map_err(err)?;
-    let (left, right) = root.split_horizontally(width.saturating_sub(150));
+    let bar = ColourBarLayout::new(map.scale, map.label, height);
+    let (left, right) = root.split_horizontally(width.saturating_sub(bar.width));
     let km = 1e-3;
+    let (plot_width, plot_height) = left.dim_in_pixel();
+    let (xr, xt) = TickAxis::over(x0 * km, x1 * km, (plot_width / 100).max(2) as usize);
+    let (yr, yt) = TickAxis::over(y0 * km, y1 * km, (plot_height / 60).max(2) as usize);
     let mut chart = ChartBuilder::on(&left)
         .caption(map.title, ("sans-serif", 20))
         .margin(10)
+        .margin_right(right_margin(&xt, 10))
         .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(x0 * km..x1 * km, y0 * km..y1 * km)
+        .y_label_area_size(y_label_area(&yt))
+        .build_cartesian_2d(xr, yr)
         .map_err(err)?;
     chart
         .configure_mesh()
         .disable_mesh()
-        .x_desc("x (km)")
-        .y_desc("y (km)")
+        .x_desc(xt.title("x (km)"))
+        .y_desc(yt.title("y (km)"))
+        .x_label_formatter(&|v| xt.label_of(*v))
+        .y_label_formatter(&|v| yt.label_of(*v))
         .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 14))
         .draw()
         .map_err(err)?;
     let inside = |&(x, y): &(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
@@ -154,7 +163,7 @@ fn draw_on<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, map: &FloeMap) -> 
             });
         chart.draw_series(outlines).map_err(err)?;
     }
-    colour_bar(&right, map.scale, map.label)?;
+    colour_bar::draw(&right, map.scale, &bar)?;
     root.present().map_err(err)
 }
 
@@ -193,37 +202,4 @@ fn clip_to_view(
         }
     }
     out
-}
-
-fn colour_bar<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    scale: ColourScale,
-    label: &str,
-) -> Result<(), String> {
-    let mut bar = ChartBuilder::on(area)
-        .margin_top(40)
-        .margin_bottom(50)
-        .margin_right(70)
-        .y_label_area_size(0)
-        .right_y_label_area_size(60)
-        .caption(label, ("sans-serif", 14))
-        .build_cartesian_2d(0.0..1.0, scale.lo..scale.hi)
-        .map_err(|e| e.to_string())?;
-    bar.configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .label_style(("sans-serif", 13))
-        .draw()
-        .map_err(|e| e.to_string())?;
-    let n = 128;
-    let dv = (scale.hi - scale.lo) / n as f64;
-    bar.draw_series((0..n).map(|k| {
-        let v = scale.lo + k as f64 * dv;
-        Rectangle::new(
-            [(0.0, v), (1.0, v + dv)],
-            scale.colour(v + 0.5 * dv).filled(),
-        )
-    }))
-    .map_err(|e| e.to_string())?;
-    Ok(())
 }

@@ -4,6 +4,7 @@
 //! gridded fields of `floe grid` ([`grid_map`]).
 
 pub mod colour;
+mod colour_bar;
 mod floe_frames;
 pub mod floe_map;
 mod grid_file;

@@ -8,6 +8,7 @@ use floe_analysis::rheology::MuOfI;
 use super::{CellRun, RheologyArgs};
 use crate::error::Error;
 use crate::plot::{panels, Axes, Line};
+use floe_scenario::numbers::{parameter, sig, significant};
 
 /// Writes the three files into `dir`.
 pub(super) fn write(
@@ -128,8 +129,8 @@ fn markdown(
          the shear rate from a linear fit of the floes' velocity across the layer. \
          The contacts' mu is `sum |F_t| / sum F_n` over all contacts (observable `mean_mu`).\n\n",
         scenario.display(),
-        args.strain,
-        args.transient_fraction,
+        parameter(args.strain),
+        sig(args.transient_fraction),
         args.snapshots,
     );
     md.push_str(
@@ -140,10 +141,10 @@ fn markdown(
         let s = &r.steady;
         let _ = writeln!(
             md,
-            "| {} | {} | {:.3e} | {:.3} +- {:.3} | {:.3} | {:.0} / {:.0} | {:.0} / {:.0} | {:.3} +- {:.3} | {:.2e} / {:.2e} |",
+            "| {} | {} | {} | {:.3} +- {:.3} | {:.3} | {:.0} / {:.0} | {:.0} / {:.0} | {:.3} +- {:.3} | {} / {} |",
             r.law,
-            r.speed_m_per_s,
-            s.inertial_number,
+            parameter(r.speed_m_per_s),
+            sig(s.inertial_number),
             s.mu.value,
             s.mu.error,
             s.contact_mu,
@@ -153,15 +154,17 @@ fn markdown(
             s.bulk_shear_stress_n_per_m.value,
             s.solid_fraction.value,
             s.solid_fraction.error,
-            s.shear_rate_per_s.value,
-            s.wall_shear_rate_per_s.value,
+            significant(s.shear_rate_per_s.value, 3),
+            significant(s.wall_shear_rate_per_s.value, 3),
         );
     }
     for r in runs.iter().filter(|r| r.steady.unconfined > 0) {
         let _ = writeln!(
             md,
             "\n{} at {} m/s: in {} of the steady part's snapshots the floes touched one wall or none (the layer lost its confinement); they are left out.",
-            r.law, r.speed_m_per_s, r.steady.unconfined
+            r.law,
+            parameter(r.speed_m_per_s),
+            r.steady.unconfined
         );
     }
     md.push_str(
@@ -173,10 +176,10 @@ fn markdown(
             Some(f) => {
                 let _ = writeln!(
                     md,
-                    "| {law} | {:.3} | {:.3} | {:.3e}{} | {:.3} |",
+                    "| {law} | {:.3} | {:.3} | {}{} | {:.3} |",
                     f.mu_s,
                     f.mu_2,
-                    f.i_0,
+                    sig(f.i_0),
                     if f.resolved {
                         ""
                     } else {
