@@ -8,65 +8,9 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use floe_dem::contact_model::ContactModel;
-use floe_dem::floes::Floes;
 use floe_dem::forcing::NoForcing;
-use floe_dem::periodicity::{Period, Periodicity};
-use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
-use floe_dem::world::{stable_time_step, World};
-use floe_dem::Vec2;
-use floe_friction::{Amontons, Law};
-
-/// A channel of ~n diamonds of 1 km side, periodic along x, with a linear
-/// shear velocity profile (0.1 m/s across the channel) and 20 warm-up steps
-/// so that contacts have formed and slide.
-pub fn sheared_channel(n: usize) -> World<NoForcing> {
-    sheared_channel_with(n, ContactModel::default())
-}
-
-/// [`sheared_channel`] with a given contact model.
-pub fn sheared_channel_with(n: usize, model: ContactModel) -> World<NoForcing> {
-    let side = 1000.0;
-    let cell_area = side * side * 60f64.to_radians().sin();
-    let width = (n as f64 * cell_area / 4.0).sqrt();
-    let domain = Rect {
-        min: Vec2::new(0.0, 0.0),
-        max: Vec2::new(4.0 * width, width),
-    };
-    let lattice = DiamondLattice {
-        domain,
-        side_m: side,
-        acute_angle_deg: 60.0,
-        orientation_deg: 0.0,
-        thickness: ThicknessDistribution::Uniform { thickness_m: 1.0 },
-        jitter_fraction: 0.0,
-        seed: 1,
-    };
-    let t = lattice.build().expect("lattice");
-    let mut floes = Floes::from_polygons(&t.polygons, &t.thickness_m, 917.0).expect("floes");
-    for i in 0..floes.len() {
-        let y = floes.position[i].y / width - 0.5;
-        floes.set_velocity(i, Vec2::new(0.1 * y, -0.001 * y), floes.angular_velocity[i]);
-    }
-    let dt = 0.5 * stable_time_step(&floes, &model).0;
-    let periodic = Periodicity {
-        x: Some(Period {
-            min_m: 0.0,
-            length_m: 4.0 * width,
-        }),
-        y: None,
-    };
-    let mut w = World::new(floes, model, NoForcing, periodic, dt).expect("world");
-    for _ in 0..20 {
-        w.step();
-    }
-    w
-}
-
-/// The default contact model with Amontons friction (mu = 0.5) instead of
-/// rate-and-state: the step without the friction solve.
-pub fn amontons_model() -> ContactModel {
-    ContactModel::default().with_law(Law::Amontons(Amontons { mu: 0.5 }))
-}
+use floe_dem::world::World;
+use floe_fixtures::channel::{amontons_model, sheared_channel_with};
 
 /// Steps timed from one saved state before the world is put back to it. The
 /// shear keeps changing the pack: left to run for the thousands of steps
@@ -75,7 +19,7 @@ pub fn amontons_model() -> ContactModel {
 /// the starting contact count then overstated the rate several times over.
 const CYCLE: u64 = 50;
 
-/// Steps taken after [`sheared_channel`]'s warm-up before the state is saved.
+/// Steps taken after the channel's warm-up before the state is saved.
 const SETTLE: usize = 30;
 
 fn full_step(c: &mut Criterion) {

@@ -1,17 +1,14 @@
 //! The narrow phase alone: the overlap of every touching pair of a sheared
 //! 1e4-floe diamond channel (the pairs, positions and angles of
-//! `dem_step`'s world after its warm-up), clipped one after the other.
+//! the DEM step benchmark's channel, `floe_fixtures::channel`, after its warm-up), clipped one after the other.
 //!
 //! Run: `cargo bench -p floe-dem --bench narrow_phase`
 //! Figures in docs/performance.md.
 
-#[path = "dem_step.rs"]
-#[allow(dead_code)]
-mod dem_step;
-
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use floe_dem::geometry::{overlap, ClipScratch};
 use floe_dem::Vec2;
+use floe_fixtures::channel::sheared_channel;
 
 /// One pair as the contact update places it.
 struct Pair {
@@ -21,7 +18,7 @@ struct Pair {
 }
 
 fn narrow_phase(c: &mut Criterion) {
-    let mut w = dem_step::sheared_channel(10_000);
+    let mut w = sheared_channel(10_000);
     for _ in 0..30 {
         w.step();
     }

@@ -1,67 +1,29 @@
 //! A run continued from a saved state is bitwise the uninterrupted run.
 
 use floe_dem::contact_model::ContactModel;
-use floe_dem::floes::{Floe, Floes};
-use floe_dem::forcing::{Forcing, VelocityField};
-use floe_dem::geometry::FloeShape;
+
+use floe_dem::forcing::Forcing;
+
 use floe_dem::periodicity::Periodicity;
 use floe_dem::state::WorldState;
-use floe_dem::world::{stable_time_step, World};
+use floe_dem::world::World;
 use floe_dem::Vec2;
+use floe_fixtures::wind_pack::wind_pack;
 use floe_friction::experiments::Preset;
 use floe_friction::{Form, Law, RateState, StateLaw};
 
-fn square(c: Vec2, s: f64) -> Vec<Vec2> {
-    let h = 0.5 * s;
-    vec![
-        c + Vec2::new(-h, -h),
-        c + Vec2::new(h, -h),
-        c + Vec2::new(h, h),
-        c + Vec2::new(-h, h),
-    ]
-}
-
-/// A wind-driven pack against a wall, with velocity-dependent drag (so the
-/// forces depend on the half-step velocity) and contact memory (so broken
-/// contacts are part of the state).
+/// The shared wind pack (`floe_fixtures::wind_pack`: velocity-dependent
+/// drag, so the forces depend on the half-step velocity, and contact
+/// memory, so broken contacts are part of the state) under rate-and-state
+/// friction with the tank parameters.
 fn setup() -> (WorldState, ContactModel, Forcing, f64) {
-    let mut polys = Vec::new();
-    for j in 0..5 {
-        for i in 0..6 {
-            let c = Vec2::new(i as f64 * 100.0 + 3.0 * j as f64, j as f64 * 99.5);
-            polys.push(square(c, 100.0));
-        }
-    }
-    let n = polys.len();
-    let thickness: Vec<f64> = (0..n).map(|i| 1.0 + 0.05 * i as f64).collect();
-    let mut floes = Floes::from_polygons(&polys, &thickness, 917.0).unwrap();
-    let (wall, c) = FloeShape::from_world(0, &square(Vec2::new(900.0, 200.0), 400.0)).unwrap();
-    floes
-        .insert(Floe::new(999, &wall, c, 1.0, 917.0).prescribed(Vec2::new(0.0, 0.01)))
-        .unwrap();
-    let model = ContactModel {
-        law: Law::RateState(RateState::new(
-            Preset::Tank.params(),
-            Form::Regularized,
-            StateLaw::Slip,
-        )),
-        memory_s: 50.0,
-        ..ContactModel::default()
-    };
-    let forcing = Forcing {
-        wind: VelocityField::Uniform(Vec2::new(15.0, 3.0)),
-        ..Forcing::default()
-    };
-    let dt = 0.5 * stable_time_step(&floes, &model).0;
-    let world = World::new(
-        floes,
-        model.clone(),
-        forcing.clone(),
-        Periodicity::default(),
-        dt,
-    )
-    .unwrap();
-    (world.state().clone(), model, forcing, dt)
+    let tank = Law::RateState(RateState::new(
+        Preset::Tank.params(),
+        Form::Regularized,
+        StateLaw::Slip,
+    ));
+    let (world, parts) = wind_pack(ContactModel::default().with_law(tank));
+    (world.state().clone(), parts.model, parts.forcing, parts.dt)
 }
 
 #[test]

@@ -3,85 +3,19 @@
 #![allow(dead_code)]
 
 use floe_dem::contact_model::ContactModel;
-use floe_dem::floes::{Floe, Floes};
-use floe_dem::forcing::{Forcing, VelocityField};
-use floe_dem::geometry::FloeShape;
-use floe_dem::periodicity::Periodicity;
+use floe_dem::forcing::Forcing;
 use floe_dem::state::WorldState;
-use floe_dem::world::{stable_time_step, World};
+use floe_dem::world::World;
 use floe_dem::Vec2;
 use floe_io::{DomainBox, RunMetadata};
 
-fn square(c: Vec2, s: f64) -> Vec<Vec2> {
-    let h = 0.5 * s;
-    vec![
-        c + Vec2::new(-h, -h),
-        c + Vec2::new(h, -h),
-        c + Vec2::new(h, h),
-        c + Vec2::new(-h, h),
-    ]
-}
+pub use floe_fixtures::wind_pack::Parts;
 
-/// The scenario's fixed parts (what a checkpoint does not hold).
-#[derive(Clone)]
-pub struct Parts {
-    pub model: ContactModel,
-    pub forcing: Forcing,
-    pub dt: f64,
-}
-
-impl Parts {
-    pub fn resume(&self, state: WorldState) -> World<Forcing> {
-        assert_eq!(
-            state.dt_s.to_bits(),
-            self.dt.to_bits(),
-            "the checkpoint's dt"
-        );
-        World::resume(
-            state,
-            self.model.clone(),
-            self.forcing.clone(),
-            Periodicity::default(),
-        )
-        .expect("resumable state")
-    }
-}
-
-/// 30 square floes (slightly staggered, of different thickness) pushed by
-/// wind against a 400 m wall floe that moves at a prescribed velocity, with
-/// contact memory, so contacts form, slip and break within a few hundred steps.
+/// The shared wind pack (`floe_fixtures::wind_pack`) under the default
+/// contact model: 30 square floes pushed by wind against a 400 m wall floe
+/// that moves at a prescribed velocity, with contact memory.
 pub fn pack() -> (World<Forcing>, Parts) {
-    let mut polys = Vec::new();
-    for j in 0..5 {
-        for i in 0..6 {
-            let c = Vec2::new(i as f64 * 100.0 + 3.0 * j as f64, j as f64 * 99.5);
-            polys.push(square(c, 100.0));
-        }
-    }
-    let thickness: Vec<f64> = (0..polys.len()).map(|i| 1.0 + 0.05 * i as f64).collect();
-    let mut floes = Floes::from_polygons(&polys, &thickness, 917.0).unwrap();
-    let (wall, c) = FloeShape::from_world(0, &square(Vec2::new(900.0, 200.0), 400.0)).unwrap();
-    floes
-        .insert(Floe::new(999, &wall, c, 1.0, 917.0).prescribed(Vec2::new(0.0, 0.01)))
-        .unwrap();
-    let model = ContactModel {
-        memory_s: 50.0,
-        ..ContactModel::default()
-    };
-    let forcing = Forcing {
-        wind: VelocityField::Uniform(Vec2::new(15.0, 3.0)),
-        ..Forcing::default()
-    };
-    let dt = 0.5 * stable_time_step(&floes, &model).0;
-    let world = World::new(
-        floes,
-        model.clone(),
-        forcing.clone(),
-        Periodicity::default(),
-        dt,
-    )
-    .unwrap();
-    (world, Parts { model, forcing, dt })
+    floe_fixtures::wind_pack::wind_pack(ContactModel::default())
 }
 
 /// The domain the pack lives in, m.

@@ -26,9 +26,9 @@ use floe_basin::{FieldRequest, NetcdfSource};
 use floe_dem::contact_model::ContactModel;
 use floe_dem::floes::Floes;
 use floe_dem::forcing::{Forcing, GriddedField, VelocityField};
-use floe_dem::periodicity::{Period, Periodicity};
-use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
-use floe_dem::world::{stable_time_step, World};
+use floe_dem::periodicity::Periodicity;
+use floe_dem::tessellation::Rect;
+use floe_dem::world::World;
 use floe_dem::Vec2;
 
 const WIND: [f64; 2] = [8.0, -3.0];
@@ -72,38 +72,9 @@ fn write_field(path: &Path, names: [&str; 2], value: [f64; 2], lo: Vec2, hi: Vec
 }
 
 fn channel(n: usize) -> (Floes, Periodicity, Rect, f64) {
-    let side = 1000.0;
-    let cell_area = side * side * 60f64.to_radians().sin();
-    let width = (n as f64 * cell_area / 4.0).sqrt();
-    let domain = Rect {
-        min: Vec2::new(0.0, 0.0),
-        max: Vec2::new(4.0 * width, width),
-    };
-    let t = DiamondLattice {
-        domain,
-        side_m: side,
-        acute_angle_deg: 60.0,
-        orientation_deg: 0.0,
-        thickness: ThicknessDistribution::Uniform { thickness_m: 1.0 },
-        jitter_fraction: 0.0,
-        seed: 1,
-    }
-    .build()
-    .expect("lattice");
-    let mut floes = Floes::from_polygons(&t.polygons, &t.thickness_m, 917.0).expect("floes");
-    for i in 0..floes.len() {
-        let y = floes.position[i].y / width - 0.5;
-        floes.set_velocity(i, Vec2::new(0.1 * y, -0.001 * y), floes.angular_velocity[i]);
-    }
-    let periodic = Periodicity {
-        x: Some(Period {
-            min_m: 0.0,
-            length_m: 4.0 * width,
-        }),
-        y: None,
-    };
-    let dt = 0.5 * stable_time_step(&floes, &ContactModel::default()).0;
-    (floes, periodic, domain, dt)
+    let c = floe_fixtures::channel::channel(n, 0.0);
+    let dt = c.dt_s(&ContactModel::default());
+    (c.floes, c.periodicity, c.domain, dt)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -1,8 +1,6 @@
 //! A 1e6-floe diamond tessellation builds and steps; prints time and memory
 //! (docs/performance.md): `cargo run --release -p floe-dem --example million`
-#[path = "../../../benches/dem_step.rs"]
-#[allow(dead_code)]
-mod bench;
+use floe_fixtures::channel as channel_pack;
 
 /// A `/proc/self/status` memory line in MB: `VmRSS` (resident now) or
 /// `VmHWM` (the peak).
@@ -24,7 +22,7 @@ fn main() {
         .unwrap_or(1_000_000);
     let t0 = std::time::Instant::now();
     // The benchmark's sheared channel: build, world, 20 warm-up steps.
-    let mut w = bench::sheared_channel(n);
+    let mut w = channel_pack::sheared_channel(n);
     let build_s = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
     let steps = 5;

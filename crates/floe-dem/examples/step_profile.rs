@@ -3,9 +3,7 @@
 //! prints the time per step and a fingerprint of the final state;
 //! `... --example step_profile -- full [threads]` only the fingerprint of a
 //! run with walls, forcing and contact memory (see `full_scenario`).
-#[path = "../../../benches/dem_step.rs"]
-#[allow(dead_code)]
-mod bench;
+use floe_fixtures::channel as channel_pack;
 
 use floe_friction::rate_state::{SOLVER_GUESS, SOLVER_TREND, THETA};
 
@@ -18,11 +16,11 @@ fn main() {
     pool_of(arg(3, 1)).install(|| {
         let law = std::env::args().nth(2).unwrap_or_default();
         let model = match law.as_str() {
-            "amontons" => bench::amontons_model(),
+            "amontons" => channel_pack::amontons_model(),
             _ => floe_dem::contact_model::ContactModel::default(),
         };
         eprintln!("rayon threads in use: {}", rayon::current_num_threads());
-        let mut w = bench::sheared_channel_with(n, model);
+        let mut w = channel_pack::sheared_channel_with(n, model);
         let r0 = w.broad_phase().rebuilds;
         let t = std::time::Instant::now();
         let steps: usize = arg(4, 20);

@@ -7,51 +7,23 @@
 use std::time::Instant;
 
 use floe_dem::contact_model::ContactModel;
-use floe_dem::floes::Floes;
 use floe_dem::forcing::NoForcing;
-use floe_dem::periodicity::{Period, Periodicity};
-use floe_dem::tessellation::{DiamondLattice, Rect, ThicknessDistribution};
-use floe_dem::world::{stable_time_step, World};
-use floe_dem::Vec2;
+use floe_dem::world::World;
 use floe_io::{DomainBox, OutputOptions, RunMetadata, RunWriter};
 
 fn channel(n: usize) -> (World<NoForcing>, DomainBox) {
-    let side = 1000.0;
-    let cell_area = side * side * 60f64.to_radians().sin();
-    let width = (n as f64 * cell_area / 4.0).sqrt();
-    let lattice = DiamondLattice {
-        domain: Rect {
-            min: Vec2::new(0.0, 0.0),
-            max: Vec2::new(4.0 * width, width),
-        },
-        side_m: side,
-        acute_angle_deg: 60.0,
-        orientation_deg: 0.0,
-        thickness: ThicknessDistribution::Uniform { thickness_m: 1.0 },
-        jitter_fraction: 0.1,
-        seed: 1,
-    };
-    let t = lattice.build().expect("lattice");
-    let mut floes = Floes::from_polygons(&t.polygons, &t.thickness_m, 917.0).expect("floes");
-    for i in 0..floes.len() {
-        let y = floes.position[i].y / width - 0.5;
-        floes.set_velocity(i, Vec2::new(0.1 * y, -0.001 * y), floes.angular_velocity[i]);
-    }
+    let c = floe_fixtures::channel::channel(n, 0.1);
     let model = ContactModel::default();
-    let dt = 0.5 * stable_time_step(&floes, &model).0;
-    let periodic = Periodicity {
-        x: Some(Period {
-            min_m: 0.0,
-            length_m: 4.0 * width,
-        }),
-        y: None,
-    };
-    let world = World::new(floes, model, NoForcing, periodic, dt).expect("world");
+    let dt = c.dt_s(&model);
     let domain = DomainBox {
-        min_m: [0.0, 0.0],
-        size_m: [4.0 * width, width],
+        min_m: [c.domain.min.x, c.domain.min.y],
+        size_m: [
+            c.domain.max.x - c.domain.min.x,
+            c.domain.max.y - c.domain.min.y,
+        ],
         periodic: [true, false],
     };
+    let world = World::new(c.floes, model, NoForcing, c.periodicity, dt).expect("world");
     (world, domain)
 }
 
