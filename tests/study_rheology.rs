@@ -115,11 +115,7 @@ fn wall_and_contact_stresses_agree() {
 #[test]
 fn emit_writes_the_scenario_files_and_runs_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let mut a = args(
-        dir.path(),
-        laws("amontons,rate-state"),
-        vec![0.1, 1.0],
-    );
+    let mut a = args(dir.path(), laws("amontons,rate-state"), vec![0.1, 1.0]);
     a.mode = Mode::Emit;
     rheology(&a, &Quiet).unwrap();
     let mut names: Vec<String> = std::fs::read_dir(dir.path())

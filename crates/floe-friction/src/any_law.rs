@@ -67,7 +67,7 @@ macro_rules! builtin_laws {
             Custom(CustomLaw),
         }
 
-        /// `$call` with `$l` bound to the law inside `$self`.
+        /// `$call` with `$l` bound to the law inside `$self_`.
         macro_rules! dispatch {
             ($self_:expr, $l:ident => $call:expr) => {
                 match $self_ {

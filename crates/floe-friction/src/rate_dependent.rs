@@ -2,10 +2,10 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::any_law::Law;
 use crate::law::{
     released, sign, ContactLoad, ContactState, FrictionLaw, StepOutcome, LAW_STATE_SLOTS,
 };
-use crate::any_law::Law;
 use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
 use crate::params::{LISHMAN_A, LISHMAN_B, LISHMAN_MU0, LISHMAN_V_STAR_M_PER_S};
 use crate::rate_state::{RateState, SOLVER_GUESS};

@@ -28,12 +28,12 @@ use serde::{Deserialize, Serialize};
 use crate::any_law::Law;
 use crate::law::{sign, BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
-use crate::reference_match::{NumberStyle, ReferenceMatch};
-use crate::registry::LawEntry;
 pub use crate::params::Form;
 use crate::params::{
     Preset, RateStateParams, LISHMAN_A, LISHMAN_B, LISHMAN_MU0, LISHMAN_V_STAR_M_PER_S,
 };
+use crate::reference_match::{NumberStyle, ReferenceMatch};
+use crate::registry::LawEntry;
 use crate::root::{solve, Eval, Root, Solver};
 use crate::state_evolution::{evolve, Evolved, SlipMeasure, StateLaw};
 

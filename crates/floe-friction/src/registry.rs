@@ -1,6 +1,6 @@
 //! The law registry: every friction law a file may name, with its
 //! parameter table. A built-in law is its own file (the law, its
-//! [`ParamSpec`] table and its [`LawEntry`]), one line in
+//! [`ParamSpec`] table and its [`LawEntry`]), one entry in
 //! [`LawRegistry::builtin`] and one in the `builtin_laws!` list of
 //! `any_law.rs`; a law outside this crate is a [`LawRegistry::register`]
 //! call (see the `custom_law` example of `floe-scenario`).
@@ -53,11 +53,7 @@ impl LawRegistry {
     /// The laws of this crate: Amontons, rate-dependent, rate-and-state.
     pub fn builtin() -> Self {
         LawRegistry {
-            entries: vec![
-                amontons::ENTRY,
-                rate_dependent::ENTRY,
-                rate_state::ENTRY,
-            ],
+            entries: vec![amontons::ENTRY, rate_dependent::ENTRY, rate_state::ENTRY],
         }
     }
 

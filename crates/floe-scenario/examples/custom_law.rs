@@ -131,7 +131,7 @@ pub const ENTRY: LawEntry = LawEntry {
                 critical_slip_m: p.number("critical_slip_m"),
             },
         ))
-    },    // Not matched to a rate-and-state reference: `floe compare` refuses it.
+    }, // Not matched to a rate-and-state reference: `floe compare` refuses it.
     reference_match: ReferenceMatch::Unmatched,
 };
 
