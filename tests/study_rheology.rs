@@ -12,6 +12,11 @@ use floe_scenario::law_variants::{LawChoice, Matching};
 use floe_study::rheology::{rheology, Mode, RheologyArgs};
 use floe_study::run_file::{Provenance, Quiet};
 
+/// The laws `names` (comma-separated), as `--laws` names them.
+fn laws(names: &str) -> Vec<LawChoice> {
+    LawChoice::parse_list(names, &LawRegistry::builtin()).unwrap()
+}
+
 fn args(out: &Path, laws: Vec<LawChoice>, speeds: Vec<f64>) -> RheologyArgs {
     RheologyArgs {
         scenario: Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/shear_cell.toml"),
@@ -53,7 +58,7 @@ fn results(dir: &Path) -> Vec<std::collections::HashMap<String, String>> {
 fn wall_and_contact_stresses_agree() {
     let dir = tempfile::tempdir().unwrap();
     let report = rheology(
-        &args(dir.path(), vec![LawChoice::Amontons], vec![0.5, 1.0, 2.0]),
+        &args(dir.path(), laws("amontons"), vec![0.5, 1.0, 2.0]),
         &Quiet,
     )
     .unwrap();
@@ -96,7 +101,7 @@ fn wall_and_contact_stresses_agree() {
 
     // Measuring the same runs again (--gather) gives the same table.
     let before = std::fs::read_to_string(dir.path().join("results.csv")).unwrap();
-    let mut gather = args(dir.path(), vec![LawChoice::Amontons], vec![0.5, 1.0, 2.0]);
+    let mut gather = args(dir.path(), laws("amontons"), vec![0.5, 1.0, 2.0]);
     gather.mode = Mode::Gather;
     rheology(&gather, &Quiet).unwrap();
     let after = std::fs::read_to_string(dir.path().join("results.csv")).unwrap();
@@ -110,11 +115,7 @@ fn wall_and_contact_stresses_agree() {
 #[test]
 fn emit_writes_the_scenario_files_and_runs_nothing() {
     let dir = tempfile::tempdir().unwrap();
-    let mut a = args(
-        dir.path(),
-        vec![LawChoice::Amontons, LawChoice::RateState],
-        vec![0.1, 1.0],
-    );
+    let mut a = args(dir.path(), laws("amontons,rate-state"), vec![0.1, 1.0]);
     a.mode = Mode::Emit;
     rheology(&a, &Quiet).unwrap();
     let mut names: Vec<String> = std::fs::read_dir(dir.path())
@@ -141,11 +142,11 @@ fn emit_writes_the_scenario_files_and_runs_nothing() {
 #[test]
 fn a_scenario_that_is_not_a_shear_cell_is_refused_before_anything_runs() {
     let dir = tempfile::tempdir().unwrap();
-    let mut a = args(dir.path(), vec![LawChoice::Amontons], vec![0.5]);
+    let mut a = args(dir.path(), laws("amontons"), vec![0.5]);
     a.scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/free_drift.toml");
     let e = rheology(&a, &Quiet).unwrap_err().to_string();
     assert!(e.contains("not a shear cell"), "{e}");
-    let mut a = args(dir.path(), vec![LawChoice::Amontons], vec![0.5, -1.0]);
+    let mut a = args(dir.path(), laws("amontons"), vec![0.5, -1.0]);
     let e = rheology(&a, &Quiet).unwrap_err().to_string();
     assert!(e.contains("--speeds -1"), "{e}");
     a.speeds_m_per_s = vec![0.5];

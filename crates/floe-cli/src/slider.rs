@@ -9,7 +9,7 @@ use floe_friction::experiments::{
 use floe_friction::fit::{compare_models, Experiment, ModelComparison};
 use floe_friction::protocol::Protocol;
 use floe_friction::spring_slider::{Apparatus, OutputThinning, Sample, SpringSlider};
-use floe_friction::{Form, Law, LawRegistry, RateDependent, RateState, StateLaw};
+use floe_friction::{Form, FrictionLaw, Law, LawRegistry, RateDependent, RateState, StateLaw};
 use serde::Serialize;
 
 use crate::series_csv::{read_fit_data, write_series};
@@ -249,13 +249,9 @@ pub fn simulate(setup: &SliderSetup) -> (Vec<Sample>, RunSummary) {
             mu_min: lo,
         });
     }
-    let critical = match &setup.law {
-        Law::RateState(r) => Some(
-            r.params
-                .critical_stiffness_n_per_m(setup.apparatus.normal_load_n),
-        ),
-        _ => None,
-    };
+    let critical = setup
+        .law
+        .critical_stiffness_n_per_m(setup.apparatus.normal_load_n);
     let summary = RunSummary {
         protocol_file: setup.source.path.clone(),
         floe_version: env!("CARGO_PKG_VERSION"),

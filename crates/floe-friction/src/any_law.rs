@@ -10,6 +10,7 @@ use crate::amontons::Amontons;
 use crate::law::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 use crate::rate_dependent::RateDependent;
 use crate::rate_state::RateState;
+use crate::reference_match::NumberStyle;
 
 /// A friction law defined outside this crate, behind [`Law::Custom`]:
 /// any [`FrictionLaw`] that can be shared between threads, with a name for
@@ -49,79 +50,96 @@ impl PartialEq for CustomLaw {
     }
 }
 
-/// Any of the crate's laws, chosen at run time (e.g. from a scenario file),
-/// or one defined elsewhere ([`Law::Custom`]).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
-pub enum Law {
+/// The built-in laws, each once: `Variant(Type) = "name"` with its doc.
+/// This makes [`Law`] (the name is also its `kind` in serialized form),
+/// [`Law::name`] and [`Law`]'s [`FrictionLaw`] implementation, which hands
+/// every method to the law inside.
+macro_rules! builtin_laws {
+    ($($(#[doc = $doc:expr])* $variant:ident($law:ty) = $name:literal,)*) => {
+        /// Any of the crate's laws, chosen at run time (e.g. from a scenario
+        /// file), or one defined elsewhere ([`Law::Custom`]).
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[serde(tag = "kind", deny_unknown_fields)]
+        pub enum Law {
+            $($(#[doc = $doc])* #[serde(rename = $name)] $variant($law),)*
+            /// A law defined outside this crate (see the law registry).
+            #[serde(skip)]
+            Custom(CustomLaw),
+        }
+
+        /// `$call` with `$l` bound to the law inside `$self_`.
+        macro_rules! dispatch {
+            ($self_:expr, $l:ident => $call:expr) => {
+                match $self_ {
+                    $(Law::$variant($l) => $call,)*
+                    Law::Custom(custom) => {
+                        let $l = custom.law();
+                        $call
+                    }
+                }
+            };
+        }
+
+        impl Law {
+            /// Short name used on the command line, in scenario files and in
+            /// file names (the registry's name): `amontons`, `rate`,
+            /// `rate-state`, or a custom law's name.
+            pub fn name(&self) -> &'static str {
+                match self {
+                    $(Law::$variant(_) => $name,)*
+                    Law::Custom(l) => l.name,
+                }
+            }
+        }
+    };
+}
+
+builtin_laws! {
     /// Constant friction coefficient (Coulomb with a tangential spring).
-    Amontons(Amontons),
+    Amontons(Amontons) = "amontons",
     /// Rate-dependent friction, eq. 2.
-    #[serde(rename = "rate")]
-    RateDependent(RateDependent),
+    RateDependent(RateDependent) = "rate",
     /// Rate-and-state friction, eqs. 3a/3b.
-    #[serde(rename = "rate-state")]
-    RateState(RateState),
-    /// A law defined outside this crate (see the law registry).
-    #[serde(skip)]
-    Custom(CustomLaw),
+    RateState(RateState) = "rate-state",
 }
 
 impl FrictionLaw for Law {
     fn mu_steady(&self, v: f64) -> f64 {
-        match self {
-            Law::Amontons(l) => l.mu_steady(v),
-            Law::RateDependent(l) => l.mu_steady(v),
-            Law::RateState(l) => l.mu_steady(v),
-            Law::Custom(l) => l.law().mu_steady(v),
-        }
+        dispatch!(self, l => l.mu_steady(v))
     }
 
     fn steady_state(&self, v: f64, n: f64) -> ContactState {
-        match self {
-            Law::Amontons(l) => l.steady_state(v, n),
-            Law::RateDependent(l) => l.steady_state(v, n),
-            Law::RateState(l) => l.steady_state(v, n),
-            Law::Custom(l) => l.law().steady_state(v, n),
-        }
+        dispatch!(self, l => l.steady_state(v, n))
     }
 
     #[inline]
     fn step(&self, state: &mut ContactState, load: &ContactLoad, dt_s: f64) -> StepOutcome {
-        match self {
-            Law::Amontons(l) => l.step(state, load, dt_s),
-            Law::RateDependent(l) => l.step(state, load, dt_s),
-            Law::RateState(l) => l.step(state, load, dt_s),
-            Law::Custom(l) => l.law().step(state, load, dt_s),
-        }
+        dispatch!(self, l => l.step(state, load, dt_s))
     }
 
     fn state_slots(&self) -> usize {
-        match self {
-            Law::Amontons(l) => l.state_slots(),
-            Law::RateDependent(l) => l.state_slots(),
-            Law::RateState(l) => l.state_slots(),
-            Law::Custom(l) => l.law().state_slots(),
-        }
+        dispatch!(self, l => l.state_slots())
     }
 
     #[inline]
     fn theta(&self, state: &ContactState) -> f64 {
-        match self {
-            Law::Amontons(l) => l.theta(state),
-            Law::RateDependent(l) => l.theta(state),
-            Law::RateState(l) => l.theta(state),
-            Law::Custom(l) => l.law().theta(state),
-        }
+        dispatch!(self, l => l.theta(state))
     }
 
     fn reformed(&self, remembered: &ContactState, fresh: ContactState) -> ContactState {
-        match self {
-            Law::Amontons(l) => l.reformed(remembered, fresh),
-            Law::RateDependent(l) => l.reformed(remembered, fresh),
-            Law::RateState(l) => l.reformed(remembered, fresh),
-            Law::Custom(l) => l.law().reformed(remembered, fresh),
-        }
+        dispatch!(self, l => l.reformed(remembered, fresh))
+    }
+
+    fn step_batch(&self, items: &mut [BatchItem], dt_s: f64) {
+        dispatch!(self, l => FrictionLaw::step_batch(l, items, dt_s))
+    }
+
+    fn describe(&self, style: &NumberStyle) -> Option<String> {
+        dispatch!(self, l => l.describe(style))
+    }
+
+    fn critical_stiffness_n_per_m(&self, normal_load_n: f64) -> Option<f64> {
+        dispatch!(self, l => l.critical_stiffness_n_per_m(normal_load_n))
     }
 }
 
@@ -136,24 +154,14 @@ impl Law {
     /// contacts' solves side by side ([`RateState::step_batch`]); the
     /// others step one by one.
     pub fn step_batch(&self, items: &mut [BatchItem], dt_s: f64) {
-        match self {
-            Law::RateState(l) => l.step_batch(items, dt_s),
-            _ => {
-                for item in items {
-                    item.outcome = self.step(&mut item.state, &item.load, dt_s);
-                }
-            }
-        }
+        FrictionLaw::step_batch(self, items, dt_s)
     }
 
-    /// Short name used on the command line, in scenario files and in file
-    /// names: `amontons`, `rate`, `rate-state`, or a custom law's name.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Law::Amontons(_) => "amontons",
-            Law::RateDependent(_) => "rate",
-            Law::RateState(_) => "rate-state",
-            Law::Custom(l) => l.name,
-        }
+    /// The law in one line, as the build report prints it after
+    /// `friction: `: its [`FrictionLaw::describe`], or for a law that does
+    /// not describe itself, "custom law" and its name.
+    pub fn description(&self, style: &NumberStyle) -> String {
+        self.describe(style)
+            .unwrap_or_else(|| format!("custom law `{}`", self.name()))
     }
 }

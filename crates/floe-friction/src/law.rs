@@ -9,6 +9,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::reference_match::NumberStyle;
+
 /// Slots of law state a [`ContactState`] holds. A law uses the first
 /// [`FrictionLaw::state_slots`] of them (LAMMPS's `size_history`); run
 /// files and checkpoints store that many per contact, length-prefixed, so a
@@ -106,6 +108,30 @@ pub trait FrictionLaw {
             law_state: remembered.law_state,
             ..fresh
         }
+    }
+
+    /// Advances every item over `dt_s`: bitwise what [`FrictionLaw::step`]
+    /// gives each item in turn (by default, one by one).
+    fn step_batch(&self, items: &mut [BatchItem], dt_s: f64) {
+        for item in items {
+            item.outcome = self.step(&mut item.state, &item.load, dt_s);
+        }
+    }
+
+    /// The law and its parameters in one line, as the build report prints
+    /// it after `friction: ` (`Amontons mu = 0.5`), numbers written in
+    /// `style`; `None` (the default) lets the caller name the law.
+    fn describe(&self, _style: &NumberStyle) -> Option<String> {
+        None
+    }
+
+    /// Critical spring stiffness (N/m) under normal load `N` (N): steady
+    /// sliding on a softer spring is unstable (stick-slip). For
+    /// rate-and-state `N (B - A) / L`, from the characteristic slip length
+    /// `L`; zero or negative when the law strengthens with speed. `None`
+    /// (the default) for a law without a characteristic slip length.
+    fn critical_stiffness_n_per_m(&self, _normal_load_n: f64) -> Option<f64> {
+        None
     }
 }
 

@@ -10,6 +10,9 @@
 //! * [`params`]: parameter sets and the published presets;
 //! * [`spring_slider`] and [`protocol`]: the paper's apparatus, driven by a
 //!   load-point protocol; [`experiments`]: hold tests and velocity steps;
+//! * [`registry`]: the laws files may name, with their parameter tables
+//!   ([`law_table`]) and how a comparison matches each to the rate-and-state
+//!   reference ([`reference_match`]);
 //! * [`fit`]: least-squares fitting of law parameters to a measured series.
 //!
 //! The per-contact update ([`FrictionLaw::step`]) is the kernel the DEM
@@ -27,6 +30,7 @@ pub mod params;
 pub mod rate_dependent;
 pub mod rate_state;
 pub mod reference;
+pub mod reference_match;
 pub mod registry;
 mod root;
 pub mod state_evolution;
@@ -39,6 +43,7 @@ pub use law_table::{LawContext, LawParams, ParamDefault, ParamKind, ParamSpec, P
 pub use params::RateStateParams;
 pub use rate_dependent::RateDependent;
 pub use rate_state::{Form, RateState};
+pub use reference_match::{DerivedMatch, NumberStyle, ReferenceMatch};
 pub use registry::{LawEntry, LawParamError, LawRegistry};
 pub use state_evolution::StateLaw;
 pub mod experiments;

@@ -25,14 +25,26 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::any_law::Law;
 use crate::law::{sign, BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
 pub use crate::params::Form;
 use crate::params::{
     Preset, RateStateParams, LISHMAN_A, LISHMAN_B, LISHMAN_MU0, LISHMAN_V_STAR_M_PER_S,
 };
+use crate::reference_match::{NumberStyle, ReferenceMatch};
+use crate::registry::LawEntry;
 use crate::root::{solve, Eval, Root, Solver};
 use crate::state_evolution::{evolve, Evolved, SlipMeasure, StateLaw};
+
+/// The law's registry entry; in a comparison it is the reference.
+pub const ENTRY: LawEntry = LawEntry {
+    name: "rate-state",
+    summary: "rate-and-state friction, eqs. 3a/3b",
+    params: PARAMS,
+    build: |p| Ok(Law::RateState(RateState::from_params(p))),
+    reference_match: ReferenceMatch::Reference,
+};
 
 /// The law's parameters, as the registry publishes them (defaults:
 /// Lishman et al. 2011, Table 2; `L` at the preset's scale).
@@ -289,6 +301,35 @@ impl FrictionLaw for RateState {
 
     fn state_slots(&self) -> usize {
         3
+    }
+
+    fn describe(&self, style: &NumberStyle) -> Option<String> {
+        let p = style.parameter;
+        Some(format!(
+            "rate-and-state ({} form, {} law) mu0 = {}, A = {}, B = {}, V* = {} m/s, L = {} m",
+            match self.form {
+                Form::Published => "published",
+                Form::Regularized => "regularized",
+            },
+            match self.state_law {
+                StateLaw::Slip => "slip",
+                StateLaw::Aging => "aging",
+            },
+            p(self.params.mu0),
+            p(self.params.a),
+            p(self.params.b),
+            p(self.params.v_star_m_per_s),
+            p(self.params.critical_slip_m)
+        ))
+    }
+
+    fn critical_stiffness_n_per_m(&self, normal_load_n: f64) -> Option<f64> {
+        Some(self.params.critical_stiffness_n_per_m(normal_load_n))
+    }
+
+    fn step_batch(&self, items: &mut [BatchItem], dt: f64) {
+        // The inherent method: contacts solved side by side.
+        RateState::step_batch(self, items, dt)
     }
 
     #[inline]

@@ -1,17 +1,18 @@
 //! The law registry: every friction law a file may name, with its
-//! parameter table. A new law is its own file (the law, its
-//! [`ParamSpec`] table and a build function) and one line in
-//! [`LawRegistry::builtin`], or, outside this crate, a
-//! [`LawRegistry::register`] call (see the `custom_law` example of
-//! `floe-scenario`).
+//! parameter table. A built-in law is its own file (the law, its
+//! [`ParamSpec`] table and its [`LawEntry`]), one entry in
+//! [`LawRegistry::builtin`] and one in the `builtin_laws!` list of
+//! `any_law.rs`; a law outside this crate is a [`LawRegistry::register`]
+//! call (see the `custom_law` example of `floe-scenario`).
 
-use crate::amontons::{self, Amontons};
+use crate::amontons;
 use crate::any_law::Law;
 use crate::error::FrictionError;
 use crate::law::{FrictionLaw, LAW_STATE_SLOTS};
 use crate::law_table::{LawContext, LawParams, ParamDefault, ParamKind, ParamSpec, ParamValue};
-use crate::rate_dependent::{self, RateDependent};
-use crate::rate_state::{self, RateState};
+use crate::rate_dependent;
+use crate::rate_state;
+use crate::reference_match::ReferenceMatch;
 
 /// A law as the registry knows it: its name, its parameter table and how
 /// to build it.
@@ -26,6 +27,8 @@ pub struct LawEntry {
     /// The law from checked parameters; an error names what is wrong
     /// beyond single values (none of the built-in laws has such checks).
     pub build: fn(&LawParams) -> Result<Law, String>,
+    /// How a comparison matches the law to its rate-and-state reference.
+    pub reference_match: ReferenceMatch,
 }
 
 /// The laws files can name.
@@ -50,26 +53,7 @@ impl LawRegistry {
     /// The laws of this crate: Amontons, rate-dependent, rate-and-state.
     pub fn builtin() -> Self {
         LawRegistry {
-            entries: vec![
-                LawEntry {
-                    name: "amontons",
-                    summary: "constant friction coefficient (Coulomb on a tangential spring)",
-                    params: amontons::PARAMS,
-                    build: |p| Ok(Law::Amontons(Amontons::from_params(p))),
-                },
-                LawEntry {
-                    name: "rate",
-                    summary: "rate-dependent friction, eq. 2: mu = mu0 + c1 ln(V/V*)",
-                    params: rate_dependent::PARAMS,
-                    build: |p| Ok(Law::RateDependent(RateDependent::from_params(p))),
-                },
-                LawEntry {
-                    name: "rate-state",
-                    summary: "rate-and-state friction, eqs. 3a/3b",
-                    params: rate_state::PARAMS,
-                    build: |p| Ok(Law::RateState(RateState::from_params(p))),
-                },
-            ],
+            entries: vec![amontons::ENTRY, rate_dependent::ENTRY, rate_state::ENTRY],
         }
     }
 
@@ -97,15 +81,17 @@ impl LawRegistry {
 
     /// The names, as a message lists them: "`amontons`, `rate` or `rate-state`".
     pub fn names_text(&self) -> String {
-        let names: Vec<String> = self
-            .entries
-            .iter()
-            .map(|e| format!("`{}`", e.name))
-            .collect();
-        match names.split_last() {
-            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
-            _ => names.join(""),
-        }
+        names_text(self.entries.iter())
+    }
+
+    /// The names of the laws a comparison can match to its rate-and-state
+    /// reference, as [`LawRegistry::names_text`] lists them.
+    pub fn comparable_names_text(&self) -> String {
+        names_text(
+            self.entries
+                .iter()
+                .filter(|e| !matches!(e.reference_match, ReferenceMatch::Unmatched)),
+        )
     }
 
     /// The law `name` from the parameters `given` (key, value, in the
@@ -261,6 +247,15 @@ impl LawRegistry {
     }
 }
 
+/// The entries' names, "`a`, `b` or `c`".
+fn names_text<'a>(entries: impl Iterator<Item = &'a LawEntry>) -> String {
+    let names: Vec<String> = entries.map(|e| format!("`{}`", e.name)).collect();
+    match names.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => names.join(""),
+    }
+}
+
 /// A default as docs print it: at most ten significant digits (`A - B`
 /// is -0.07200000000000001 in binary).
 fn short(x: f64) -> String {
@@ -277,6 +272,7 @@ mod tests {
     use super::*;
     use crate::experiments::Preset;
     use crate::rate_state::Form;
+    use crate::{RateDependent, RateState};
 
     const TANK: LawContext = LawContext {
         preset: Preset::Tank,

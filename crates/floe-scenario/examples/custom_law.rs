@@ -18,7 +18,7 @@ use floe_dem::forcing::Forcing;
 use floe_dem::world::World;
 use floe_friction::{
     ContactLoad, ContactState, FrictionLaw, Law, LawEntry, LawParams, LawRegistry, ParamDefault,
-    ParamKind, ParamSpec, StepOutcome,
+    ParamKind, ParamSpec, ReferenceMatch, StepOutcome,
 };
 use floe_scenario::Scenario;
 
@@ -131,7 +131,8 @@ pub const ENTRY: LawEntry = LawEntry {
                 critical_slip_m: p.number("critical_slip_m"),
             },
         ))
-    },
+    }, // Not matched to a rate-and-state reference: `floe compare` refuses it.
+    reference_match: ReferenceMatch::Unmatched,
 };
 
 /// The laboratory double shear of scenarios/lab_double_shear.toml under

@@ -18,7 +18,7 @@ use floe_dem::tessellation::{
 };
 use floe_dem::world::stable_time_step;
 use floe_dem::Vec2;
-use floe_friction::Law;
+use floe_friction::FrictionLaw;
 
 use crate::built_floes::{BuiltFloes, StressWall};
 use crate::checks;
@@ -588,20 +588,22 @@ fn double_shear(
         sig(geometry.side_tangential_stiffness_n_per_m),
         sig(geometry.series_stiffness_n_per_m)
     ));
-    if let Law::RateState(rs) = &r.model.law {
-        let p = rs.params;
-        if p.b > p.a {
-            let kc = 2.0 * load * (p.b - p.a) / p.critical_slip_m;
-            report.push(format!(
-                "  critical stiffness N (B - A) / L = {} N/m: steady sliding is {} at this stiffness",
-                sig(kc),
-                if geometry.series_stiffness_n_per_m > kc {
-                    "stable"
-                } else {
-                    "unstable (stick-slip expected)"
-                }
-            ));
-        }
+    // Under both faces' load; none when the law strengthens with speed.
+    if let Some(kc) = r
+        .model
+        .law
+        .critical_stiffness_n_per_m(2.0 * load)
+        .filter(|&kc| kc > 0.0)
+    {
+        report.push(format!(
+            "  critical stiffness N (B - A) / L = {} N/m: steady sliding is {} at this stiffness",
+            sig(kc),
+            if geometry.series_stiffness_n_per_m > kc {
+                "stable"
+            } else {
+                "unstable (stick-slip expected)"
+            }
+        ));
     }
     Ok(pieces)
 }

@@ -4,6 +4,7 @@ use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
 use floe_dem::Vec2;
 
+use crate::law_variants::LAW_NUMBERS;
 use crate::numbers::{parameter as p, sig};
 use crate::resolve::Resolved;
 
@@ -22,33 +23,7 @@ pub(crate) fn describe_thickness(r: &Resolved) -> String {
 }
 
 pub(crate) fn describe_contact(m: &ContactModel) -> String {
-    use floe_friction::{Form, Law, StateLaw};
-    let law = match &m.law {
-        Law::Amontons(a) => format!("Amontons mu = {}", p(a.mu)),
-        Law::RateDependent(r) => format!(
-            "rate-dependent mu0 = {}, c1 = {}, V* = {} m/s",
-            p(r.mu0),
-            p(r.c1),
-            p(r.v_star_m_per_s)
-        ),
-        Law::Custom(_) => format!("custom law `{}`", m.law.name()),
-        Law::RateState(rs) => format!(
-            "rate-and-state ({} form, {} law) mu0 = {}, A = {}, B = {}, V* = {} m/s, L = {} m",
-            match rs.form {
-                Form::Published => "published",
-                Form::Regularized => "regularized",
-            },
-            match rs.state_law {
-                StateLaw::Slip => "slip",
-                StateLaw::Aging => "aging",
-            },
-            p(rs.params.mu0),
-            p(rs.params.a),
-            p(rs.params.b),
-            p(rs.params.v_star_m_per_s),
-            p(rs.params.critical_slip_m)
-        ),
-    };
+    let law = m.law.description(&LAW_NUMBERS);
     format!(
         "contacts: E = {} Pa, nu = {}, restitution {}; friction: {law}",
         p(m.youngs_modulus_pa),

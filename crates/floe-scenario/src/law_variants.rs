@@ -4,32 +4,71 @@
 
 use std::path::Path;
 
-use floe_friction::{FrictionLaw, Law, LawRegistry};
+use floe_friction::{Law, LawEntry, LawRegistry, NumberStyle, ReferenceMatch};
 use toml_edit::{value, DocumentMut, Item, Table, Value};
 
 use crate::error::ScenarioError;
-use crate::numbers::parameter;
+use crate::numbers::{parameter, sig};
 use crate::source_file::SourceFile;
 
-/// A law to compare, as named on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LawChoice {
-    /// Constant friction coefficient.
-    Amontons,
-    /// Rate-dependent friction (no memory).
-    Rate,
-    /// Rate-and-state friction (memory).
-    RateState,
+/// Numbers in what a law writes about itself (the build report's law, a
+/// comparison's notes): parameters to six significant digits, derived
+/// values to four.
+pub const LAW_NUMBERS: NumberStyle = NumberStyle {
+    parameter,
+    measured: sig,
+};
+
+/// The law whose `mu` `--amontons-mu` gives.
+const AMONTONS: &str = "amontons";
+
+/// A law to compare, as named on the command line: a registry entry whose
+/// [`ReferenceMatch`] matches it to the rate-and-state reference.
+#[derive(Debug, Clone, Copy)]
+pub struct LawChoice {
+    entry: LawEntry,
+}
+
+impl PartialEq for LawChoice {
+    /// The same law (names are unique in a registry).
+    fn eq(&self, other: &Self) -> bool {
+        self.entry.name == other.entry.name
+    }
 }
 
 impl LawChoice {
+    /// `registry`'s law `name`, if a comparison can match it to the
+    /// rate-and-state reference.
+    pub fn named(name: &str, registry: &LawRegistry) -> Option<LawChoice> {
+        let entry = *registry.get(name)?;
+        (!matches!(entry.reference_match, ReferenceMatch::Unmatched)).then_some(LawChoice { entry })
+    }
+
     /// The name used in `--laws`, file names and the scenario's `law` key.
     pub fn name(self) -> &'static str {
-        match self {
-            LawChoice::Amontons => "amontons",
-            LawChoice::Rate => "rate",
-            LawChoice::RateState => "rate-state",
-        }
+        self.entry.name
+    }
+
+    /// Whether this is Amontons' law, whose `mu` `--amontons-mu` gives.
+    pub fn is_amontons(self) -> bool {
+        self.entry.name == AMONTONS
+    }
+
+    /// How the comparison's notes say this law was matched to `reference`
+    /// at the reference slip speed: `None` for the reference itself.
+    pub fn note(self, reference: &Law, matching: Matching) -> Option<String> {
+        let (ReferenceMatch::Derived(derived), Law::RateState(rs)) =
+            (self.entry.reference_match, reference)
+        else {
+            return None;
+        };
+        let v = matching.reference_slip_m_per_s;
+        Some(match matching.amontons_mu {
+            Some(mu) if self.is_amontons() => {
+                format!("Amontons: mu = {} as given.", parameter(mu))
+            }
+            _ => (derived.note)(rs, v, &LAW_NUMBERS),
+        })
     }
 
     /// Parses a comma-separated list, e.g. `amontons,rate,rate-state`:
@@ -38,19 +77,18 @@ impl LawChoice {
     pub fn parse_list(list: &str, registry: &LawRegistry) -> Result<Vec<LawChoice>, ScenarioError> {
         let mut out = Vec::new();
         for word in list.split(',').map(str::trim).filter(|w| !w.is_empty()) {
-            let law = match word {
-                "amontons" => LawChoice::Amontons,
-                "rate" => LawChoice::Rate,
-                "rate-state" => LawChoice::RateState,
-                other if registry.get(other).is_some() => {
+            let law = match LawChoice::named(word, registry) {
+                Some(law) => law,
+                None if registry.get(word).is_some() => {
                     return Err(ScenarioError::Usage(format!(
-                        "--laws: law `{other}` has no rule matching it to the rate-and-state \
-                         reference; a comparison takes amontons, rate and rate-state"
+                        "--laws: law `{word}` has no rule matching it to the rate-and-state \
+                         reference; a comparison takes {}",
+                        registry.comparable_names_text()
                     )))
                 }
-                other => {
+                None => {
                     return Err(ScenarioError::Usage(format!(
-                        "--laws: unknown law `{other}`, expected {}",
+                        "--laws: unknown law `{word}`, expected {}",
                         registry.names_text()
                     )))
                 }
@@ -69,11 +107,12 @@ impl LawChoice {
     }
 }
 
-/// How the memoryless laws are matched to the rate-and-state reference.
+/// How the laws are matched to the rate-and-state reference.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Matching {
-    /// Slip speed at which Amontons' `mu` equals the rate-and-state steady
-    /// state, m/s.
+    /// Slip speed at which the derived laws are matched to the
+    /// rate-and-state reference (Amontons' `mu` equals its steady state
+    /// there), m/s.
     pub reference_slip_m_per_s: f64,
     /// An explicit Amontons `mu` instead.
     pub amontons_mu: Option<f64>,
@@ -113,29 +152,28 @@ pub fn variant(
             "the reference law of a comparison must be rate-and-state".into(),
         ));
     };
-    let p = rs.params;
-    let text = match choice {
-        LawChoice::RateState => reference_text.to_string(),
-        LawChoice::Amontons => {
-            let mu = matching
-                .amontons_mu
-                .unwrap_or_else(|| reference.mu_steady(matching.reference_slip_m_per_s));
+    let text = match choice.entry.reference_match {
+        ReferenceMatch::Reference => reference_text.to_string(),
+        ReferenceMatch::Derived(derived) => {
+            let mut params = (derived.params)(rs, matching.reference_slip_m_per_s);
+            if let (Some(mu), true) = (matching.amontons_mu, choice.is_amontons()) {
+                params = vec![("mu", mu)];
+            }
             with_friction(scenario_text, origin, |t| {
                 keep_only(t, &[]);
-                t.insert("law", value("amontons"));
-                t.insert("mu", value(mu));
+                t.insert("law", value(choice.name()));
+                for (key, x) in params {
+                    t.insert(key, value(x));
+                }
                 Ok(())
             })?
         }
-        LawChoice::Rate => with_friction(scenario_text, origin, |t| {
-            keep_only(t, &[]);
-            t.insert("law", value("rate"));
-            t.insert("mu0", value(p.mu0));
-            // C1 = A - B: the same steady-state friction as the reference.
-            t.insert("c1", value(p.a - p.b));
-            t.insert("v_star_m_per_s", value(p.v_star_m_per_s));
-            Ok(())
-        })?,
+        ReferenceMatch::Unmatched => {
+            return Err(ScenarioError::Usage(format!(
+                "law `{}` has no rule matching it to the rate-and-state reference",
+                choice.name()
+            )))
+        }
     };
     let friction = friction_table(&text, origin)?;
     Ok((text, friction))

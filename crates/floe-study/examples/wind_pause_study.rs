@@ -64,7 +64,10 @@ fn study() -> Result<(), CliError> {
             base_path.display()
         )))
     })?;
-    let laws = [LawChoice::Amontons, LawChoice::RateState];
+    let laws = LawChoice::parse_list(
+        "amontons,rate-state",
+        &floe_friction::LawRegistry::builtin(),
+    )?;
     let mut table = String::from(
         "| calm | law | kinetic energy before the calm (% of its peak) | shear stress before the calm (kN/m) | at the end of the calm (kN/m) | peak after restart (kN/m) | peak / before | peak after restart (min) |\n|---|---|---|---|---|---|---|---|\n",
     );

@@ -14,7 +14,7 @@ use crate::error::Error;
 use crate::render::{render, ColourBy, Snapshots};
 use crate::run_file::{run, thread_count, Provenance, RunArgs, RunHooks};
 use crate::same_file::refuse_overwriting_input;
-use floe_scenario::numbers::{parameter, short, sig};
+use floe_scenario::numbers::{short, sig};
 use floe_scenario::Scenario;
 use metrics::{measure, MetricOptions};
 use report::{figures, markdown, Variant};
@@ -64,7 +64,7 @@ pub(crate) fn reference_of(
 /// `hooks` hear what each run says and may interrupt it.
 pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     thread_count(args.threads)?;
-    if args.matching.amontons_mu.is_some() && !args.laws.contains(&LawChoice::Amontons) {
+    if args.matching.amontons_mu.is_some() && !args.laws.iter().any(|l| l.is_amontons()) {
         return Err(Error::Usage(
             "--amontons-mu applies to the amontons law, which --laws does not include".into(),
         ));
@@ -107,10 +107,10 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
         )?;
         let scenario_file = args.out_dir.join(format!("{}.toml", law.name()));
         if let Err(e) = Scenario::from_text_with(&variant_text, &scenario_file, &args.registry) {
-            return Err(match (law, args.matching.amontons_mu) {
-                // The only value compare puts in a variant that the user
-                // did not write: Amontons' mu from the reference speed.
-                (LawChoice::Amontons, None) => {
+            return Err(match (law.is_amontons(), args.matching.amontons_mu) {
+                // The only value of the built-in laws' variants that the
+                // user did not write: Amontons' mu from the reference speed.
+                (true, None) => {
                     let v = args.matching.reference_slip_m_per_s;
                     Error::Usage(format!(
                         "--reference-slip-speed {}: the rate-and-state steady state there, \
@@ -127,32 +127,14 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
     }
     std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
 
-    let mut notes = Vec::new();
-    let v = args.matching.reference_slip_m_per_s;
-    if args.laws.contains(&LawChoice::Amontons) {
-        notes.push(match args.matching.amontons_mu {
-            Some(mu) => format!("Amontons: mu = {} as given.", parameter(mu)),
-            None => format!(
-                "Amontons: mu = {}, the rate-and-state steady state at the reference slip speed {} m/s (`--reference-slip-speed`).",
-                parameter(reference.mu_steady(v)),
-                parameter(v)
-            ),
-        });
-    }
-    if args.laws.contains(&LawChoice::Rate) {
-        if let floe_friction::Law::RateState(rs) = &reference {
-            notes.push(format!(
-                "Rate law: the rate-and-state mu0 = {} and V* = {} m/s, with C1 = A - B = {}: the steady state of the published form, without memory. At the reference slip speed {} m/s it gives mu = {}; the rate-and-state law used here ({:?} form) gives {} in steady state.",
-                parameter(rs.params.mu0),
-                parameter(rs.params.v_star_m_per_s),
-                parameter(rs.params.a - rs.params.b),
-                parameter(v),
-                sig(rs.params.mu_steady_published(v)),
-                rs.form,
-                sig(reference.mu_steady(v))
-            ));
-        }
-    }
+    // One note per derived law, in the registry's order.
+    let notes: Vec<String> = args
+        .registry
+        .entries()
+        .iter()
+        .filter_map(|e| args.laws.iter().find(|l| l.name() == e.name))
+        .filter_map(|law| law.note(&reference, args.matching))
+        .collect();
 
     let mut out = Vec::new();
     for (law, variant_text, friction, scenario_file) in variants {
