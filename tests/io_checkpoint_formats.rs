@@ -12,7 +12,7 @@ use floe_dem::stress_control::{ControlLaw, ServoWall, StressControl};
 use floe_dem::Vec2;
 use floe_friction::rate_state::SOLVER_TREND;
 use floe_friction::ContactState;
-use floe_io::checkpoint_blob::OutputCounts;
+use floe_io::checkpoint::OutputCounts;
 
 /// A friction state with all three rate-and-state slots set.
 fn friction(force: f64, theta: f64, root: f64, trend: f64) -> ContactState {
@@ -202,40 +202,6 @@ fn fixture_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/checkpoints")
 }
 
-/// Writes the fixtures with the encoder of its commit (run once, with
-/// `--ignored`).
-#[test]
-#[ignore]
-fn write_fixtures() {
-    use floe_io::checkpoint_blob::{encode, encode_version};
-    let dir = fixture_dir();
-    std::fs::create_dir_all(&dir).unwrap();
-    let (rich, prop, counts) = (rich_state(), proportional_state(), counts());
-    for v in 1..=5 {
-        std::fs::write(
-            dir.join(format!("format_v{v}.bin")),
-            encode_version(&rich, &counts, 3, v),
-        )
-        .unwrap();
-    }
-    std::fs::write(
-        dir.join("format_v6.bin"),
-        encode_version(&prop, &counts, 3, 6),
-    )
-    .unwrap();
-    std::fs::write(dir.join("format_v7.bin"), encode(&rich, &counts, 3)).unwrap();
-    std::fs::write(
-        dir.join("format_v7_proportional.bin"),
-        encode(&prop, &counts, 3),
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("format_v7_no_slots.bin"),
-        encode(&rich, &counts, 0),
-    )
-    .unwrap();
-}
-
 fn fixture(name: &str) -> Vec<u8> {
     std::fs::read(fixture_dir().join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
@@ -259,60 +225,27 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         load_points,
         stress_controls,
     } = expected;
-    let same = |field: &str, a: String, b: String| assert_eq!(a, b, "{what}: {field}");
-    same("floes", format!("{:?}", back.floes), format!("{floes:?}"));
-    same(
-        "contacts",
-        format!("{:?}", back.contacts),
-        format!("{contacts:?}"),
-    );
-    same(
-        "broken",
-        format!("{:?}", back.broken),
-        format!("{broken:?}"),
-    );
-    same(
-        "time_s",
-        format!("{:?}", back.time_s),
-        format!("{time_s:?}"),
-    );
-    same("steps", format!("{:?}", back.steps), format!("{steps:?}"));
-    same("dt_s", format!("{:?}", back.dt_s), format!("{dt_s:?}"));
-    same(
-        "energy",
-        format!("{:?}", back.energy),
-        format!("{energy:?}"),
-    );
-    same("force", format!("{:?}", back.force), format!("{force:?}"));
-    same(
-        "torque",
-        format!("{:?}", back.torque),
-        format!("{torque:?}"),
-    );
-    same(
-        "external_force",
-        format!("{:?}", back.external_force),
-        format!("{external_force:?}"),
-    );
-    same(
-        "external_torque",
-        format!("{:?}", back.external_torque),
-        format!("{external_torque:?}"),
-    );
-    same(
-        "schedules",
-        format!("{:?}", back.schedules),
-        format!("{schedules:?}"),
-    );
-    same(
-        "load_points",
-        format!("{:?}", back.load_points),
-        format!("{load_points:?}"),
-    );
-    same(
-        "stress_controls",
-        format!("{:?}", back.stress_controls),
-        format!("{stress_controls:?}"),
+    macro_rules! same {
+        ($($field:ident),*) => {$(
+            let (got, want) = (format!("{:?}", back.$field), format!("{:?}", $field));
+            assert_eq!(got, want, "{what}: {}", stringify!($field));
+        )*};
+    }
+    same!(
+        floes,
+        contacts,
+        broken,
+        time_s,
+        steps,
+        dt_s,
+        energy,
+        force,
+        torque,
+        external_force,
+        external_torque,
+        schedules,
+        load_points,
+        stress_controls
     );
 }
 
@@ -323,7 +256,7 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
 /// and two slot counts, and drops the owned-floe count.
 #[test]
 fn versions_1_and_2_read_with_the_given_time_step() {
-    use floe_io::checkpoint_blob::decode;
+    use floe_io::checkpoint::decode;
     let state = rich_state();
     let [v1, v2, v3] = [1, 2, 3].map(|v| fixture(&format!("format_v{v}.bin")));
     let frictions = state.contacts.len() + state.broken.len();
@@ -361,7 +294,7 @@ fn versions_1_and_2_read_with_the_given_time_step() {
 /// the load points, 3 also the schedules.
 #[test]
 fn versions_3_to_6_read_without_what_they_lack() {
-    use floe_io::checkpoint_blob::decode;
+    use floe_io::checkpoint::decode;
     let no_dt = || panic!("versions from 3 store the time step");
     let (back, back_counts) = decode(&fixture("format_v6.bin"), no_dt, Some(3)).unwrap();
     assert_same(&back, &proportional_state(), "version 6");
@@ -386,7 +319,7 @@ fn versions_3_to_6_read_without_what_they_lack() {
 /// and a proportional wall's tag included.
 #[test]
 fn version_7_reads_back_to_the_state() {
-    use floe_io::checkpoint_blob::decode;
+    use floe_io::checkpoint::decode;
     let (v6, v7) = (
         fixture("format_v6.bin"),
         fixture("format_v7_proportional.bin"),
@@ -411,7 +344,7 @@ fn version_7_reads_back_to_the_state() {
 /// The encoder writes the frozen bytes of the current format exactly.
 #[test]
 fn the_encoder_writes_the_frozen_current_format() {
-    use floe_io::checkpoint_blob::encode;
+    use floe_io::checkpoint::encode;
     let (rich, prop, counts) = (rich_state(), proportional_state(), counts());
     assert!(encode(&rich, &counts, 3) == fixture("format_v7.bin"));
     assert!(encode(&prop, &counts, 3) == fixture("format_v7_proportional.bin"));
@@ -421,7 +354,7 @@ fn the_encoder_writes_the_frozen_current_format() {
 /// A version from the future is refused, by name.
 #[test]
 fn a_version_from_the_future_is_refused() {
-    use floe_io::checkpoint_blob::{decode, FORMAT_VERSION};
+    use floe_io::checkpoint::{decode, FORMAT_VERSION};
     let mut future = fixture("format_v7.bin");
     future[8..12].copy_from_slice(&(FORMAT_VERSION + 1).to_le_bytes());
     let e = decode(&future, || Some(0.5), None).expect_err("a future version");
