@@ -279,7 +279,7 @@ fn requests_that_do_not_fit_the_file_are_errors() {
 
 #[test]
 fn checkpoint_bytes_that_pass_the_checksum_but_lie_are_refused_without_panic() {
-    use floe_io::checkpoint_blob::{decode, encode, fnv1a64, OutputCounts, HEADER_LEN};
+    use floe_io::checkpoint::{decode, encode, fnv1a64, OutputCounts, HEADER_LEN};
     let (mut world, _) = pack();
     for _ in 0..200 {
         world.step();

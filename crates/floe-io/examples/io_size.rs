@@ -123,7 +123,7 @@ fn main() {
             1e3 * t_snap / snapshots as f64,
             1e3 * t_obs / (snapshots * steps_between) as f64,
             1e3 * t_ckpt,
-            floe_io::checkpoint_blob::encode(state, &Default::default(), 3).len()
+            floe_io::checkpoint::encode(state, &Default::default(), 3).len()
         );
     }
     let _ = std::fs::remove_dir_all(&dir);

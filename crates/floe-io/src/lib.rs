@@ -13,7 +13,7 @@
 #![deny(missing_docs)]
 
 mod appendable;
-pub mod checkpoint_blob;
+pub mod checkpoint;
 pub mod error;
 mod h5;
 mod headroom;

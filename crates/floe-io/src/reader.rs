@@ -7,7 +7,7 @@ use floe_dem::state::WorldState;
 use hdf5::Dataset;
 
 use crate::appendable::read_rows;
-use crate::checkpoint_blob::{self, OutputCounts};
+use crate::checkpoint::{self, OutputCounts};
 use crate::error::{invalid, Context, IoError};
 use crate::h5;
 use crate::layout;
@@ -526,7 +526,7 @@ pub(crate) fn read_checkpoint(
     })()
     .map_err(|e| corrupt(e.to_string()))?;
     let (state, counts) =
-        checkpoint_blob::decode(&bytes, fallback_dt_s, law_state_slots).map_err(corrupt)?;
+        checkpoint::decode(&bytes, fallback_dt_s, law_state_slots).map_err(corrupt)?;
     if state.steps != step {
         return Err(corrupt(format!(
             "the state is at step {} but the slot says {step}",

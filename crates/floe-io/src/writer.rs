@@ -13,7 +13,7 @@ use floe_friction::FrictionLaw;
 use hdf5::Group;
 
 use crate::appendable::{Appendable, Storage};
-use crate::checkpoint_blob::{self, fnv1a64, OutputCounts};
+use crate::checkpoint::{self, fnv1a64, OutputCounts};
 use crate::error::{invalid, Context, IoError};
 use crate::h5;
 use crate::headroom::Headroom;
@@ -584,7 +584,7 @@ impl RunWriter {
                 .map(|(name, el)| (name.clone(), el.rows() as u64))
                 .collect(),
         };
-        let blob = checkpoint_blob::encode(state, &counts, law_state_slots);
+        let blob = checkpoint::encode(state, &counts, law_state_slots);
         // A slot that grows is written anew, a quarter larger.
         self.claim(2 * blob.len() as u64 + (256 << 10))?;
         let slot = self.next_slot;
