@@ -32,8 +32,10 @@
 //! contact length, `kappa = E h / sqrt(area)` the wall contact's stiffness
 //! per unit area), the servo wall is an oscillator of `omega^2 = K / M`
 //! and damping ratio `zeta = D K / (2 sqrt(K M))`, integrated by the
-//! symplectic Euler of the step: stable for `omega dt < 2 (sqrt(1 +
-//! zeta^2) - zeta)` ([`ServoWall::stability_limit`]). The proportional law
+//! symplectic Euler of the step together with the stress filter and the
+//! contacts' dashpots: stable when every eigenvalue of its step matrix
+//! lies inside the unit circle ([`ServoWall::is_stable`],
+//! [`ServoWall::stability_margin`]; undamped, `omega dt < 2`). The proportional law
 //! is stable for `G dt kappa < 2` and `G c' < 1`, `c'` the contacts'
 //! dashpot per unit length.
 
