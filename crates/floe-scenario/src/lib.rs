@@ -47,6 +47,7 @@ pub mod source_file;
 pub mod spec;
 pub mod start_time;
 pub mod stress_wall;
+mod tessellation;
 
 pub use domain::Domain;
 pub use error::ScenarioError;

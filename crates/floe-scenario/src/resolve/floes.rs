@@ -1,5 +1,5 @@
 //! Where the floes come from: explicit `[[floe]]` tables, or a
-//! `[tessellation]` ([`super::tessellation`]).
+//! `[tessellation]` ([`crate::tessellation`]).
 
 use std::ops::Range;
 
@@ -8,14 +8,13 @@ use floe_dem::Vec2;
 use toml::Spanned;
 
 use super::limits::{at_most, thickness, travel_within, MAX_LENGTH_M};
-use super::tessellation::resolve_tessellation;
 use crate::error::ScenarioError;
 use crate::extent::{Extent, MAX_ANGULAR_VELOCITY_RAD_PER_S};
 use crate::motion_segments::resolve_schedule;
 use crate::numbers::short_list;
-use crate::size_distribution::SizeDistribution;
 use crate::source_file::SourceFile;
 use crate::spec::{Exact, RawFloe, RawScenario};
+use crate::tessellation::{self, Kind, Tessellated, KINDS};
 
 /// A `[[floe]]`, checked.
 #[derive(Debug, Clone)]
@@ -35,43 +34,21 @@ pub(crate) struct ExplicitFloe {
 /// Where the floes come from.
 #[derive(Debug, Clone)]
 pub(crate) enum FloeSource {
-    Diamond {
-        side_m: f64,
-        acute_angle_deg: f64,
-        orientation_deg: f64,
-        /// `Some((along, across))` when given by the diagonals.
-        diagonals_m: Option<(f64, f64)>,
-        jitter_fraction: f64,
-    },
-    Voronoi {
-        /// Floe count, or `None` to derive it from `floe_scale_m`.
-        count: Option<usize>,
-        floe_scale_m: Option<f64>,
-        relax_iterations: usize,
-    },
-    Grid {
-        columns: usize,
-        rows: usize,
-        gap_m: f64,
-    },
-    /// Voronoi with `size_distribution`: Laguerre cells of drawn areas.
-    PowerLaw {
-        sizes: SizeDistribution,
-        relax_iterations: usize,
-        relax_span: Option<Range<usize>>,
-    },
-    DoubleShear {
-        block_m: [f64; 2],
-        side_block_m: [f64; 2],
-        pusher_m: [f64; 2],
-        normal_load_per_face_n: f64,
-        /// The pusher's velocity at the start.
-        push_velocity_m_per_s: f64,
-        /// `[[tessellation.segment]]`, when the pusher follows a schedule.
-        push_schedule: Option<MotionSchedule>,
-    },
+    /// A `[tessellation]` of one of [`KINDS`].
+    Tessellation(Tessellated),
     Explicit(Vec<ExplicitFloe>),
 }
+
+impl FloeSource {
+    /// The tessellation's kind, if the floes are generated.
+    pub fn kind(&self) -> Option<&'static Kind> {
+        match self {
+            FloeSource::Tessellation(t) => Some(t.kind),
+            FloeSource::Explicit(_) => None,
+        }
+    }
+}
+
 /// Accepted load-point spring stiffnesses, N/m (the paper's apparatus:
 /// 2e7 lab, 2e6 tank).
 pub const LOAD_POINT_STIFFNESS_RANGE_N_PER_M: (f64, f64) = (1e-3, 1e12);
@@ -90,9 +67,13 @@ pub(crate) fn resolve_floes(
                 "explicit [[floe]] tables and [tessellation] exclude each other: use one",
             ))
         }
-        (None, None) => Err(f.error_in_file(
-            "no floes: add a [tessellation] (diamond, voronoi, grid, double-shear) or [[floe]] tables",
-        )),
+        (None, None) => {
+            let kinds: Vec<&str> = KINDS.iter().map(|k| k.name).collect();
+            Err(f.error_in_file(format!(
+                "no floes: add a [tessellation] ({}) or [[floe]] tables",
+                kinds.join(", ")
+            )))
+        }
         (None, Some(floes)) => {
             let mut out = Vec::with_capacity(floes.len());
             for (i, fl) in floes.iter().enumerate() {
@@ -101,7 +82,10 @@ pub(crate) fn resolve_floes(
             let span = floes.first().map_or(0..0, |fl| fl.span());
             Ok((FloeSource::Explicit(out), span, 0.0))
         }
-        (Some(t), None) => resolve_tessellation(f, t, extent),
+        (Some(t), None) => {
+            let (t, span, min_area_fraction) = tessellation::resolve(f, t, extent)?;
+            Ok((FloeSource::Tessellation(t), span, min_area_fraction))
+        }
     }
 }
 

@@ -12,7 +12,6 @@ mod ice;
 pub(crate) mod land;
 pub(crate) mod limits;
 mod output;
-mod tessellation;
 mod walls;
 
 use std::ops::Range;
@@ -34,6 +33,7 @@ use crate::numbers::short;
 use crate::output_cadence::OutputCadence;
 use crate::source_file::SourceFile;
 use crate::spec::RawScenario;
+use crate::tessellation::{names_text, KINDS};
 
 use contact::resolve_contact;
 use domain::resolve_domain;
@@ -44,6 +44,7 @@ use limits::count;
 use output::resolve_output;
 use walls::resolve_walls;
 
+pub use crate::tessellation::{DEFAULT_MIN_AREA_FRACTION, MAX_RELAX_ITERATIONS, MAX_VORONOI_WORK};
 pub use contact::YOUNGS_MODULUS_RANGE_PA;
 pub(crate) use floes::FloeSource;
 pub use floes::LOAD_POINT_STIFFNESS_RANGE_N_PER_M;
@@ -51,8 +52,6 @@ pub use ice::{DEFAULT_ICE_DENSITY_KG_PER_M3, DEFAULT_THICKNESS_M};
 pub(crate) use limits::dem_error;
 pub use limits::{MAX_DENSITY_KG_PER_M3, MAX_LENGTH_M, MAX_THICKNESS_M, MIN_THICKNESS_M};
 pub use output::MAX_OUTPUT_WINDOWS;
-pub(crate) use tessellation::voronoi_work;
-pub use tessellation::{DEFAULT_MIN_AREA_FRACTION, MAX_RELAX_ITERATIONS, MAX_VORONOI_WORK};
 pub use walls::MAX_WALL_STRESS_N_PER_M;
 pub(crate) use walls::{Side, Wall};
 
@@ -156,15 +155,15 @@ pub(crate) fn resolve(
     let (floes, floes_span, min_area_fraction) = resolve_floes(f, &raw, extent)?;
     let ice_grids = resolve_ice_grids(f, raw.ice.as_ref(), base_dir)?;
     if let Some(g) = ice_grids.first() {
-        if matches!(
-            floes,
-            FloeSource::Explicit(_) | FloeSource::DoubleShear { .. }
-        ) {
+        if !floes.kind().is_some_and(|k| k.sea_ice) {
+            let kinds = names_text(KINDS.iter().filter(|k| k.sea_ice));
             return Err(f.error(
                 g.span.clone(),
                 g.key,
-                "places the floes of a [tessellation] of kind `diamond`, `voronoi` or `grid`; \
-                 not explicit [[floe]] tables or a double-shear set-up",
+                format!(
+                    "places the floes of a [tessellation] of kind {kinds}; \
+                     not explicit [[floe]] tables or a double-shear set-up"
+                ),
             ));
         }
     }
@@ -207,12 +206,14 @@ pub(crate) fn resolve(
             path: l.path.clone(),
         });
     }
-    if let (FloeSource::DoubleShear { .. }, Some(first)) = (&floes, land.first()) {
-        return Err(f.error(
-            first.span.clone(),
-            "land[0].file",
-            "land does not apply to the double-shear set-up",
-        ));
+    if let (Some(kind), Some(first)) = (floes.kind(), land.first()) {
+        if !kind.sea_ice {
+            return Err(f.error(
+                first.span.clone(),
+                "land[0].file",
+                format!("land does not apply to the {} set-up", kind.name),
+            ));
+        }
     }
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
     let GridContext {
