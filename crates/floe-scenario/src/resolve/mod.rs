@@ -2,7 +2,7 @@
 //! defaults: every number is range-checked here, with its location, so that
 //! building the world ([`super::build`]) only has to check what depends on
 //! several values together ([`super::checks`]). One file per section of
-//! the scenario file; [`limits`] holds the range checks they share.
+//! the scenario file; `limits.rs` holds the range checks they share.
 
 mod contact;
 mod domain;

@@ -31,11 +31,15 @@ use crate::resolve::limits::{dem_error, refuse_given, within};
 use crate::source_file::SourceFile;
 use crate::spec::RawTessellation;
 
-pub use voronoi::{MAX_RELAX_ITERATIONS, MAX_VORONOI_WORK};
+pub use voronoi::MAX_VORONOI_WORK;
 
 /// Fraction of the nominal floe area below which generated floes (pieces
 /// clipped at the domain edges) are dropped, unless the file says otherwise.
 pub const DEFAULT_MIN_AREA_FRACTION: f64 = 0.1;
+
+/// Most Lloyd iterations of a Voronoi tessellation, with or without
+/// `size_distribution` (it converges in tens).
+pub const MAX_RELAX_ITERATIONS: u64 = 10_000;
 
 /// One kind of `[tessellation]`.
 #[derive(Debug)]

@@ -8,8 +8,7 @@ use std::sync::Arc;
 use floe_dem::tessellation::{fit_sizes, PowerLawFit, PowerLawFloes, PowerLawSizes, Tessellation};
 use floe_dem::Vec2;
 
-use super::voronoi::MAX_RELAX_ITERATIONS;
-use super::{Generate, Generation, Keys};
+use super::{Generate, Generation, Keys, MAX_RELAX_ITERATIONS};
 use crate::error::ScenarioError;
 use crate::numbers::{sig, thousands};
 use crate::piece::Piece;

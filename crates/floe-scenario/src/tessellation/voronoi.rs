@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use floe_dem::tessellation::{VoronoiFloes, MAX_FLOES};
 
-use super::{power_law, Generate, Generation, Keys, Kind};
+use super::{power_law, Generate, Generation, Keys, Kind, MAX_RELAX_ITERATIONS};
 use crate::error::ScenarioError;
 use crate::numbers::{sig, thousands};
 use crate::piece::Piece;
@@ -28,9 +28,6 @@ pub(super) const KIND: Kind = Kind {
     resolve,
     sea_ice: true,
 };
-
-/// Most Lloyd iterations of a Voronoi tessellation (it converges in tens).
-pub const MAX_RELAX_ITERATIONS: u64 = 10_000;
 
 /// Most Voronoi work, sites x (Lloyd iterations + 1): one pass over 1e6
 /// sites takes about 5 s, so the limit is about 8 minutes.
