@@ -128,9 +128,12 @@ pub(crate) struct Generation<'a> {
     pub concentration_grid: bool,
     /// A tessellation's floes as free pieces, placed from the ice grids if
     /// any.
-    #[allow(clippy::type_complexity)]
-    pub place: &'a dyn Fn(Tessellation, &mut Vec<String>) -> Result<Vec<Piece>, ScenarioError>,
+    pub place: &'a Place<'a>,
 }
+
+/// Makes a tessellation's floes free pieces, with report lines.
+pub(crate) type Place<'a> =
+    dyn Fn(Tessellation, &mut Vec<String>) -> Result<Vec<Piece>, ScenarioError> + 'a;
 
 impl Generation<'_> {
     /// A [`DemError`] of the generator, blamed on `[tessellation]`.
