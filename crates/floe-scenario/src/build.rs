@@ -10,28 +10,22 @@ use std::ops::Not;
 
 use floe_dem::floes::{Floe, Floes};
 use floe_dem::geometry::FloeShape;
-use floe_dem::motion_schedule::MotionSchedule;
 use floe_dem::pipeline::integrator::{damping_step_factor, STABILITY_SAFETY};
-use floe_dem::tessellation::{
-    fit_sizes, DiamondLattice, PeriodFit, PowerLawFit, PowerLawFloes, PowerLawSizes, Rect,
-    Tessellation, VoronoiFloes, MAX_FLOES,
-};
+use floe_dem::tessellation::{Rect, Tessellation};
 use floe_dem::world::stable_time_step;
 use floe_dem::Vec2;
-use floe_friction::FrictionLaw;
 
 use crate::built_floes::{BuiltFloes, StressWall};
 use crate::checks;
 use crate::error::ScenarioError;
 use crate::ice_grid::{place_from_grids, GridFrame};
 use crate::land_build;
+use crate::motion_segments::describe_schedule;
 use crate::numbers::{parameter, short, sig, thousands};
 pub(crate) use crate::piece::Piece;
-use crate::resolve::{
-    dem_error, voronoi_work, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION,
-};
-use crate::size_distribution::check_fits;
+use crate::resolve::{dem_error, DtChoice, FloeSource, Resolved, Side, Wall, AUTO_DT_FRACTION};
 use crate::source_file::SourceFile;
+use crate::tessellation::Generation;
 
 /// Most segments one wall is made of (a wall much longer than the floes are
 /// wide gets longer segments rather than millions of them).
@@ -53,329 +47,61 @@ pub(crate) fn ice_region(r: &Resolved) -> Rect {
     Rect::new(min, max)
 }
 
-fn rect_polygon(center: Vec2, size: [f64; 2]) -> Vec<Vec2> {
-    let h = Vec2::new(0.5 * size[0], 0.5 * size[1]);
-    vec![
-        center - h,
-        center + Vec2::new(h.x, -h.y),
-        center + h,
-        center + Vec2::new(-h.x, h.y),
-    ]
-}
-
-/// The report line of a lattice fitted to the domain's periods: how many
-/// cells span each period and how much the lattice was changed for it.
-fn describe_period_fit(lattice: &DiamondLattice, fit: &PeriodFit) -> String {
-    let (e1, e2) = lattice.edge_vectors_m();
-    let spans: Vec<String> = fit
-        .period_steps
-        .iter()
-        .zip(["x", "y"])
-        .filter_map(|(steps, axis)| {
-            steps.map(|[m, n]| format!("{m} e1 + {n} e2 span the period along {axis}"))
-        })
-        .collect();
-    let change = if fit.is_identity() {
-        "the lattice is unchanged".to_string()
-    } else {
-        let (lo, hi) = fit.stretch_range();
-        let (d1, d2) = (fit.apply(e1 + e2).length(), fit.apply(e2 - e1).length());
-        let stretch = if hi - lo <= 1e-9 * hi {
-            format!("scaled by {}", sig(lo))
-        } else {
-            format!("stretched by {} to {}", sig(lo), sig(hi))
-        };
-        let turn = fit.rotation_deg();
-        let turn = if turn.abs() < 1e-9 {
-            String::new()
-        } else {
-            format!(" and turned by {} deg", sig(turn))
-        };
-        format!(
-            "the lattice is {stretch}{turn} to fit (diagonals now {} x {} m)",
-            sig(d1),
-            sig(d2)
-        )
-    };
-    format!(
-        "  periodic: {}; {change}; floes straddling the seam are whole",
-        spans.join(", ")
-    )
-}
-
-/// The free (and double-shear prescribed) pieces and report lines.
+/// The free (and a set-up's prescribed) pieces and report lines.
 fn generate(
     f: &SourceFile,
     r: &Resolved,
     region: Rect,
     report: &mut Vec<String>,
 ) -> Result<Vec<Piece>, ScenarioError> {
-    let span = r.floes_span.clone();
-    let dem = |e| dem_error(f, span.clone(), "tessellation", e);
-    // The floes of a tessellation, placed from the ice grids if any.
-    let frame = GridFrame {
-        projection: r.map.as_ref(),
-        start_time: r.start_time.as_deref(),
-    };
-    let free = |mut t: Tessellation,
-                v: Vec2,
-                report: &mut Vec<String>|
-     -> Result<Vec<Piece>, ScenarioError> {
-        place_from_grids(f, r, region, &mut t, frame, report)?;
-        Ok(t.polygons
-            .into_iter()
-            .zip(t.thickness_m)
-            .map(|(polygon, thickness_m)| Piece {
-                polygon,
-                thickness_m,
-                velocity: v,
-                angular_velocity: 0.0,
-                prescribed: false,
-                schedule: None,
-                load_point: None,
-                label: None,
-                span: None,
-            })
-            .collect())
-    };
     let v0 = r.initial_velocity;
-    let dropped_line = |what: &str, dropped: usize, area: f64| {
-        format!(
-            "  {} {what} below {} of the nominal floe area dropped ({} m^2, {} % of the ice region)",
-            thousands(dropped),
-            r.min_area_fraction,
-            sig(area),
-            sig(100.0 * area / region.area_m2())
-        )
-    };
     match &r.floes {
-        FloeSource::Diamond {
-            side_m,
-            acute_angle_deg,
-            orientation_deg,
-            diagonals_m,
-            jitter_fraction,
-        } => {
-            let lattice = match diagonals_m {
-                Some((along, across)) => DiamondLattice::from_diagonals(
-                    region,
-                    *along,
-                    *across,
-                    *orientation_deg,
-                    r.thickness,
-                    *jitter_fraction,
-                    r.seed,
-                )
-                .map_err(dem)?,
-                None => DiamondLattice {
-                    domain: region,
-                    side_m: *side_m,
-                    acute_angle_deg: *acute_angle_deg,
-                    orientation_deg: *orientation_deg,
-                    thickness: r.thickness,
-                    jitter_fraction: *jitter_fraction,
-                    seed: r.seed,
-                },
+        FloeSource::Tessellation(t) => {
+            // The floes of a tessellation, placed from the ice grids if any.
+            let frame = GridFrame {
+                projection: r.map.as_ref(),
+                start_time: r.start_time.as_deref(),
             };
-            let periodic = r.domain.periodic;
-            let (mut t, lr, fit) = if periodic.contains(&true) {
-                let (t, lr, fit) = lattice.build_periodic(periodic).map_err(dem)?;
-                (t, lr, Some(fit))
-            } else {
-                let (t, lr) = lattice.build_with_report().map_err(dem)?;
-                (t, lr, None)
+            let place = |mut t: Tessellation,
+                         report: &mut Vec<String>|
+             -> Result<Vec<Piece>, ScenarioError> {
+                place_from_grids(f, r, region, &mut t, frame, report)?;
+                Ok(t.polygons
+                    .into_iter()
+                    .zip(t.thickness_m)
+                    .map(|(polygon, thickness_m)| Piece {
+                        polygon,
+                        thickness_m,
+                        velocity: v0,
+                        angular_velocity: 0.0,
+                        prescribed: false,
+                        schedule: None,
+                        load_point: None,
+                        label: None,
+                        span: None,
+                    })
+                    .collect())
             };
-            let cell = lattice.cell_area_m2();
-            let drop = t.drop_floes_smaller_than(r.min_area_fraction * cell);
-            let (d_along, d_across) = lattice.diagonals_m();
-            report.push(format!(
-                "floes: {} diamonds, side {} m, acute angle {} deg, diagonals {} x {} m, orientation {} deg, jitter {}",
-                thousands(t.len()),
-                sig(lattice.side_m),
-                sig(lattice.acute_angle_deg),
-                sig(d_along),
-                sig(d_across),
-                sig(lattice.orientation_deg),
-                lattice.jitter_fraction
-            ));
-            if let Some(fit) = fit {
-                report.push(describe_period_fit(&lattice, &fit));
-            }
-            report.push(format!(
-                "  {} clipped at the edges of the ice region; {} slivers dropped by the lattice",
-                thousands(lr.clipped_floes),
-                lr.dropped_slivers
-            ));
-            report.push(dropped_line(
-                "clipped pieces",
-                drop.dropped,
-                drop.dropped_area_m2,
-            ));
-            free(t, v0, report)
-        }
-        FloeSource::Voronoi {
-            count,
-            floe_scale_m,
-            relax_iterations,
-        } => {
-            let n = match (count, floe_scale_m) {
-                (Some(n), _) => *n,
-                (None, Some(scale)) => {
-                    let n = (region.area_m2() / (scale * scale)).round().max(1.0);
-                    if n > MAX_FLOES as f64 {
-                        return Err(f.error(
-                            span,
-                            "tessellation.floe_scale_m",
-                            format!("would make about {n:.3e} floes, above the cap of {MAX_FLOES}"),
-                        ));
-                    }
-                    let n = n as usize;
-                    let key = "tessellation.floe_scale_m";
-                    voronoi_work(f, span.clone(), key, n, *relax_iterations)?;
-                    n
-                }
-                (None, None) => unreachable!("resolve requires count or floe_scale_m"),
-            };
-            let v = VoronoiFloes {
-                domain: region,
-                count: n,
+            let g = Generation {
+                f,
+                span: r.floes_span.clone(),
+                region,
+                domain: r.domain,
                 seed: r.seed,
                 thickness: r.thickness,
-                relax_iterations: *relax_iterations,
+                min_area_fraction: r.min_area_fraction,
+                duration_s: r.duration_s,
+                model: &r.model,
+                concentration_grid: r.ice_grids.concentration.is_some(),
+                place: &place,
             };
-            let mut t = v.build().map_err(dem)?;
-            let mean = region.area_m2() / n as f64;
-            let drop = t.drop_floes_smaller_than(r.min_area_fraction * mean);
-            report.push(format!(
-                "floes: {} Voronoi cells (mean area {} m^2, {} Lloyd iterations)",
-                thousands(t.len()),
-                sig(mean),
-                relax_iterations
-            ));
-            report.push(dropped_line("cells", drop.dropped, drop.dropped_area_m2));
-            free(t, v0, report)
-        }
-        FloeSource::PowerLaw {
-            sizes,
-            relax_iterations,
-            relax_span,
-        } => {
-            check_fits(f, sizes, region, (*relax_iterations, relax_span.clone()))?;
-            let (mut t, pr) = PowerLawFloes {
-                domain: region,
-                sizes: sizes.law,
-                seed: r.seed,
-                thickness: r.thickness,
-                relax_iterations: *relax_iterations,
-            }
-            .build()
-            .map_err(dem)?;
-            let law = sizes.law;
-            let drop = t.drop_floes_smaller_than(r.min_area_fraction * law.min_m * law.min_m);
-            report.push(format!(
-                "floes: {} Laguerre cells, sizes sqrt(area) from a power law N(>d) ~ d^-{} between {} and {} m ({} Lloyd iterations)",
-                thousands(t.len()),
-                sig(law.exponent),
-                sig(law.min_m),
-                sig(law.max_m),
-                relax_iterations
-            ));
-            report.push(format!(
-                "  cell areas within {} % of the drawn sizes' (rms {} %) after {} power diagrams; sizes scaled by {:.6} to fill the region; {} disks placed overlapping",
-                sig(100.0 * pr.max_area_error),
-                sig(100.0 * pr.rms_area_error),
-                pr.passes,
-                pr.size_scale,
-                pr.forced_placements
-            ));
-            report.push(describe_fit("  fitted exponent", fit_sizes(&t, law), law));
-            if pr.simplified > 0 {
-                report.push(format!(
-                    "  {} large floes among many small ones cut down to {} vertices ({} m^2 of open water, {} % of the region)",
-                    thousands(pr.simplified),
-                    floe_dem::geometry::MAX_VERTICES,
-                    sig(pr.simplified_area_m2),
-                    sig(100.0 * pr.simplified_area_m2 / region.area_m2())
-                ));
-            }
-            if pr.empty_cells + drop.dropped > 0 {
-                report.push(format!(
-                    "  {} empty cells and {} cells below {} of min_m^2 dropped ({} m^2)",
-                    pr.empty_cells,
-                    drop.dropped,
-                    r.min_area_fraction,
-                    sig(drop.dropped_area_m2)
-                ));
-            }
-            let placed = free(t, v0, report)?;
-            if r.ice_grids.concentration.is_some() {
-                let polygons: Vec<Vec<Vec2>> = placed.iter().map(|p| p.polygon.clone()).collect();
-                let t = Tessellation {
-                    thickness_m: vec![1.0; polygons.len()],
-                    polygons,
-                };
-                report.push(describe_fit(
-                    "  fitted exponent of the placed floes",
-                    fit_sizes(&t, law),
-                    law,
-                ));
-            }
-            Ok(placed)
-        }
-        FloeSource::Grid {
-            columns,
-            rows,
-            gap_m,
-        } => {
-            let (cw, ch) = (
-                region.width_m() / *columns as f64,
-                region.height_m() / *rows as f64,
-            );
-            if !(*gap_m < cw && *gap_m < ch) {
-                return Err(f.error(
-                    span,
-                    "tessellation.gap_m",
-                    format!(
-                        "gap {gap_m} m leaves nothing of the {} x {} m cells",
-                        sig(cw),
-                        sig(ch)
-                    ),
-                ));
-            }
-            let n = columns.saturating_mul(*rows);
-            if n > MAX_FLOES {
-                return Err(f.error(
-                    span,
-                    "tessellation.columns",
-                    format!("{columns} x {rows} floes is above the cap of {MAX_FLOES}"),
-                ));
-            }
-            let thickness = r.thickness.sample(n, r.seed).map_err(dem)?;
-            let mut polygons = Vec::with_capacity(n);
-            for j in 0..*rows {
-                for i in 0..*columns {
-                    let c = region.min + Vec2::new((i as f64 + 0.5) * cw, (j as f64 + 0.5) * ch);
-                    polygons.push(rect_polygon(c, [cw - gap_m, ch - gap_m]));
-                }
-            }
-            report.push(format!(
-                "floes: {} rectangles ({columns} x {rows}), {} x {} m, gap {} m",
-                thousands(n),
-                sig(cw - gap_m),
-                sig(ch - gap_m),
-                sig(*gap_m)
-            ));
-            free(
-                Tessellation {
-                    polygons,
-                    thickness_m: thickness,
-                },
-                v0,
-                report,
-            )
+            t.floes.generate(&g, report)
         }
         FloeSource::Explicit(list) => {
-            let thickness = r.thickness.sample(list.len(), r.seed).map_err(dem)?;
+            let thickness = r
+                .thickness
+                .sample(list.len(), r.seed)
+                .map_err(|e| dem_error(f, r.floes_span.clone(), "tessellation", e))?;
             let prescribed = list.iter().filter(|e| e.prescribed).count();
             report.push(format!(
                 "floes: {} from [[floe]] tables ({} free, {} prescribed)",
@@ -408,204 +134,7 @@ fn generate(
                 })
                 .collect())
         }
-        FloeSource::DoubleShear {
-            block_m,
-            side_block_m,
-            pusher_m,
-            normal_load_per_face_n,
-            push_velocity_m_per_s,
-            push_schedule,
-        } => double_shear(
-            f,
-            r,
-            *block_m,
-            *side_block_m,
-            *pusher_m,
-            *normal_load_per_face_n,
-            (*push_velocity_m_per_s, push_schedule.as_ref()),
-            report,
-        ),
     }
-}
-
-/// A report line of a fitted size exponent.
-fn describe_fit(what: &str, fit: Option<PowerLawFit>, law: PowerLawSizes) -> String {
-    match fit {
-        Some(fit) => format!(
-            "{what} {} +- {} (maximum likelihood over {} floes; requested {})",
-            sig(fit.exponent),
-            sig(fit.std_error),
-            thousands(fit.used),
-            sig(law.exponent)
-        ),
-        None => format!("{what}: none (too few floes, or sizes weighted to the large end)"),
-    }
-}
-
-/// The double-shear set-up of Lishman et al. (2011): a free block between
-/// two fixed blocks that overlap it by the depth giving the normal load,
-/// pushed along x by a prescribed plate whose contact is the loading spring.
-#[allow(clippy::too_many_arguments)]
-fn double_shear(
-    f: &SourceFile,
-    r: &Resolved,
-    block: [f64; 2],
-    side: [f64; 2],
-    pusher: [f64; 2],
-    load: f64,
-    (v, schedule): (f64, Option<&MotionSchedule>),
-    report: &mut Vec<String>,
-) -> Result<Vec<Piece>, ScenarioError> {
-    let span = r.floes_span.clone();
-    let h = r.thickness.mean_m();
-    let geometry = checks::double_shear_geometry(&r.model, h, block, pusher, load);
-    if geometry.depth_m >= 0.25 * block[1] {
-        return Err(f.error(
-            span,
-            "tessellation.normal_load_per_face_n",
-            format!(
-                "{load} N per face needs an overlap {} m deep, over a quarter of the block's width {} m: raise contact.youngs_modulus_pa or lower the load",
-                sig(geometry.depth_m),
-                block[1]
-            ),
-        ));
-    }
-    let travel = match schedule {
-        Some(s) => s.most_travel_m(r.duration_s),
-        None => v * r.duration_s,
-    };
-    if side[0] < block[0] + travel {
-        return Err(f.error(
-            span,
-            "tessellation.side_block_m",
-            format!(
-                "side blocks {} m long are too short: the {} m block travels {} m in duration_s, so they must be at least {} m long",
-                sig(side[0]),
-                sig(block[0]),
-                sig(travel),
-                sig(block[0] + travel)
-            ),
-        ));
-    }
-    let d = &r.domain;
-    let c = d.min_m + 0.5 * d.size_m;
-    let depth = geometry.depth_m;
-    let side_y = 0.5 * block[1] + 0.5 * side[1] - depth;
-    let side_x = c.x + 0.5 * travel;
-    let pusher_c = Vec2::new(c.x - 0.5 * block[0] - 0.5 * pusher[0], c.y);
-    let pieces = vec![
-        Piece {
-            polygon: rect_polygon(c, block),
-            thickness_m: h,
-            velocity: Vec2::new(v, 0.0),
-            angular_velocity: 0.0,
-            prescribed: false,
-            schedule: None,
-            load_point: None,
-            label: Some("block".into()),
-            span: None,
-        },
-        Piece {
-            polygon: rect_polygon(Vec2::new(side_x, c.y + side_y), side),
-            thickness_m: h,
-            velocity: Vec2::ZERO,
-            angular_velocity: 0.0,
-            prescribed: true,
-            schedule: None,
-            load_point: None,
-            label: Some("upper side block".into()),
-            span: None,
-        },
-        Piece {
-            polygon: rect_polygon(Vec2::new(side_x, c.y - side_y), side),
-            thickness_m: h,
-            velocity: Vec2::ZERO,
-            angular_velocity: 0.0,
-            prescribed: true,
-            schedule: None,
-            load_point: None,
-            label: Some("lower side block".into()),
-            span: None,
-        },
-        Piece {
-            polygon: rect_polygon(pusher_c, pusher),
-            thickness_m: h,
-            velocity: Vec2::new(v, 0.0),
-            angular_velocity: 0.0,
-            prescribed: true,
-            schedule: schedule.cloned(),
-            load_point: None,
-            label: Some("pusher".into()),
-            span: None,
-        },
-    ];
-    // Everything, with its travel, must lie in the domain.
-    let (lo, hi) = (d.min_m, d.min_m + d.size_m);
-    for p in &pieces {
-        let moves = if p.velocity.x != 0.0 || p.schedule.is_some() || !p.prescribed {
-            travel
-        } else {
-            0.0
-        };
-        for q in &p.polygon {
-            if q.x < lo.x || q.x + moves > hi.x || q.y < lo.y || q.y > hi.y {
-                return Err(f.error(
-                    span,
-                    "domain.size_m",
-                    format!(
-                        "the double-shear set-up ({}, with {} m of travel) does not fit in the domain [{}, {}] x [{}, {}] m",
-                        p.label.as_deref().unwrap_or("a block"),
-                        sig(travel),
-                        lo.x, hi.x, lo.y, hi.y
-                    ),
-                ));
-            }
-        }
-    }
-    let pushed = match schedule {
-        Some(s) => format!("pushed {}", describe_schedule(s)),
-        None => format!("pushed at {} m/s", sig(v)),
-    };
-    report.push(format!(
-        "floes: double shear: block {} x {} x {} m {pushed} between fixed side blocks {} x {} m",
-        block[0],
-        block[1],
-        sig(h),
-        side[0],
-        side[1]
-    ));
-    report.push(format!(
-        "  normal load {} N per face ({} N on both) from an overlap {} m deep; contact kappa = E h / sqrt(A) = {} Pa",
-        sig(load),
-        sig(2.0 * load),
-        sig(depth),
-        sig(geometry.kappa_pa)
-    ));
-    report.push(format!(
-        "  loading spring (pusher contact, {} m wide) k = {} N/m; side contacts k_t = {} N/m each; in series {} N/m",
-        sig(pusher[1].min(block[1])),
-        sig(geometry.pusher_stiffness_n_per_m),
-        sig(geometry.side_tangential_stiffness_n_per_m),
-        sig(geometry.series_stiffness_n_per_m)
-    ));
-    // Under both faces' load; none when the law strengthens with speed.
-    if let Some(kc) = r
-        .model
-        .law
-        .critical_stiffness_n_per_m(2.0 * load)
-        .filter(|&kc| kc > 0.0)
-    {
-        report.push(format!(
-            "  critical stiffness N (B - A) / L = {} N/m: steady sliding is {} at this stiffness",
-            sig(kc),
-            if geometry.series_stiffness_n_per_m > kc {
-                "stable"
-            } else {
-                "unstable (stick-slip expected)"
-            }
-        ));
-    }
-    Ok(pieces)
 }
 
 /// Builds the floes (free, prescribed, walls) and checks their layout.
@@ -1079,32 +608,6 @@ pub(crate) fn output_windows(
         thousands(snapshots as usize),
         thousands(samples as usize)
     )))
-}
-
-/// A wall's schedule for the report: its segments' velocities in order.
-fn describe_schedule(s: &MotionSchedule) -> String {
-    let parts: Vec<String> = s
-        .segments()
-        .iter()
-        .map(|g| {
-            let v = |v: Vec2| format!("[{}, {}]", sig(v.x), sig(v.y));
-            if g.velocity_start == g.velocity_end {
-                format!("{} for {} s", v(g.velocity_start), sig(g.duration_s))
-            } else {
-                format!(
-                    "{} to {} over {} s",
-                    v(g.velocity_start),
-                    v(g.velocity_end),
-                    sig(g.duration_s)
-                )
-            }
-        })
-        .collect();
-    format!(
-        "on a schedule of {} segments (m/s): {}, then the last velocity",
-        parts.len(),
-        parts.join(", ")
-    )
 }
 
 /// Rough walls: the free pieces whose centroid lies within a wall's

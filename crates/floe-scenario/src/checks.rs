@@ -1,8 +1,8 @@
 //! Physical consistency of a scenario: checks that involve several values
 //! together (walls against the domain and each other, explicit floes
-//! against each other), and the contact geometry of the double-shear set-up.
+//! against each other); the contact geometry of the double-shear set-up
+//! is [`double_shear_geometry`].
 
-use floe_dem::contact_model::ContactModel;
 use floe_dem::geometry::{overlap, ClipScratch};
 
 use crate::built_floes::BuiltFloes;
@@ -10,48 +10,11 @@ use crate::error::ScenarioError;
 use crate::numbers::sig;
 use crate::resolve::{Resolved, Side, Wall};
 use crate::source_file::SourceFile;
+pub use crate::tessellation::double_shear_geometry::{double_shear_geometry, DoubleShearGeometry};
 
 /// Overlap area, as a fraction of the smaller floe, above which explicit
 /// floes are refused as overlapping at the start.
 pub const OVERLAP_TOLERANCE: f64 = 1e-6;
-
-/// Contact numbers of the double-shear set-up, for a block of thickness
-/// `h` (m), plan size `block` = [along the push, across] (m), a pusher plate
-/// `pusher` (m) and `load` (N) on each sliding face.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DoubleShearGeometry {
-    /// Normal force per unit overlap area against a fixed block,
-    /// `E h / sqrt(block area)`, Pa.
-    pub kappa_pa: f64,
-    /// Overlap depth of each side block giving `load`, m.
-    pub depth_m: f64,
-    /// Normal stiffness of the pusher contact (the loading spring), N/m.
-    pub pusher_stiffness_n_per_m: f64,
-    /// Tangential stiffness of one side contact, N/m.
-    pub side_tangential_stiffness_n_per_m: f64,
-    /// The pusher in series with the two side contacts in parallel, N/m.
-    pub series_stiffness_n_per_m: f64,
-}
-
-/// See [`DoubleShearGeometry`].
-pub fn double_shear_geometry(
-    model: &ContactModel,
-    thickness_m: f64,
-    block: [f64; 2],
-    pusher: [f64; 2],
-    load_per_face_n: f64,
-) -> DoubleShearGeometry {
-    let kappa = model.youngs_modulus_pa * thickness_m / (block[0] * block[1]).sqrt();
-    let k_pusher = kappa * pusher[1].min(block[1]);
-    let k_t = kappa * block[0] / (2.0 * (1.0 + model.poisson_ratio));
-    DoubleShearGeometry {
-        kappa_pa: kappa,
-        depth_m: load_per_face_n / (kappa * block[0]),
-        pusher_stiffness_n_per_m: k_pusher,
-        side_tangential_stiffness_n_per_m: k_t,
-        series_stiffness_n_per_m: 1.0 / (1.0 / k_pusher + 1.0 / (2.0 * k_t)),
-    }
-}
 
 /// Walls: not across a periodic axis, inside the domain, and not meeting
 /// (or crossing the domain) before the end of the run.

@@ -7,10 +7,10 @@ use floe_dem::Vec2;
 
 use crate::checks::OVERLAP_TOLERANCE;
 use crate::error::ScenarioError;
-use crate::land_spec::LandFile;
 use crate::length_limit::MAX_LENGTH_M;
 use crate::numbers::{sig, thousands};
 use crate::piece::Piece;
+use crate::resolve::land::LandFile;
 use crate::resolve::Resolved;
 use crate::source_file::SourceFile;
 

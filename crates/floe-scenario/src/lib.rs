@@ -31,7 +31,6 @@ mod ice_grid;
 pub mod ice_grid_keys;
 pub mod input_paths;
 mod land_build;
-mod land_spec;
 pub mod law_table;
 pub mod law_variants;
 mod length_limit;
@@ -48,6 +47,7 @@ pub mod source_file;
 pub mod spec;
 pub mod start_time;
 pub mod stress_wall;
+mod tessellation;
 
 pub use domain::Domain;
 pub use error::ScenarioError;

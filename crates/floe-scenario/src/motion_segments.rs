@@ -150,3 +150,29 @@ fn travel_bound(
 fn span_of(segments: &[toml::Spanned<RawSegment>], k: usize) -> Range<usize> {
     segments[k].span()
 }
+
+/// A schedule for the build report: its segments' velocities in order.
+pub(crate) fn describe_schedule(s: &MotionSchedule) -> String {
+    let parts: Vec<String> = s
+        .segments()
+        .iter()
+        .map(|g| {
+            let v = |v: Vec2| format!("[{}, {}]", sig(v.x), sig(v.y));
+            if g.velocity_start == g.velocity_end {
+                format!("{} for {} s", v(g.velocity_start), sig(g.duration_s))
+            } else {
+                format!(
+                    "{} to {} over {} s",
+                    v(g.velocity_start),
+                    v(g.velocity_end),
+                    sig(g.duration_s)
+                )
+            }
+        })
+        .collect();
+    format!(
+        "on a schedule of {} segments (m/s): {}, then the last velocity",
+        parts.len(),
+        parts.join(", ")
+    )
+}

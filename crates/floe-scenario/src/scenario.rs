@@ -161,24 +161,20 @@ impl Scenario {
     /// contacts: what a spring-slider of the same test needs).
     pub fn double_shear(&self) -> Option<(f64, checks::DoubleShearGeometry)> {
         let r = &self.resolved;
-        match &r.floes {
-            FloeSource::DoubleShear {
-                block_m,
-                pusher_m,
-                normal_load_per_face_n,
-                ..
-            } => Some((
-                *normal_load_per_face_n,
-                checks::double_shear_geometry(
-                    &r.model,
-                    r.thickness.mean_m(),
-                    *block_m,
-                    *pusher_m,
-                    *normal_load_per_face_n,
-                ),
-            )),
-            _ => None,
-        }
+        let FloeSource::Tessellation(t) = &r.floes else {
+            return None;
+        };
+        let d = t.floes.double_shear()?;
+        Some((
+            d.normal_load_per_face_n,
+            checks::double_shear_geometry(
+                &r.model,
+                r.thickness.mean_m(),
+                d.block_m,
+                d.pusher_m,
+                d.normal_load_per_face_n,
+            ),
+        ))
     }
 
     /// The map projection of `[map]`: the model plane of everything given

@@ -4,6 +4,8 @@
 //! refused everywhere (`deny_unknown_fields`). Every key is documented in
 //! docs/scenarios.md.
 
+use std::ops::Range;
+
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -75,7 +77,8 @@ pub(crate) struct RawDomain {
     pub periodic: Option<Spanned<Exact<bool, 2>>>,
 }
 
-/// `[tessellation]`: which keys apply depends on `kind`.
+/// `[tessellation]`: which keys apply depends on `kind`
+/// ([`crate::tessellation::KINDS`]).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawTessellation {
@@ -105,6 +108,43 @@ pub(crate) struct RawTessellation {
     pub segment: Option<Vec<Spanned<RawSegment>>>,
     /// voronoi: `size_distribution = { kind = "power_law", exponent, min_m, max_m }`.
     pub size_distribution: Option<Spanned<RawSizeDistribution>>,
+}
+
+impl RawTessellation {
+    /// Every key but `kind`, in this struct's order, with its location when
+    /// given: the kinds of [`crate::tessellation`] say which apply.
+    pub fn given(&self) -> [(Option<Range<usize>>, &'static str); 19] {
+        fn at<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
+            v.as_ref().map(|s| s.span())
+        }
+        [
+            (at(&self.min_area_fraction), "min_area_fraction"),
+            (at(&self.side_m), "side_m"),
+            (at(&self.diagonals_m), "diagonals_m"),
+            (at(&self.acute_angle_deg), "acute_angle_deg"),
+            (at(&self.orientation_deg), "orientation_deg"),
+            (at(&self.jitter_fraction), "jitter_fraction"),
+            (at(&self.floe_scale_m), "floe_scale_m"),
+            (at(&self.count), "count"),
+            (at(&self.relax_iterations), "relax_iterations"),
+            (at(&self.columns), "columns"),
+            (at(&self.rows), "rows"),
+            (at(&self.gap_m), "gap_m"),
+            (at(&self.block_m), "block_m"),
+            (at(&self.side_block_m), "side_block_m"),
+            (at(&self.pusher_m), "pusher_m"),
+            (at(&self.normal_load_per_face_n), "normal_load_per_face_n"),
+            (at(&self.push_velocity_m_per_s), "push_velocity_m_per_s"),
+            (
+                self.segment
+                    .as_ref()
+                    .and_then(|s| s.first())
+                    .map(|s| s.span()),
+                "segment",
+            ),
+            (at(&self.size_distribution), "size_distribution"),
+        ]
+    }
 }
 
 /// `size_distribution = { kind = "power_law", exponent, min_m, max_m }`:
