@@ -6,21 +6,11 @@
 //! ocean drag, Coriolis and boundaries. No I/O: the HDF5 writer and the
 //! scenario files live in other crates.
 //!
-//! * [`world`]: the [`World`](world::World): state, stages, edits;
-//! * [`state`]: what a checkpoint holds; [`floes`], [`contacts`],
-//!   [`energy_ledger`]: its parts;
-//! * [`pipeline`]: the stages of a step (broad phase, narrow phase,
-//!   friction, force gathering, integrator, energy accounting);
-//! * [`contact_model`], [`contact_kernel`]: the contact's parameters and
-//!   force formulas; [`forcing`]: wind, ocean, Coriolis;
-//!   [`periodicity`]: periodic axes; [`motion_schedule`]: prescribed
-//!   floes whose velocity follows segments in time; [`load_point`]: free
-//!   floes driven through a spring from a moving point; [`stress_control`]:
-//!   walls that hold a normal stress; [`geometry`], [`tessellation`]: floe
-//!   shapes and how to make a pack of them; [`observables`]: assembly
-//!   diagnostics; [`run`]: the stepping loop with its observer and cadences;
-//!   [`exact_sum`]: sums of `f64` that do not depend on the order of the
-//!   terms nor on how threads or ranks split them.
+//! A step is four calls on a [`World`](world::World) (`drift`,
+//! `detect_contacts`, `gather_forces`, `kick`); the stages, what each reads
+//! and writes, and where to add a law, a forcing or a boundary are in
+//! docs/dem.md ("Architecture"); the files of every crate are mapped once,
+//! in README.md ("Layout").
 #![deny(missing_docs)]
 
 pub mod contact_kernel;
