@@ -22,7 +22,7 @@ use std::path::Path;
 
 use floe_basin::MapProjection;
 use floe_io::RunFile;
-use floe_study::run_file::{run, Quiet, RunArgs};
+use floe_run::run_file::{run, Quiet, RunArgs};
 
 #[path = "study_support/mod.rs"]
 mod study_support;
@@ -626,7 +626,7 @@ fn over_two_processes_a_floe_blown_off_the_grid_ends_the_run_as_in_one() {
     assert_eq!(one.exit_code(), 1, "{one}");
     let codes = ThreadComm::run(2, |comm| {
         let args = run_args(&scenario, &d.join("two.h5"), 1);
-        floe_study::run_parallel::run_parallel(&args, &Quiet, &comm, Settings::default())
+        floe_run::run_parallel::run_parallel(&args, &Quiet, &comm, Settings::default())
             .unwrap_err()
             .exit_code()
     });

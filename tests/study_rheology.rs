@@ -8,9 +8,9 @@
 use std::path::Path;
 
 use floe_friction::LawRegistry;
+use floe_run::run_file::{Provenance, Quiet};
 use floe_scenario::law_variants::{LawChoice, Matching};
 use floe_study::rheology::{rheology, Mode, RheologyArgs};
-use floe_study::run_file::{Provenance, Quiet};
 
 /// The laws `names` (comma-separated), as `--laws` names them.
 fn laws(names: &str) -> Vec<LawChoice> {

@@ -1,9 +1,10 @@
-//! A scenario run quietly into a run file, for the floe-study tests.
+//! A scenario run quietly into a run file, for the floe-run and floe-study
+//! tests.
 #![allow(dead_code)] // each test uses its part
 
 use std::path::{Path, PathBuf};
 
-use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
+use floe_run::run_file::{run, Provenance, Quiet, RunArgs};
 
 /// Arguments of a run of `scenario` into `output` on `threads`, replacing
 /// the output if it is there.
@@ -23,7 +24,7 @@ pub fn run_args(scenario: &Path, output: &Path, threads: usize) -> RunArgs {
 
 /// Runs `text`, written to `dir/name.toml`, into `dir/name.h5` on one
 /// thread: the run file's path, or the error.
-pub fn run_text(dir: &Path, name: &str, text: &str) -> Result<PathBuf, floe_study::Error> {
+pub fn run_text(dir: &Path, name: &str, text: &str) -> Result<PathBuf, floe_run::Error> {
     let scenario = dir.join(format!("{name}.toml"));
     std::fs::write(&scenario, text).unwrap();
     let out = dir.join(format!("{name}.h5"));

@@ -21,8 +21,8 @@ use std::path::{Path, PathBuf};
 use floe_analysis::jam::{jam_state, JamRule, JamState};
 use floe_analysis::stress::channel_stress;
 use floe_io::RunFile;
+use floe_run::Error;
 use floe_study::plot::{grid, Axes, Line};
-use floe_study::Error;
 
 /// Free drift without Coriolis, default drag: sqrt(rho_a C_a / (rho_w C_w)).
 const FREE_DRIFT_FRACTION: f64 = 0.015_967;
@@ -158,7 +158,8 @@ fn measure(
     let state_speed =
         (law == "rate-state").then(|| V_STAR * (-median(contacts.theta.clone()) / B).exp());
     let reference = FREE_DRIFT_FRACTION * 0.5 * top_wind;
-    let jam = jam_state(&time, &kinetic, &friction, drift_speed, reference, &rule)?;
+    let jam = jam_state(&time, &kinetic, &friction, drift_speed, reference, &rule)
+        .map_err(Error::analysis)?;
     Ok(Row {
         seed: 0,
         law,

@@ -16,13 +16,13 @@ use std::path::{Path, PathBuf};
 
 use floe_analysis::stress::restart_response;
 use floe_analysis::time_mean::time_mean;
+use floe_run::run_file::{Provenance, RunHooks};
+use floe_run::Error as CliError;
 use floe_scenario::law_variants::{LawChoice, Matching};
 use floe_scenario::settings::{apply, find_table, parse_setting};
 use floe_study::compare::metrics::{measure, MetricOptions};
 use floe_study::compare::{compare, CompareArgs};
 use floe_study::plot::{grid, Axes, Line};
-use floe_study::run_file::{Provenance, RunHooks};
-use floe_study::Error as CliError;
 
 /// The wind blows for this long before the calm, s.
 const BLOW_S: f64 = 10800.0;
@@ -133,7 +133,8 @@ fn study() -> Result<(), CliError> {
                 BLOW_S,
                 restart,
                 WINDOW_S,
-            )?;
+            )
+            .map_err(CliError::analysis)?;
             // Mean |stress| over time in the last half of the calm (before the ramp up).
             let magnitude: Vec<f64> = m.shear_stress_n_per_m.iter().map(|s| s.abs()).collect();
             let calm_mean =

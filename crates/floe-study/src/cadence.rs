@@ -3,7 +3,7 @@
 //! (`floe grid --every K`, `--interval-s T`), so that such an output has a
 //! cadence of its own.
 
-use crate::error::Error;
+use floe_run::Error;
 
 /// A cadence over a run's snapshots.
 #[derive(Debug, Clone, Copy, PartialEq)]

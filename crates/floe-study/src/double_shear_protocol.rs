@@ -11,7 +11,7 @@ use floe_friction::protocol::{Protocol, Segment};
 use floe_friction::spring_slider::{Apparatus, SpringSlider};
 use floe_scenario::Scenario;
 
-use crate::error::Error;
+use floe_run::Error;
 
 /// Time step of the spring-slider, s (the paper's).
 pub const SLIDER_DT_S: f64 = 1e-3;

@@ -19,9 +19,9 @@ use floe_io::RunFile;
 use netcdf::{FileMut, Options};
 
 use crate::cadence::Cadence;
-use crate::error::Error;
 use crate::partial_file::PartialFile;
-use crate::same_file::refuse_overwriting_input;
+use floe_run::same_file::refuse_overwriting_input;
+use floe_run::Error;
 
 /// What `floe grid` was asked to do.
 #[derive(Debug, Clone)]
@@ -351,7 +351,8 @@ fn snapshot_fields(
             thickness_m: &thickness,
             stress_moment_n_m: Some(&moments),
         },
-    )?;
+    )
+    .map_err(Error::analysis)?;
     let component = |k: usize| {
         fields
             .stress_n_per_m

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::error::Error;
+use floe_run::Error;
 
 /// A file being written as `TARGET.partial`, renamed to `TARGET` by
 /// [`PartialFile::commit`]; dropped without a commit, it is removed.

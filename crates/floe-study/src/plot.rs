@@ -10,8 +10,8 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
-use crate::error::Error;
 use crate::ticks::Ticks;
+use floe_run::Error;
 
 /// One named line on a chart.
 #[derive(Debug, Clone)]

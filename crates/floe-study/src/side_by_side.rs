@@ -7,10 +7,10 @@ use std::sync::Mutex;
 
 use floe_dem::run::{Progress, Silent};
 
-use crate::error::Error;
 use floe_friction::LawRegistry;
+use floe_run::Error;
 
-use crate::run_file::{run, Provenance, RunArgs, RunHooks};
+use floe_run::run_file::{run, Provenance, RunArgs, RunHooks};
 
 /// The caller's hooks without progress reports: runs go side by side.
 struct WithoutProgress<'a>(&'a dyn RunHooks);

@@ -13,15 +13,15 @@ use std::path::{Path, PathBuf};
 use floe_io::RunFile;
 
 use crate::compare::metrics::{measure, MetricOptions, RunMetrics};
-use crate::error::Error;
-use crate::same_file::refuse_overwriting_input;
 use floe_friction::LawRegistry;
+use floe_run::same_file::refuse_overwriting_input;
+use floe_run::Error;
 use floe_scenario::numbers::sig;
 use floe_scenario::settings::{apply, cartesian, label, Setting};
 use floe_scenario::Scenario;
 
-use crate::run_file::{thread_count, Provenance, RunHooks};
 use crate::side_by_side::{run_side_by_side, Batch};
+use floe_run::run_file::{thread_count, Provenance, RunHooks};
 
 /// What `floe sweep` was asked to do.
 #[derive(Debug, Clone)]
@@ -62,7 +62,7 @@ pub fn sweep(args: &SweepArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     }
     floe_scenario::settings::check_distinct(&args.settings)?;
     let budget = thread_count(args.threads)?;
-    let text = crate::run_file::read_anchored(&args.scenario)?;
+    let text = floe_run::run_file::read_anchored(&args.scenario)?;
     Scenario::from_text_with(&text, &args.scenario, &args.laws)?;
     let combos = cartesian(&args.settings);
     // Every variant is made and built (floes, time step, step limit)

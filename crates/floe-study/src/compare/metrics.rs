@@ -14,7 +14,7 @@ use floe_analysis::stress::{channel_stress, peak_to_steady, PeakToSteady};
 use floe_analysis::time_mean::{time_mean, time_weights};
 use floe_io::RunFile;
 
-use crate::error::Error;
+use floe_run::Error;
 
 /// Choices that shape the metrics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -124,10 +124,12 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
     let late_from = times.partition_point(|&t| t < last - options.late_fraction * (last - first));
     let late_weights = time_weights(&times[late_from..]);
     let (mut y, mut u, mut w) = (Vec::new(), Vec::new(), Vec::new());
-    let mut detector = SlipEventDetector::new(options.slip)?;
+    let mut detector = SlipEventDetector::new(options.slip).map_err(Error::analysis)?;
     for k in 0..snapshots {
         let contacts = run.contacts(k)?;
-        detector.push(contacts.time_s, &contacts.pair, &contacts.slip_rate_m_per_s)?;
+        detector
+            .push(contacts.time_s, &contacts.pair, &contacts.slip_rate_m_per_s)
+            .map_err(Error::analysis)?;
         if k >= late_from {
             let snap = run.snapshot(k)?;
             for i in 0..floes.id.len() {
@@ -150,7 +152,8 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
     } else {
         hi
     };
-    let profile = velocity_profile(&y, &u, &w, lo, hi, options.profile_bins)?;
+    let profile =
+        velocity_profile(&y, &u, &w, lo, hi, options.profile_bins).map_err(Error::analysis)?;
     let band = shear_band(&profile).ok();
     let magnitude: Vec<f64> = shear.iter().map(|s: &f64| s.abs()).collect();
     let peak_to_steady = peak_to_steady(&time_s, &magnitude, options.steady_fraction).ok();

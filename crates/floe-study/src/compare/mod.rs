@@ -10,10 +10,10 @@ use std::path::PathBuf;
 use floe_friction::{FrictionLaw, LawRegistry};
 use floe_scenario::law_variants::{reference_law, variant, LawChoice, Matching};
 
-use crate::error::Error;
 use crate::render::{render, ColourBy, Snapshots};
-use crate::run_file::{run, thread_count, Provenance, RunArgs, RunHooks};
-use crate::same_file::refuse_overwriting_input;
+use floe_run::run_file::{run, thread_count, Provenance, RunArgs, RunHooks};
+use floe_run::same_file::refuse_overwriting_input;
+use floe_run::Error;
 use floe_scenario::numbers::{short, sig};
 use floe_scenario::Scenario;
 use metrics::{measure, MetricOptions};
@@ -69,7 +69,7 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
             "--amontons-mu applies to the amontons law, which --laws does not include".into(),
         ));
     }
-    let text = crate::run_file::read_anchored(&args.scenario)?;
+    let text = floe_run::run_file::read_anchored(&args.scenario)?;
     let origin = args.scenario.as_path();
     // Checks and builds the user's file as written first, so its errors
     // (time step, step limit, floes) point into it; only friction differs

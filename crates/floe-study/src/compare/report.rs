@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use floe_analysis::slip_events::log_histogram;
 
 use super::metrics::RunMetrics;
-use crate::error::Error;
 use crate::plot::{grid, Axes, Line};
+use floe_run::Error;
 use floe_scenario::numbers::sig;
 
 /// One variant of the comparison: its label, what was changed, its metrics.

@@ -11,8 +11,8 @@ use super::colour::ColourScale;
 use super::floe_map::FloeMap;
 use super::per_floe::{self, ContactView};
 use super::{select, ColourBy, Snapshots};
-use crate::error::Error;
 use floe_dem::run::format_sim_time;
+use floe_run::Error;
 
 /// Most values the colour scale is fitted to: past this, an even sample
 /// of each frame's floes (the scale is a pair of percentiles).

@@ -7,8 +7,8 @@ use plotters::prelude::*;
 
 use super::colour::ColourScale;
 use super::colour_bar::{self, ColourBarLayout};
-use crate::error::Error;
 use crate::plot::{register_font, right_margin, y_label_area, TickAxis};
+use floe_run::Error;
 
 /// Grey of floes that have no value (no contacts) and of walls.
 const NO_VALUE: RGBColor = RGBColor(200, 200, 200);

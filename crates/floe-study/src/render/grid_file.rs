@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 
 use floe_io::RunFile;
 
-use crate::error::Error;
 use crate::grid_output::{FIELDS, FILL_VALUE};
+use floe_run::Error;
 
 /// Whether `file` is gridded fields rather than a run: a NetCDF-3 file
 /// (the signature `CDF`, as floe wrote them before NetCDF-4), or an HDF5

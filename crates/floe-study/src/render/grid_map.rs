@@ -9,9 +9,9 @@ use super::floe_map::{self, FloeMap};
 use super::grid_file::GridFile;
 use super::movie::{self, Movie, MovieArgs, MovieWritten};
 use super::{select, Snapshots};
-use crate::error::Error;
 use crate::grid_output::FIELDS;
 use floe_dem::run::format_sim_time;
+use floe_run::Error;
 
 pub use super::grid_file::is_grid_file;
 

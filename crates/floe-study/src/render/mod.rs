@@ -18,8 +18,8 @@ pub mod per_floe;
 
 use std::path::{Path, PathBuf};
 
-use crate::error::Error;
 use floe_frames::FloeFrames;
+use floe_run::Error;
 use movie::{Movie, MovieArgs, MovieWritten};
 
 /// Which snapshots to draw.

@@ -7,9 +7,9 @@ use std::path::{Path, PathBuf};
 
 use super::movie_ffmpeg::FfmpegSink;
 use super::movie_gif::GifSink;
-use crate::error::Error;
 use crate::partial_file::PartialFile;
-use crate::same_file::refuse_overwriting_input;
+use floe_run::same_file::refuse_overwriting_input;
+use floe_run::Error;
 
 /// What `--movie` asks for.
 #[derive(Debug, Clone)]

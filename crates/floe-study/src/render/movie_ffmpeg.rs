@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::thread::JoinHandle;
 
-use crate::error::Error;
+use floe_run::Error;
 
 /// x264's constant quality (lower: better; 23 is its default): maps have
 /// sharp edges and small text.

@@ -6,7 +6,7 @@ use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
 use super::palette::quantise;
-use crate::error::Error;
+use floe_run::Error;
 
 /// An animated GIF being written.
 pub(crate) struct GifSink {

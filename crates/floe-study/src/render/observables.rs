@@ -5,8 +5,8 @@ use std::path::Path;
 
 use floe_io::{IoError, RunFile, Series};
 
-use crate::error::Error;
 use crate::plot::{grid, Axes, Line};
+use floe_run::Error;
 
 /// Time series of the observables: energies, work and dissipation, mean
 /// stress, contacts, friction.

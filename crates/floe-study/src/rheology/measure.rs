@@ -10,7 +10,7 @@ use floe_analysis::rheology::{
 use floe_analysis::AnalysisError;
 use floe_io::{RunFile, Series};
 
-use crate::error::Error;
+use floe_run::Error;
 
 /// The cell's samples at every snapshot after the first (which has no
 /// contacts yet), with their times; `None` where the free floes touched
@@ -51,7 +51,7 @@ pub fn cell_samples(path: &Path) -> Result<Vec<(f64, Option<CellSample>)>, Error
         let sample = match cell_sample(&cell) {
             Ok(sample) => Some(sample),
             Err(AnalysisError::NotEnoughData(NOT_TOUCHING)) => None,
-            Err(e) => return Err(e.into()),
+            Err(e) => return Err(Error::analysis(e)),
         };
         out.push((snap.time_s, sample));
     }

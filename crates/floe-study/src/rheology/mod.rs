@@ -19,10 +19,10 @@ use crate::compare::reference_of;
 use floe_scenario::settings::{apply, find_table, Setting};
 use floe_scenario::Scenario;
 
-use crate::error::Error;
-use crate::run_file::{thread_count, Provenance, RunHooks};
-use crate::same_file::refuse_overwriting_input;
 use crate::side_by_side::{run_side_by_side, Batch};
+use floe_run::run_file::{thread_count, Provenance, RunHooks};
+use floe_run::same_file::refuse_overwriting_input;
+use floe_run::Error;
 use measure::{cell_samples, steady, SteadyCell};
 
 /// What `floe rheology` was asked to do.
@@ -87,7 +87,7 @@ pub struct CellRun {
 pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
     let budget = thread_count(args.threads)?;
     check_args(args)?;
-    let text = crate::run_file::read_anchored(&args.scenario)?;
+    let text = floe_run::run_file::read_anchored(&args.scenario)?;
     let origin = args.scenario.as_path();
     let scenario = Scenario::from_text_with(&text, origin, &args.registry)?;
     let domain = scenario.domain();

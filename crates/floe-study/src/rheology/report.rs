@@ -6,8 +6,8 @@ use std::path::Path;
 use floe_analysis::rheology::MuOfI;
 
 use super::{CellRun, RheologyArgs};
-use crate::error::Error;
 use crate::plot::{panels, Axes, Line};
+use floe_run::Error;
 use floe_scenario::numbers::{parameter, sig, significant};
 
 /// Writes the three files into `dir`.

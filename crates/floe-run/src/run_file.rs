@@ -501,7 +501,7 @@ fn check_inputs_unchanged(
 
 /// The scenario file at `path`, with its relative input files (`file`
 /// keys) made absolute so that variants written elsewhere still find them.
-pub(crate) fn read_anchored(path: &Path) -> Result<String, Error> {
+pub fn read_anchored(path: &Path) -> Result<String, Error> {
     let text = floe_scenario::SourceFile::read(path)?.text;
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
@@ -510,7 +510,9 @@ pub(crate) fn read_anchored(path: &Path) -> Result<String, Error> {
     Ok(floe_scenario::input_paths::anchor_input_paths(&text, dir))
 }
 
-pub(crate) fn thread_count(requested: Option<usize>) -> Result<usize, Error> {
+/// The worker threads a run gets: `requested` (1 to
+/// [`floe_scenario::resolve::MAX_THREADS`]), else all cores.
+pub fn thread_count(requested: Option<usize>) -> Result<usize, Error> {
     let most = floe_scenario::resolve::MAX_THREADS as usize;
     match requested {
         Some(0) => Err(Error::Usage("--threads must be at least 1".into())),

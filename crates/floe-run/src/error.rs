@@ -60,9 +60,11 @@ pub enum Error {
     /// Writing or reading a run's HDF5 file failed.
     #[error("{0}")]
     Output(#[from] floe_io::IoError),
-    /// A metric could not be computed from a run's output.
+    /// A metric could not be computed from a run's output: floe-analysis's
+    /// error, boxed so that running does not depend on the analysis crate
+    /// (made by [`Error::analysis`]).
     #[error("{0}")]
-    Analysis(#[from] floe_analysis::AnalysisError),
+    Analysis(#[source] Box<dyn std::error::Error + Send + Sync>),
     /// A distributed run could not be spread over its processes.
     #[error("{0}")]
     Parallel(#[from] floe_parallel::ParallelError),
@@ -153,6 +155,11 @@ impl Error {
             ) => 2,
             _ => 1,
         }
+    }
+
+    /// An [`Error::Analysis`] carrying `e` (floe-analysis's error) as it is.
+    pub fn analysis(e: impl std::error::Error + Send + Sync + 'static) -> Self {
+        Error::Analysis(Box::new(e))
     }
 
     /// An [`Error::Io`] for `path`.

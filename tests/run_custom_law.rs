@@ -10,7 +10,7 @@ mod custom_law;
 
 use floe_friction::LawRegistry;
 use floe_io::RunFile;
-use floe_study::run_file::{run, Provenance, Quiet, RunArgs};
+use floe_run::run_file::{run, Provenance, Quiet, RunArgs};
 
 fn args(
     scenario: Option<std::path::PathBuf>,
