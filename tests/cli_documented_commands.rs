@@ -12,6 +12,7 @@ use std::process::Command;
 
 use clap::Parser;
 use floe_cli::cli::{self, Cli};
+use floe_cli::commands::run::run_output;
 use run_support::{code, run_suggestion, suggested_command, text, Case};
 
 /// The documents whose commands are checked.
@@ -276,9 +277,9 @@ fn every_documented_command_is_accepted_as_written() {
             Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelp => continue,
             Err(e) => panic!("{origin}: `{}` is refused:\n{e}", args.join(" ")),
         };
-        if let cli::Command::Run { output, resume, .. } = cli.command {
+        if let cli::Command::Run(run) = cli.command {
             runs += 1;
-            if let Err(e) = cli::run_output(output, resume) {
+            if let Err(e) = run_output(run.output, run.resume) {
                 panic!("{origin}: `{}` is refused: {e}", args.join(" "));
             }
         }

@@ -1,13 +1,27 @@
 //! `floe info`: what a run's output file holds.
 
 use std::fmt::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use floe_io::RunFile;
 use floe_scenario::numbers::{parameter, significant};
 
 use crate::CliError;
 use floe_dem::run::format_sim_time;
+
+/// Describe a run's output file: scenario, snapshots, floes, contacts, observables.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// The run's HDF5 file.
+    pub file: PathBuf,
+}
+
+impl Args {
+    /// The description to print.
+    pub fn run(self) -> Result<String, CliError> {
+        describe(&self.file)
+    }
+}
 
 /// A human-readable description of the run in `file`.
 pub fn describe(file: &Path) -> Result<String, CliError> {

@@ -12,7 +12,7 @@ use floe_friction::spring_slider::{Apparatus, OutputThinning, Sample, SpringSlid
 use floe_friction::{Form, FrictionLaw, Law, LawRegistry, RateDependent, RateState, StateLaw};
 use serde::Serialize;
 
-use crate::series_csv::{read_fit_data, write_series};
+use super::series_csv::{read_fit_data, write_series};
 use crate::CliError;
 use floe_scenario::protocol_file::{self, SliderSetup};
 use floe_study::plot::friction_figure;

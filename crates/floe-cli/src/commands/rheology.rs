@@ -1,0 +1,92 @@
+//! `floe rheology`: mu(I) of a sheared constant-pressure cell.
+
+use std::path::PathBuf;
+
+use floe_friction::LawRegistry;
+use floe_study::rheology::{self, RheologyArgs};
+
+use super::options::{parse_laws, MatchingArgs, StepLimit, Workers};
+use crate::hooks::{provenance, TerminalHooks};
+use crate::CliError;
+
+/// Shear a constant-pressure cell at several wall speeds under several
+/// laws; report mu = tau/P and the solid fraction against the inertial
+/// number, with a fit of mu(I).
+#[derive(Debug, clap::Args)]
+#[command(
+    mut_arg("threads", |a| a.help("Total thread budget; runs go side by side, one thread each")),
+    mut_arg("step_limit", |a| a.help("Most time steps each run may take (default 1e9)")),
+)]
+pub struct Args {
+    /// Shear-cell scenario (periodic along x; bottom wall; top wall
+    /// holding normal_stress_n_per_m), e.g. scenarios/shear_cell.toml.
+    pub scenario: PathBuf,
+    /// Laws, comma-separated.
+    #[arg(long, default_value = "amontons,rate-state")]
+    pub laws: String,
+    /// The top wall's speeds along x, m/s, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "0.005,0.02,0.1,0.5,2")]
+    pub speeds: Vec<f64>,
+    /// Shear strain of each run (its duration is strain x domain height / speed).
+    #[arg(long, default_value_t = 6.0)]
+    pub strain: f64,
+    /// Snapshots per run (the samples measured).
+    #[arg(long, default_value_t = 300)]
+    pub snapshots: usize,
+    /// Fraction of each run left out of the means (start-up).
+    #[arg(long, default_value_t = 1.0 / 3.0)]
+    pub transient: f64,
+    /// Output directory: LAW_vSPEED.{toml,h5}, results.csv, report.md, rheology.png.
+    #[arg(long, short)]
+    pub output: PathBuf,
+    /// Amontons' mu.
+    #[command(flatten)]
+    pub matching: MatchingArgs,
+    /// Threads and --force.
+    #[command(flatten)]
+    pub workers: Workers,
+    /// Only write the runs' scenario files (LAW_vSPEED.toml), for a job array.
+    #[arg(long)]
+    pub emit: bool,
+    /// Only measure the runs already in the output directory (same flags as the run).
+    #[arg(long, conflicts_with = "emit")]
+    pub gather: bool,
+    /// Most time steps each run may take.
+    #[command(flatten)]
+    pub step_limit: StepLimit,
+}
+
+impl Args {
+    /// Runs, emits or gathers the shear runs; returns what was written.
+    pub fn run(self) -> Result<String, CliError> {
+        let mode = match (self.emit, self.gather) {
+            (true, _) => rheology::Mode::Emit,
+            (_, true) => rheology::Mode::Gather,
+            _ => rheology::Mode::Run,
+        };
+        let args = RheologyArgs {
+            scenario: self.scenario,
+            laws: parse_laws(&self.laws)?,
+            speeds_m_per_s: self.speeds,
+            strain: self.strain,
+            snapshots: self.snapshots,
+            transient_fraction: self.transient,
+            out_dir: self.output,
+            threads: self.workers.threads,
+            force: self.workers.force,
+            mode,
+            matching: self.matching.matching(),
+            provenance: provenance(),
+            registry: LawRegistry::builtin(),
+            step_limit: self.step_limit.step_limit,
+        };
+        let path = rheology::rheology(&args, &TerminalHooks { progress: false })?;
+        Ok(match mode {
+            rheology::Mode::Emit => format!(
+                "scenario files written to {}; run each LAW_vSPEED.toml with `floe run ... -o LAW_vSPEED.h5`, then the same command with --gather",
+                path.display()
+            ),
+            _ => format!("report: {}", path.display()),
+        })
+    }
+}
