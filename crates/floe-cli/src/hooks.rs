@@ -5,7 +5,7 @@
 use std::sync::atomic::AtomicBool;
 
 use floe_dem::run::Progress;
-use floe_study::run_file::{Provenance, RunHooks};
+use floe_run::run_file::{Provenance, RunHooks};
 
 use crate::interrupt;
 use crate::progress_bar::RunProgress;

@@ -15,4 +15,4 @@ pub mod stderr;
 
 /// Every failure of the command line: the libraries' errors, one message
 /// and an exit code each.
-pub type CliError = floe_study::Error;
+pub type CliError = floe_run::Error;

@@ -20,5 +20,5 @@ mod side_by_side;
 pub mod sweep;
 pub mod ticks;
 
-/// `floe-run`'s modules and error type: studies run files and report its [`Error`].
-pub use floe_run::{run_file, run_parallel, same_file, Error};
+/// The error type of runs, which studies report too (`floe-run`).
+pub use floe_run::Error;

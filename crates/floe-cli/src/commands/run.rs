@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use floe_friction::LawRegistry;
 use floe_parallel::Settings;
-use floe_study::run_file::{self, RunArgs};
+use floe_run::run_file::{self, RunArgs};
 
 use super::options::{StepLimit, Workers};
 use super::values::{positive_fraction, whole_steps};
@@ -65,13 +65,13 @@ pub fn run_output(
         (Some(o), None) => Ok((o, false)),
         (Some(o), Some(None)) | (None, Some(Some(o))) => Ok((o, true)),
         (Some(o), Some(Some(r))) if o == r => Ok((o, true)),
-        (Some(o), Some(Some(r))) => Err(floe_study::Error::Usage(format!(
+        (Some(o), Some(Some(r))) => Err(floe_run::Error::Usage(format!(
             "--resume {} and --output {} name two files; give the run file once: `floe run --resume {}`",
             r.display(),
             o.display(),
             r.display()
         ))),
-        (None, None | Some(None)) => Err(floe_study::Error::Usage(
+        (None, None | Some(None)) => Err(floe_run::Error::Usage(
             "--resume needs the run file: `floe run --resume OUT.h5`".into(),
         )),
     }
@@ -106,8 +106,7 @@ impl Args {
         if let Some(mpi) = &mpi {
             let comm = mpi.world();
             if floe_parallel::Communicator::size(&comm) > 1 {
-                let summary =
-                    floe_study::run_parallel::run_parallel(&args, &hooks, &comm, settings)?;
+                let summary = floe_run::run_parallel::run_parallel(&args, &hooks, &comm, settings)?;
                 return Ok(if floe_parallel::Communicator::rank(&comm) == 0 {
                     summary.describe(&args.output)
                 } else {

@@ -281,7 +281,7 @@ pub fn run(
 ) -> Result<RunSummary, CliError> {
     let setup = protocol_file::load_with(protocol_path, &LawRegistry::builtin(), step_limit)?;
     let outputs: Vec<PathBuf> = RUN_FILES.iter().map(|f| out.join(f)).collect();
-    floe_study::same_file::refuse_overwriting_input(
+    floe_run::same_file::refuse_overwriting_input(
         protocol_path,
         "protocol file",
         outputs.iter().map(PathBuf::as_path),
