@@ -2,33 +2,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::any_law::Law;
+use crate::law::NumberStyle;
 use crate::law::{released, sign, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
-use crate::rate_state::RateState;
-use crate::reference_match::{DerivedMatch, NumberStyle, ReferenceMatch};
-use crate::registry::LawEntry;
-
-/// The law's registry entry. In a comparison its `mu` is the reference's
-/// steady state at the reference slip speed.
-pub const ENTRY: LawEntry = LawEntry {
-    name: "amontons",
-    summary: "constant friction coefficient (Coulomb on a tangential spring)",
-    params: PARAMS,
-    build: |p| Ok(Law::Amontons(Amontons::from_params(p))),
-    reference_match: ReferenceMatch::Derived(DerivedMatch {
-        params: |reference, v| vec![("mu", reference.mu_steady(v))],
-        note: note_on_match,
-    }),
-};
-
-fn note_on_match(reference: &RateState, v: f64, style: &NumberStyle) -> String {
-    format!(
-        "Amontons: mu = {}, the rate-and-state steady state at the reference slip speed {} m/s (`--reference-slip-speed`).",
-        (style.parameter)(reference.mu_steady(v)),
-        (style.parameter)(v)
-    )
-}
 
 /// The law's parameters, as the registry publishes them.
 pub const PARAMS: &[ParamSpec] = &[ParamSpec {

@@ -7,10 +7,9 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::amontons::Amontons;
-use crate::law::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
+use crate::law::{BatchItem, ContactLoad, ContactState, FrictionLaw, NumberStyle, StepOutcome};
 use crate::rate_dependent::RateDependent;
 use crate::rate_state::RateState;
-use crate::reference_match::NumberStyle;
 
 /// A friction law defined outside this crate, behind [`Law::Custom`]:
 /// any [`FrictionLaw`] that can be shared between threads, with a name for

@@ -9,8 +9,6 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::reference_match::NumberStyle;
-
 /// Slots of law state a [`ContactState`] holds. A law uses the first
 /// [`FrictionLaw::state_slots`] of them (LAMMPS's `size_history`); run
 /// files and checkpoints store that many per contact, length-prefixed, so a
@@ -152,4 +150,14 @@ pub(crate) fn sign(x: f64) -> f64 {
     } else {
         0.0
     }
+}
+
+/// How numbers are written in text a law writes about itself (the caller's
+/// choice: floe-scenario's `numbers`).
+#[derive(Debug, Clone, Copy)]
+pub struct NumberStyle {
+    /// A parameter (floe's reports: six significant digits).
+    pub parameter: fn(f64) -> String,
+    /// A derived or measured value (floe's reports: four significant digits).
+    pub measured: fn(f64) -> String,
 }

@@ -22,9 +22,11 @@
 
 pub mod amontons;
 pub mod any_law;
+mod builtin_entries;
 pub mod error;
 pub mod fit;
 pub mod law;
+pub mod law_entry;
 pub mod law_table;
 pub mod params;
 pub mod rate_dependent;
@@ -38,12 +40,14 @@ pub mod state_evolution;
 pub use amontons::Amontons;
 pub use any_law::{CustomLaw, Law};
 pub use error::FrictionError;
-pub use law::{BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome, LAW_STATE_SLOTS};
+pub use law::{
+    BatchItem, ContactLoad, ContactState, FrictionLaw, NumberStyle, StepOutcome, LAW_STATE_SLOTS,
+};
 pub use law_table::{LawContext, LawParams, ParamDefault, ParamKind, ParamSpec, ParamValue};
 pub use params::RateStateParams;
 pub use rate_dependent::RateDependent;
 pub use rate_state::{Form, RateState};
-pub use reference_match::{DerivedMatch, NumberStyle, ReferenceMatch};
+pub use reference_match::{DerivedMatch, ReferenceMatch};
 pub use registry::{LawEntry, LawParamError, LawRegistry};
 pub use state_evolution::StateLaw;
 pub mod experiments;

@@ -2,50 +2,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::any_law::Law;
+use crate::law::NumberStyle;
 use crate::law::{
     released, sign, ContactLoad, ContactState, FrictionLaw, StepOutcome, LAW_STATE_SLOTS,
 };
 use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
 use crate::params::{LISHMAN_A, LISHMAN_B, LISHMAN_MU0, LISHMAN_V_STAR_M_PER_S};
-use crate::rate_state::{RateState, SOLVER_GUESS};
-use crate::reference_match::{DerivedMatch, NumberStyle, ReferenceMatch};
-use crate::registry::LawEntry;
-
-/// The law's registry entry. In a comparison it takes the reference's
-/// `mu0` and `V*` with `C1 = A - B`: the same steady state as the
-/// published form, without memory.
-pub const ENTRY: LawEntry = LawEntry {
-    name: "rate",
-    summary: "rate-dependent friction, eq. 2: mu = mu0 + c1 ln(V/V*)",
-    params: PARAMS,
-    build: |p| Ok(Law::RateDependent(RateDependent::from_params(p))),
-    reference_match: ReferenceMatch::Derived(DerivedMatch {
-        params: |reference, _| {
-            let p = reference.params;
-            vec![
-                ("mu0", p.mu0),
-                ("c1", p.a - p.b),
-                ("v_star_m_per_s", p.v_star_m_per_s),
-            ]
-        },
-        note: note_on_match,
-    }),
-};
-
-fn note_on_match(reference: &RateState, v: f64, style: &NumberStyle) -> String {
-    let p = reference.params;
-    format!(
-        "Rate law: the rate-and-state mu0 = {} and V* = {} m/s, with C1 = A - B = {}: the steady state of the published form, without memory. At the reference slip speed {} m/s it gives mu = {}; the rate-and-state law used here ({:?} form) gives {} in steady state.",
-        (style.parameter)(p.mu0),
-        (style.parameter)(p.v_star_m_per_s),
-        (style.parameter)(p.a - p.b),
-        (style.parameter)(v),
-        (style.measured)(p.mu_steady_published(v)),
-        reference.form,
-        (style.measured)(reference.mu_steady(v))
-    )
-}
+use crate::rate_state::SOLVER_GUESS;
 
 /// The law's parameters, as the registry publishes them (defaults:
 /// Lishman et al. 2011).

@@ -25,26 +25,15 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::any_law::Law;
+use crate::law::NumberStyle;
 use crate::law::{sign, BatchItem, ContactLoad, ContactState, FrictionLaw, StepOutcome};
 use crate::law_table::{LawParams, ParamDefault, ParamKind, ParamSpec};
 pub use crate::params::Form;
 use crate::params::{
     Preset, RateStateParams, LISHMAN_A, LISHMAN_B, LISHMAN_MU0, LISHMAN_V_STAR_M_PER_S,
 };
-use crate::reference_match::{NumberStyle, ReferenceMatch};
-use crate::registry::LawEntry;
 use crate::root::{solve, Eval, Root, Solver};
 use crate::state_evolution::{evolve, Evolved, SlipMeasure, StateLaw};
-
-/// The law's registry entry; in a comparison it is the reference.
-pub const ENTRY: LawEntry = LawEntry {
-    name: "rate-state",
-    summary: "rate-and-state friction, eqs. 3a/3b",
-    params: PARAMS,
-    build: |p| Ok(Law::RateState(RateState::from_params(p))),
-    reference_match: ReferenceMatch::Reference,
-};
 
 /// The law's parameters, as the registry publishes them (defaults:
 /// Lishman et al. 2011, Table 2; `L` at the preset's scale).

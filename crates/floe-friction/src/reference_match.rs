@@ -2,17 +2,8 @@
 //! rate-and-state reference: each registry entry says how its parameters
 //! follow from the reference ([`crate::LawEntry::reference_match`]).
 
+pub use crate::law::NumberStyle;
 use crate::rate_state::RateState;
-
-/// How numbers are written in text a law writes about itself (the caller's
-/// choice: floe-scenario's `numbers`).
-#[derive(Debug, Clone, Copy)]
-pub struct NumberStyle {
-    /// A parameter (floe's reports: six significant digits).
-    pub parameter: fn(f64) -> String,
-    /// A derived or measured value (floe's reports: four significant digits).
-    pub measured: fn(f64) -> String,
-}
 
 /// How a law is matched to the rate-and-state reference of a comparison.
 #[derive(Debug, Clone, Copy)]

@@ -5,31 +5,13 @@
 //! `any_law.rs`; a law outside this crate is a [`LawRegistry::register`]
 //! call (see the `custom_law` example of `floe-scenario`).
 
-use crate::amontons;
 use crate::any_law::Law;
+use crate::builtin_entries;
 use crate::error::FrictionError;
 use crate::law::{FrictionLaw, LAW_STATE_SLOTS};
-use crate::law_table::{LawContext, LawParams, ParamDefault, ParamKind, ParamSpec, ParamValue};
-use crate::rate_dependent;
-use crate::rate_state;
+pub use crate::law_entry::LawEntry;
+use crate::law_table::{LawContext, LawParams, ParamDefault, ParamKind, ParamValue};
 use crate::reference_match::ReferenceMatch;
-
-/// A law as the registry knows it: its name, its parameter table and how
-/// to build it.
-#[derive(Debug, Clone, Copy)]
-pub struct LawEntry {
-    /// The name files and the command line choose it by (`rate-state`).
-    pub name: &'static str,
-    /// One line on what the law is.
-    pub summary: &'static str,
-    /// Its parameters.
-    pub params: &'static [ParamSpec],
-    /// The law from checked parameters; an error names what is wrong
-    /// beyond single values (none of the built-in laws has such checks).
-    pub build: fn(&LawParams) -> Result<Law, String>,
-    /// How a comparison matches the law to its rate-and-state reference.
-    pub reference_match: ReferenceMatch,
-}
 
 /// The laws files can name.
 #[derive(Debug, Clone)]
@@ -53,7 +35,11 @@ impl LawRegistry {
     /// The laws of this crate: Amontons, rate-dependent, rate-and-state.
     pub fn builtin() -> Self {
         LawRegistry {
-            entries: vec![amontons::ENTRY, rate_dependent::ENTRY, rate_state::ENTRY],
+            entries: vec![
+                builtin_entries::AMONTONS,
+                builtin_entries::RATE_DEPENDENT,
+                builtin_entries::RATE_STATE,
+            ],
         }
     }
 
