@@ -24,8 +24,23 @@ fn main() {
         let r0 = w.broad_phase().rebuilds;
         let t = std::time::Instant::now();
         let steps: usize = arg(4, 20);
+        // The step's four stages called one by one (as `World::step` does),
+        // each timed: wall seconds in drift, contacts, forces, kick.
+        let mut stage_s = [0.0; 4];
         for _ in 0..steps {
-            w.step();
+            let mut lap = std::time::Instant::now();
+            let mut mark = |k: usize| {
+                stage_s[k] += lap.elapsed().as_secs_f64();
+                lap = std::time::Instant::now();
+            };
+            w.drift();
+            mark(0);
+            w.detect_contacts();
+            mark(1);
+            w.gather_forces();
+            mark(2);
+            w.kick();
+            mark(3);
         }
         let per_step = t.elapsed().as_secs_f64() / steps as f64;
         println!(
@@ -36,6 +51,14 @@ fn main() {
             w.broad_phase().rebuilds - r0,
             per_step * 1e3,
             per_step * 1e9 / w.contacts().len() as f64
+        );
+        let total: f64 = stage_s.iter().sum();
+        println!(
+            "stages: drift {:.1} %, contact detection (broad and narrow phase, friction) {:.1} %, force gathering (with the contacts' power sums) {:.1} %, kick {:.1} %",
+            100.0 * stage_s[0] / total,
+            100.0 * stage_s[1] / total,
+            100.0 * stage_s[2] / total,
+            100.0 * stage_s[3] / total
         );
         // Bit pattern of the final state, to check that a speed change left
         // the numbers unchanged (compare across code versions and thread counts).

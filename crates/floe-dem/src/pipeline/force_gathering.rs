@@ -50,10 +50,7 @@ impl ForceGathering {
     }
 
     /// External and contact forces per floe at time `t_s`, from the
-    /// per-floe index (rebuilt first if stale). `beside` runs in parallel
-    /// with the index build, or with the gathering itself when the index is
-    /// kept (the contacts' power sums: at 1e3 floes one block on one
-    /// thread, and one after the other they were 8 % of a two-thread step).
+    /// per-floe index (rebuilt first if stale).
     pub(crate) fn gather<F: ExternalForces>(
         &mut self,
         f: &FloeColumns,
@@ -61,7 +58,6 @@ impl ForceGathering {
         forcing: &F,
         t_s: f64,
         out: ForceBuffers<'_>,
-        beside: impl FnOnce() + Send,
     ) {
         let n = f.len();
         let rebuild = !self.index_current;
@@ -74,35 +70,19 @@ impl ForceGathering {
             ..
         } = self;
         if rebuild {
-            rayon::join(
-                || build_adjacency(contacts, n, keys, adjacency_start, a_start, adjacency),
-                beside,
-            );
-            gather_per_floe(
-                f,
-                contacts,
-                forcing,
-                t_s,
-                out,
-                adjacency_start,
-                adjacency,
-                a_start,
-            );
-        } else {
-            debug_assert_eq!(a_start.len(), n + 1, "index built for another floe set");
-            rayon::join(beside, || {
-                gather_per_floe(
-                    f,
-                    contacts,
-                    forcing,
-                    t_s,
-                    out,
-                    adjacency_start,
-                    adjacency,
-                    a_start,
-                )
-            });
+            build_adjacency(contacts, n, keys, adjacency_start, a_start, adjacency);
         }
+        debug_assert_eq!(a_start.len(), n + 1, "index built for another floe set");
+        gather_per_floe(
+            f,
+            contacts,
+            forcing,
+            t_s,
+            out,
+            adjacency_start,
+            adjacency,
+            a_start,
+        );
         self.index_current = true;
     }
 }

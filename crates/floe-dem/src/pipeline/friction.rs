@@ -112,14 +112,14 @@ impl FrictionBatch {
 
     /// Steps the waiting contacts' friction over `dt` (none with `dt = 0`,
     /// at the start of a run) and completes their records, found in `run`
-    /// or `born` by their slots.
+    /// or `born` by their slots; hands each completed record to `done`.
     #[inline]
     pub(crate) fn flush(
         &mut self,
         model: &ContactModel,
         dt: f64,
-        run: &mut [ContactRecord],
-        born: &mut [ContactRecord],
+        (run, born): (&mut [ContactRecord], &mut [ContactRecord]),
+        mut done: impl FnMut(&ContactRecord),
     ) {
         let n = self.waiting;
         self.waiting = 0;
@@ -137,6 +137,7 @@ impl FrictionBatch {
                 Slot::Born(k) => &mut born[k],
             };
             finish_friction(record, item, power, dt);
+            done(record);
         }
     }
 

@@ -16,6 +16,7 @@ use rayon::prelude::*;
 use super::broad_phase::{BroadPhase, CandidatePair};
 use super::contact_memory::{recall, remember_broken};
 use super::contact_merge::{merge_in_place, DEAD};
+use super::energy_accounting::ContactPower;
 use super::friction::{new_contact_state, FrictionBatch, Slot};
 use crate::contact_kernel::{contact_before_friction, Body};
 use crate::contact_model::ContactModel;
@@ -77,6 +78,9 @@ pub(crate) struct ContactSet<'a> {
     /// The step's energy released at break, J (an exact sum, booked into
     /// the ledger at the end of the step).
     pub(crate) released_at_break_j: &'a mut ExactSum,
+    /// Per chunk of candidate pairs, the powers of its contacts over the
+    /// step (exact sums: the cut does not change their total).
+    pub(crate) power: &'a mut Vec<ContactPower>,
 }
 
 /// The narrow phase's buffers, reused every step.
@@ -239,18 +243,23 @@ impl NarrowPhase {
             self.chunk_ended.resize(n_chunks, false);
         }
         self.born.resize_with(n_chunks, Vec::new);
+        set.power.resize_with(n_chunks, ContactPower::default);
+        let ghost = input.ghost;
         runs.into_par_iter()
             .zip(pairs.par_chunks(chunk))
             .zip(self.separating.par_chunks_mut(chunk))
             .zip(self.born.par_iter_mut())
             .zip(self.ended.par_iter_mut())
             .zip(self.chunk_ended.par_iter_mut())
+            .zip(set.power.par_iter_mut())
             .for_each_init(
                 TaskWorkspace::default,
-                |workspace, (((((run, pairs), edges), born), ended), chunk_ended)| {
+                |workspace, ((((((run, pairs), edges), born), ended), chunk_ended), power)| {
                     born.clear();
                     ended.clear();
                     *chunk_ended = false;
+                    *power = ContactPower::default();
+                    let mut count_power = |c: &ContactRecord| power.add(c, f, ghost);
                     let TaskWorkspace {
                         clip: scratch,
                         friction,
@@ -290,14 +299,14 @@ impl NarrowPhase {
                                 (Slot::Born(i), &mut born[i])
                             }
                         };
-                        let (load, power) =
+                        let (load, elastic_power) =
                             contact_before_friction(model, damping_ratio, &a, &b, &ov, record);
-                        if friction.add(slot, record.friction, load, power) {
-                            friction.flush(model, dt, run, born);
+                        if friction.add(slot, record.friction, load, elastic_power) {
+                            friction.flush(model, dt, (run, born), &mut count_power);
                         }
                     }
                     if !friction.is_empty() {
-                        friction.flush(model, dt, run, born);
+                        friction.flush(model, dt, (run, born), &mut count_power);
                     }
                     while k < run.len() {
                         end_contact(&mut run[k], ended, chunk_ended);

@@ -315,7 +315,8 @@ impl<F: ExternalForces> World<F> {
     }
 
     /// Second stage: the contacts at the drifted positions (broad phase,
-    /// narrow phase, friction), and the contact memory.
+    /// narrow phase, friction), the contact memory, and the contacts'
+    /// powers for the energy accounting.
     pub fn detect_contacts(&mut self) {
         self.pipeline.enter(Stage::DetectContacts);
         self.detect(self.state.dt_s);
@@ -343,6 +344,7 @@ impl<F: ExternalForces> World<F> {
             contacts: &mut s.contacts,
             broken: &mut s.broken,
             released_at_break_j: &mut p.accounting.released_j,
+            power: &mut p.accounting.contact_partials,
         };
         let changed = p
             .narrow_phase
@@ -353,14 +355,12 @@ impl<F: ExternalForces> World<F> {
         }
     }
 
-    /// Third stage: external and contact forces on every floe, and beside
-    /// them the contacts' powers for the energy accounting.
+    /// Third stage: external and contact forces on every floe.
     pub fn gather_forces(&mut self) {
         self.pipeline.enter(Stage::GatherForces);
         let s = &mut self.state;
         let p = &mut self.pipeline;
         let (floes, contacts) = (&s.floes, &s.contacts);
-        let accounting = &mut p.accounting;
         if let Err(failure) = self.forcing.prepare(s.time_s, floes) {
             // The step goes on with the slices held; the run loop stops on it.
             self.forcing_failure.get_or_insert(failure);
@@ -373,11 +373,8 @@ impl<F: ExternalForces> World<F> {
             external_torque: &mut s.external_torque,
             rates: &mut p.rates,
         };
-        let ghost = &p.ghost;
         p.gathering
-            .gather(floes, contacts, &self.forcing, s.time_s, out, || {
-                accounting.sum_contact_power(contacts, floes, ghost)
-            });
+            .gather(floes, contacts, &self.forcing, s.time_s, out);
         boundary_motion::add_load_point_forces(
             &s.floes,
             &s.load_points,
