@@ -205,6 +205,61 @@ pub(crate) fn y_label_area(ticks: &Ticks) -> u32 {
 
 type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
+/// The corner of the chart whose legend-sized box covers the fewest data
+/// points (upper right first on a tie): the legend is drawn there, not
+/// over the data. The box is estimated from the labels' widths and the
+/// chart's size in pixels, `x` and `y` its ranges.
+fn legend_corner(
+    lines: &[Line],
+    (x, y): ((f64, f64), (f64, f64)),
+    (width, height): (u32, u32),
+) -> SeriesLabelPosition {
+    let labelled = lines.iter().filter(|l| !l.label.is_empty());
+    let widest = labelled
+        .clone()
+        .map(|l| text_width(&l.label, 14.0))
+        .max()
+        .unwrap_or(0);
+    // The plotting area is about the chart less its label areas and margins.
+    let box_w = f64::from(widest + 50) / f64::from(width.saturating_sub(120).max(1));
+    let box_h = 22.0 * labelled.count() as f64 / f64::from(height.saturating_sub(100).max(1));
+    let corners = [
+        (SeriesLabelPosition::UpperRight, true, true),
+        (SeriesLabelPosition::UpperLeft, false, true),
+        (SeriesLabelPosition::LowerRight, true, false),
+        (SeriesLabelPosition::LowerLeft, false, false),
+    ];
+    let covered = |right: bool, upper: bool| {
+        lines
+            .iter()
+            .flat_map(|l| l.points.iter())
+            .filter(|(px, py)| {
+                let fx = (px - x.0) / (x.1 - x.0);
+                let fy = (py - y.0) / (y.1 - y.0);
+                let in_x = if right {
+                    fx >= 1.0 - box_w
+                } else {
+                    fx <= box_w
+                };
+                let in_y = if upper {
+                    fy >= 1.0 - box_h
+                } else {
+                    fy <= box_h
+                };
+                in_x && in_y
+            })
+            .count()
+    };
+    let mut best = (usize::MAX, SeriesLabelPosition::UpperRight);
+    for (corner, right, upper) in corners {
+        let n = covered(right, upper);
+        if n < best.0 {
+            best = (n, corner);
+        }
+    }
+    best.1
+}
+
 fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
     let (x, y) = bounds(lines);
     let (width, height) = area.dim_in_pixel();
@@ -257,7 +312,7 @@ fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .label_font(("sans-serif", 14))
-            .position(SeriesLabelPosition::UpperRight)
+            .position(legend_corner(lines, (x, y), (width, height)))
             .draw()
             .map_err(|e| e.to_string())?;
     }
