@@ -13,7 +13,7 @@ else
 FEATURES := --features floe-cli/mpi
 endif
 
-.PHONY: demo slider-demo test build deps check-tools system-deps python-deps validation bench clean
+.PHONY: demo slider-demo test build deps check-tools system-deps python-deps validation bench lammps clean
 
 ## Tools and system packages: Rust's tools, HDF5, NetCDF-C, pkg-config and (unless
 ## MPI=0) Open MPI with libclang for its bindings (apt-installed when missing), and
@@ -115,6 +115,18 @@ bench: deps
 	$(CARGO) bench -p floe-friction --bench contact_update
 	$(CARGO) bench -p floe-dem --bench dem_step
 	$(CARGO) bench -p floe-dem --bench narrow_phase
+
+## Optional: LAMMPS (Debian's `lammps` package; it brings Open MPI's mpirun) for
+## benches/vs_lammps.sh, which installs nothing itself.
+lammps:
+	@if command -v lmp >/dev/null 2>&1; then \
+	  echo "lmp found: $$(command -v lmp)"; \
+	else \
+	  command -v apt-get >/dev/null 2>&1 || { echo "error: no lmp and no apt-get: install LAMMPS with the GRANULAR and BODY packages (https://docs.lammps.org/Install.html)" >&2; exit 1; }; \
+	  sudo=""; [ "$$(id -u)" = 0 ] || sudo="sudo"; \
+	  echo "installing lammps"; \
+	  $$sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq lammps; \
+	fi
 
 clean:
 	$(CARGO) clean
