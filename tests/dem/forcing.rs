@@ -2,44 +2,13 @@
 //! independent steady-state solver, Coriolis, turning angle, velocity
 //! fields, rotational drag and `∫ r³ dA`, serde, and no allocation in the
 //! per-floe evaluation.
-#![allow(unsafe_code)] // a counting global allocator needs `unsafe impl GlobalAlloc`
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::f64::consts::{PI, SQRT_2};
 
 use floe_dem::forcing::*;
 use floe_dem::{DemError, Vec2};
 
-// ---------------------------------------------------------------------------
-// Counting allocator (per thread: the other tests run concurrently).
-
-struct Counting;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(|c| c.get())
-}
+use crate::counting_allocator::allocations;
 
 // ---------------------------------------------------------------------------
 // Helpers.

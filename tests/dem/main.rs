@@ -6,6 +6,8 @@ mod broad_phase;
 mod checkpoint;
 mod clip;
 mod contact_symmetry;
+#[path = "../support/counting_allocator.rs"]
+mod counting_allocator;
 mod floe_edits;
 mod forcing;
 mod load_point;

@@ -1,41 +1,10 @@
 //! The per-contact update must not allocate: the DEM calls it for every
-//! contact of every step. Counted per thread with a global allocator in this
-//! test binary.
-#![allow(unsafe_code)] // a counting global allocator needs `unsafe impl GlobalAlloc`
-
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+//! contact of every step. Counted per thread by the test binary's global
+//! allocator (`counting_allocator`).
 
 use floe_friction::*;
 
-struct Counting;
-
-// Per thread: the test harness's own threads allocate while the test runs
-// (a global count failed once with 4 allocations that were not the law's).
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(|c| c.get())
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
+use crate::counting_allocator::allocations;
 
 #[test]
 fn contact_updates_do_not_allocate() {
