@@ -189,7 +189,7 @@ fn per_cell_rms(cents: &[Vec2], areas: &[f64], keep: &[bool], c: f64, side: f64)
 /// fit's own standard error for one seed is 0.05), as keeping each floe
 /// with probability c does (+0.004, +0.003). With floes
 /// up to 2.25 km^2 the ice per 1 km cell cannot be held much closer than
-/// by such draws (it is in `scenario_ice_grid` for floes of 0.06 km^2),
+/// by such draws (it is in `tests/scenario/ice_grid.rs` for floes of 0.06 km^2),
 /// and it is no worse. One balance for all sizes would keep the large
 /// floes preferentially where c > 1/2 (exponent -0.10 at c = 0.7, +0.17
 /// at 0.3): the selection keeps one balance per octave of area.

@@ -155,7 +155,7 @@ impl Results {
     pub fn print_summary(&self, cases: &[&Case], wall: Duration) {
         let count = |family| cases.iter().filter(|c| c.family == family).count();
         println!(
-            "cli_fuzz: seed {:#x}; {} base inputs, {} scenario, {} protocol, {} command-line \
+            "cli fuzz: seed {:#x}; {} base inputs, {} scenario, {} protocol, {} command-line \
              and {} basin-file cases; {} failed; slowest case {:.2} s; wall time {:.1} s",
             seed(),
             count(Family::Base),
