@@ -60,7 +60,7 @@ system-deps:
 	fi
 
 ## Optional: h5py, numpy and matplotlib for the h5py example of docs/output.md
-## (tests/io_h5py.rs skips without them). Never fails.
+## (tests/io/h5py.rs skips without them). Never fails.
 python-deps:
 	@if ! command -v python3 >/dev/null 2>&1; then \
 	  echo "note: no python3: the h5py and xarray examples are skipped (optional)"; \
@@ -69,7 +69,7 @@ python-deps:
 	elif python3 -m pip --version >/dev/null 2>&1; then \
 	  python3 -m pip install --user -q h5py numpy matplotlib xarray netCDF4 >/dev/null 2>&1 \
 	  || python3 -m pip install --user --break-system-packages -q h5py numpy matplotlib xarray netCDF4 >/dev/null 2>&1 \
-	  || echo "note: could not pip-install h5py numpy matplotlib xarray netCDF4 (optional: tests/io_h5py.rs and tests/study_grid_xarray.rs skip)"; \
+	  || echo "note: could not pip-install h5py numpy matplotlib xarray netCDF4 (optional: tests/io/h5py.rs and tests/study/grid_xarray.rs skip)"; \
 	else \
 	  echo "note: no pip for python3: the h5py and xarray examples are skipped (optional; apt-get install python3-h5py python3-matplotlib python3-xarray python3-netcdf4)"; \
 	fi
@@ -96,7 +96,7 @@ slider-demo: deps
 
 ## The whole test suite: formatting, lints, and every test (release mode: the
 ## physics tests run spring-sliders for millions of steps), with MPI: the
-## tests/mpi_*.rs run `mpirun -np K floe run`.
+## tests/cli/mpi_run.rs runs `mpirun -np K floe run`.
 test: deps
 	$(CARGO) fmt --all --check
 	$(CARGO) clippy --workspace --all-targets --release $(FEATURES) -- -D warnings

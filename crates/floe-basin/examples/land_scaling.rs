@@ -1,5 +1,5 @@
 //! Land build time and peak memory against the number of vertices: a
-//! synthetic coastline ring (tests/land_support: an island, mainland
+//! synthetic coastline ring (tests/basin/land_support.rs: an island, mainland
 //! closed behind by three long straight edges, and a 200 km shore closed
 //! 100 km behind by two corners) written as a GeoJSON file,
 //! then read ([`floe_basin::read_land`]: parse, project, check simple) and
@@ -13,7 +13,7 @@
 //! when the time grows as `n log n`, and so does memory over `n` for
 //! memory that grows as `n`.
 
-#[path = "../../../tests/land_support/mod.rs"]
+#[path = "../../../tests/basin/land_support.rs"]
 mod land_support;
 
 use std::fmt::Write as _;

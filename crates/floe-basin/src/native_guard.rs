@@ -6,7 +6,7 @@
 //!   and becomes an error naming the file, and the panic message is not
 //!   printed;
 //! - HDF5 1.10 crashes (SIGSEGV in its global heap) or loops for ever on
-//!   some damaged NetCDF-4 files (`tests/cli_fuzz.rs` finds both with a few
+//!   some damaged NetCDF-4 files (`tests/cli/fuzz.rs` finds both with a few
 //!   changed bytes): while a guarded call runs, a fatal signal (SIGSEGV,
 //!   SIGBUS, SIGFPE, SIGILL, SIGABRT) prints the call's message and ends
 //!   the process with its exit code, and a watchdog does the same when the

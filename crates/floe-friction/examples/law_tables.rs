@@ -1,6 +1,6 @@
 //! Prints the law registry's parameter tables as Markdown, the text
 //! docs/scenarios.md holds between its law-table markers (a test in
-//! tests/scenario_files.rs keeps the two equal):
+//! tests/scenario/files.rs keeps the two equal):
 //! `cargo run -p floe-friction --example law_tables`.
 
 fn main() {

@@ -114,7 +114,7 @@ const ASINH_LOG_SWITCH: f64 = 25.0;
 /// start (a factor `e` in slip rate): a bigger one is a jump (a load
 /// reversal, a contact starting to slide), not a trend. Unbounded, a jump
 /// of 1e3 once started the solve where the slip rate overflows (found by
-/// `tests/friction_kernel_properties.rs`).
+/// `tests/friction/kernel_properties.rs`).
 const MAX_TREND: f64 = 1.0;
 
 /// The rate-and-state law: parameters, form and state-evolution law.

@@ -9,7 +9,7 @@
 //!
 //! runs the laboratory double shear (scenarios/lab_double_shear.toml's
 //! set-up) with it and prints the friction on the block's faces as the
-//! slip grows. tests/scenario_custom_law.rs checks that against the law.
+//! slip grows. tests/scenario/custom_law.rs checks that against the law.
 
 use std::path::Path;
 
@@ -210,7 +210,7 @@ pub fn friction_history(
     out
 }
 
-#[allow(dead_code)] // also compiled into tests/scenario_custom_law.rs
+#[allow(dead_code)] // also compiled into the run and scenario tests (tests/*/main.rs)
 fn main() {
     let mut w = world();
     let steps = (40.0 / w.dt_s()) as usize;

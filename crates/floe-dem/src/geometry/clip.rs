@@ -5,7 +5,7 @@
 //! measured reason: parry clips in world coordinates, and at basin scale that
 //! costs precision. For two diamonds pushed 0.1 mm into each other at 1e6 m,
 //! parry 0.31.1 is off by 1.1 % in area, against 1e-6 here
-//! (`tests/dem_clip.rs`). The physics notes also report gross failures on
+//! (`tests/dem/clip.rs`). The physics notes also report gross failures on
 //! exactly collinear tessellation edges (the neighbour's whole polygon
 //! returned, overlaps missed). We did not reproduce those with 0.31.1, but
 //! the degenerate cases are tested. Both polygons are placed in a

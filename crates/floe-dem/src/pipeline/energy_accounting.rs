@@ -202,7 +202,7 @@ pub(crate) fn book_step(sums: &StepSums, ledger: &mut EnergyLedger, dt: f64) {
 /// F`, a bias that grows with the run (a spring-driven block gained 30 %
 /// of its kinetic energy in 10 s); with the half-step velocity the
 /// difference from the kinetic energy's change telescopes and stays
-/// `O(dt^2)` (`tests/dem_load_point.rs`).
+/// `O(dt^2)` (`tests/dem/load_point.rs`).
 #[inline(always)]
 pub(crate) fn forcing_power(
     (previous_force, previous_torque): (Vec2, f64),

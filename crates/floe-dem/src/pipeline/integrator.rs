@@ -192,7 +192,7 @@ pub(crate) fn kick(
 /// and `J = ∂F_ext/∂u` (and likewise for the rotation), one Newton step of
 /// the trapezoidal rule `v' = v + dt/2m [F(v) + F(v')]`. The forces the
 /// drift used were evaluated at the start of the step, so the step is
-/// second order in velocity-dependent forcing (`tests/dem_time_order.rs`).
+/// second order in velocity-dependent forcing (`tests/dem/time_order.rs`).
 /// The first half kick stays explicit, so drag far stiffer than the step
 /// (`ρ C_d A |u_rel| dt / m` beyond about 2) still throws floes off.
 /// With zero rates it is the explicit kick, bit for bit.

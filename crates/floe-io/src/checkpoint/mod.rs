@@ -36,7 +36,7 @@
 //! | 1 | two slots implied (`theta`, the solver's root): resumes with zero trends |
 //!
 //! tests/data/checkpoints/ holds a frozen checkpoint of each format, which
-//! tests/io_checkpoint_formats.rs reads back.
+//! tests/io/checkpoint_formats.rs reads back.
 
 mod bytes;
 mod clock_and_energy;
@@ -195,7 +195,7 @@ mod tests {
 
     /// The motion schedules, load points and stress controls (a servo
     /// wall's state too) round-trip bitwise. The older formats, without
-    /// them, are read from frozen files in tests/io_checkpoint_formats.rs.
+    /// them, are read from frozen files in tests/io/checkpoint_formats.rs.
     #[test]
     fn boundaries_round_trip() {
         use floe_dem::motion_schedule::{MotionSchedule, MotionSegment};

@@ -1,0 +1,626 @@
+//! `floe run`, `floe info`, `floe render` as a user meets them: a run writes
+//! a readable file, refuses to overwrite it, stops cleanly on Ctrl-C, on a
+//! step budget and on a blow-up, and a resumed run (after a pause, an
+//! interrupt or `kill -9`) is bitwise the uninterrupted one.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::Duration;
+
+use floe_io::RunFile;
+
+use crate::run_support;
+use run_support::{
+    assert_no_panic, assert_same_run, bits, bits2, code, interrupted_step, run_suggestion,
+    suggested_command, text, wait_for_progress, Case, Launch,
+};
+
+/// A sheared channel of small diamonds: a few hundred steps, snapshots,
+/// observables and checkpoints at different cadences, none of which
+/// divides the step budgets used below.
+const SMALL: &str = include_str!("../data/run_small.toml");
+
+/// The same channel, long enough to be interrupted while it runs.
+const LONG: &str = include_str!("../data/run_long.toml");
+
+/// Walls that close far faster than contacts can push back.
+const BLOW_UP: &str = include_str!("../data/run_blow_up.toml");
+
+fn floe() -> Command {
+    Launch::Alone.command()
+}
+
+fn run(args: &[&str]) -> Output {
+    floe().args(args).output().expect("floe starts")
+}
+
+/// Runs to completion; panics with floe's stderr if it fails.
+fn run_ok(args: &[&str]) -> String {
+    let out = run(args);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 0, "floe {args:?}: {err}");
+    text(&out.stdout)
+}
+
+/// `tests/data/run_small_format2_paused.h5`: `run_small.toml` paused at
+/// step 37 by floe at commit 676b801, whose checkpoints were of format 2
+/// (no time step, three friction slots per contact).
+const FORMAT_2_PAUSED: &[u8] = include_bytes!("../data/run_small_format2_paused.h5");
+
+#[test]
+fn a_run_writes_a_file_that_info_describes() {
+    let case = Case::new(SMALL);
+    case.run_ok("run.h5", &[]);
+    let file = RunFile::open(Path::new(&case.path("run.h5"))).unwrap();
+    assert_eq!(file.status().unwrap(), "completed");
+    let checkpoint = file.checkpoint().unwrap().expect("a checkpoint");
+    let n = file.snapshot_count().unwrap();
+    let last = file.snapshot(n - 1).unwrap();
+    assert_eq!(last.step, checkpoint.step, "the run ends with a snapshot");
+    assert_eq!(file.snapshot(0).unwrap().step, 0);
+    // The energy observables sample the same steps as each other.
+    let ke = file.observable("kinetic_translational").unwrap();
+    assert_eq!(*ke.step.last().unwrap(), last.step);
+    assert_eq!(
+        ke.step,
+        file.observable("friction_dissipation").unwrap().step
+    );
+
+    let info = run_ok(&["info", &case.path("run.h5")]);
+    for expected in [
+        "completed",
+        "snapshots",
+        "contacts",
+        "kinetic_translational",
+    ] {
+        assert!(
+            info.contains(expected),
+            "`{expected}` in floe info:\n{info}"
+        );
+    }
+    let floes = file.static_floes().unwrap().len().to_string();
+    assert!(info.contains(&floes), "floe count {floes} in:\n{info}");
+    // The observables' last values as numbers read: a count as a whole
+    // number, a fraction to five significant digits (not `9.5500e2`).
+    let last_value = |name: &str| {
+        let line = info
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("{name} ")))
+            .unwrap_or_else(|| panic!("{name} in:\n{info}"));
+        line.split_whitespace().nth(1).unwrap().to_string()
+    };
+    let contacts = *file.observable("contacts").unwrap().value.last().unwrap();
+    assert_eq!(last_value("contacts"), format!("{}", contacts as u64));
+    let mu = *file.observable("mean_mu").unwrap().value.last().unwrap();
+    let shown = last_value("mean_mu");
+    assert!(!shown.contains('e'), "{shown}");
+    let relative = (shown.parse::<f64>().unwrap() / mu - 1.0).abs();
+    assert!(relative <= 5e-5, "{shown} for {mu}");
+}
+
+#[test]
+fn a_run_refuses_to_overwrite_unless_forced() {
+    let case = Case::new(SMALL);
+    let target = case.path("run.h5");
+    std::fs::write(&target, b"precious").unwrap();
+    let out = case.run("run.h5", &[]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 2, "{err}");
+    assert!(err.contains("--force"), "{err}");
+    assert_eq!(std::fs::read(&target).unwrap(), b"precious");
+    case.run_ok("run.h5", &["--force"]);
+    assert!(RunFile::open(Path::new(&target)).is_ok());
+}
+
+#[test]
+fn pausing_and_resuming_on_another_thread_count_is_bitwise_the_uninterrupted_run() {
+    let case = Case::new(SMALL);
+    case.run_ok("whole.h5", &["--threads", "1"]);
+    // 137 steps: off every cadence, so the pause writes an extra checkpoint,
+    // snapshot and observables that the resume must drop again.
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    let paused = RunFile::open(Path::new(&case.path("parts.h5"))).unwrap();
+    assert_eq!(paused.status().unwrap(), "paused at step 137");
+    assert_eq!(paused.checkpoint().unwrap().unwrap().step, 137);
+    drop(paused);
+    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &["--threads", "2"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+}
+
+#[test]
+fn a_run_paused_in_the_middle_of_a_wall_schedule_resumes_bitwise() {
+    // The top wall slides, slows over a ramp, holds and reverses; the pauses
+    // at steps 137 (t = 68.5 s, in the ramp) and 238 (119 s, in the hold)
+    // fall inside segments and between them.
+    let scheduled = SMALL.replace(
+        "side = \"top\"\nvelocity_m_per_s = [0.5, 0.0]\n",
+        "side = \"top\"\n\n[[wall.segment]]\nduration_s = 50.0\nvelocity_m_per_s = [0.5, 0.0]\n\n\
+         [[wall.segment]]\nduration_s = 20.0\nvelocity_m_per_s = [0.5, 0.0]\n\
+         end_velocity_m_per_s = [0.0, 0.0]\n\n[[wall.segment]]\nduration_s = 60.0\n\n\
+         [[wall.segment]]\nduration_s = 70.0\nvelocity_m_per_s = [-0.5, -0.002]\n",
+    );
+    assert_ne!(scheduled, SMALL, "the scenario has a top wall to schedule");
+    let case = Case::new(&scheduled);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+    // The wall went where its schedule says: 25 + 5 + 0 - 35 m along x,
+    // -0.14 m across, at t = 200 s.
+    let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
+    let (first, last) = (
+        f.snapshot(0).unwrap(),
+        f.snapshot(f.snapshot_count().unwrap() - 1).unwrap(),
+    );
+    assert_eq!(last.time_s, 200.0);
+    let n = first.position.len();
+    let dx = last.position[n - 1][0] - first.position[n - 1][0];
+    let dy = last.position[n - 1][1] - first.position[n - 1][1];
+    assert!(
+        (dx + 5.0).abs() < 1e-9 && (dy + 0.14).abs() < 1e-9,
+        "{dx}, {dy}"
+    );
+}
+
+#[test]
+fn ctrl_c_writes_a_final_snapshot_and_checkpoint_and_resume_is_bitwise() {
+    let case = Case::new(LONG);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn("parts.h5", &["--threads", "2"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert_no_panic(&err);
+    // The message says how to go on, and that command works as written.
+    let suggestion = suggested_command(&err);
+    assert_eq!(suggestion[..3], ["floe", "run", "--resume"], "{err}");
+
+    let file = RunFile::open(Path::new(&target)).unwrap();
+    let step = interrupted_step(&file);
+    let n = file.snapshot_count().unwrap();
+    assert_eq!(file.snapshot(n - 1).unwrap().step, step, "a final snapshot");
+    drop(file);
+
+    let out = run_suggestion(case.dir.path(), &suggestion);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
+fn kill_9_in_the_middle_of_a_run_then_resume_is_bitwise() {
+    let case = Case::new(LONG);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn("parts.h5", &["--threads", "2"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    std::thread::sleep(Duration::from_millis(150));
+    child.kill().unwrap(); // SIGKILL: no handler runs
+    child.wait().unwrap();
+
+    let out = case.resume("parts.h5", &["--threads", "2"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
+fn a_blow_up_stops_the_run_with_the_step_the_floes_and_a_smaller_dt() {
+    let case = Case::new(BLOW_UP);
+    let out = case.run("run.h5", &[]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 1, "{err}");
+    assert_no_panic(&err);
+    for expected in ["blow-up at step", "floes", "try dt_s"] {
+        assert!(err.contains(expected), "`{expected}` in: {err}");
+    }
+    let file = RunFile::open(Path::new(&case.path("run.h5"))).unwrap();
+    assert!(file.status().unwrap().starts_with("stopped"));
+    // The last snapshot shows the bad state, after the last checkpoint.
+    let n = file.snapshot_count().unwrap();
+    let last = file.snapshot(n - 1).unwrap();
+    assert!(last.step > file.checkpoint().unwrap().unwrap().step);
+}
+
+#[test]
+fn an_unwritable_output_is_one_clear_error() {
+    let case = Case::new(SMALL);
+    // A directory that cannot exist (its parent is a file): works as root too.
+    std::fs::write(case.path("plain_file"), b"").unwrap();
+    let out = case.run("plain_file/run.h5", &[]);
+    let err = text(&out.stderr);
+    assert_ne!(code(&out), 0);
+    assert_no_panic(&err);
+    // The set-up report may come first; then exactly one error line.
+    let errors: Vec<&str> = err.lines().filter(|l| l.starts_with("error: ")).collect();
+    assert_eq!(errors.len(), 1, "{err}");
+    assert_eq!(err.trim_end().lines().last(), Some(errors[0]), "{err}");
+    assert!(
+        errors[0].contains("plain_file/run.h5"),
+        "names the file: {err}"
+    );
+}
+
+#[test]
+fn a_corrupt_or_foreign_resume_file_is_one_clear_error() {
+    let case = Case::new(SMALL);
+    std::fs::write(case.path("junk.h5"), vec![7u8; 4096]).unwrap();
+    for (name, expected) in [("junk.h5", "junk.h5"), ("missing.h5", "missing.h5")] {
+        let out = case.resume(name, &[]);
+        let err = text(&out.stderr);
+        assert_ne!(code(&out), 0, "{err}");
+        assert_no_panic(&err);
+        assert!(
+            err.starts_with("error: ") && err.contains(expected),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn render_draws_the_floes_and_the_observables() {
+    let case = Case::new(SMALL);
+    case.run_ok("run.h5", &[]);
+    let file = case.path("run.h5");
+    let dir = PathBuf::from(case.path("pictures"));
+    let snapshots = RunFile::open(Path::new(&file))
+        .unwrap()
+        .snapshot_count()
+        .unwrap();
+    let dir_s = dir.to_string_lossy().into_owned();
+    run_ok(&["render", &file, "--every", "2", "-o", &dir_s]);
+    run_ok(&[
+        "render",
+        &file,
+        "--snapshot",
+        "-1",
+        "--color",
+        "stress",
+        "-o",
+        &dir_s,
+        "--force",
+    ]);
+    run_ok(&[
+        "render",
+        &file,
+        "--snapshot",
+        "0",
+        "--color",
+        "theta",
+        "-o",
+        &dir_s,
+        "--force",
+    ]);
+    let pngs: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    let speed = pngs
+        .iter()
+        .filter(|p| p.to_string_lossy().contains("floes_speed_"))
+        .count();
+    assert_eq!(speed, snapshots.div_ceil(2), "{pngs:?}");
+    assert!(
+        dir.join("observables.png").exists(),
+        "observables.png in {pngs:?}"
+    );
+    assert!(pngs.iter().any(|p| p.to_string_lossy().contains("stress")));
+    assert!(pngs.iter().any(|p| p.to_string_lossy().contains("theta")));
+    for p in &pngs {
+        let bytes = std::fs::read(p).unwrap();
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n", "{}", p.display());
+    }
+    // Pictures are not overwritten without --force.
+    let out = run(&["render", &file, "--every", "2", "-o", &dir_s]);
+    assert_eq!(code(&out), 2, "{}", text(&out.stderr));
+}
+
+/// `floe render --movie`: a GIF of every snapshot by default; an MP4
+/// without ffmpeg is refused with a message that says so and offers a GIF;
+/// no extension gives a GIF without ffmpeg; no overwrite without --force.
+#[test]
+fn render_writes_a_movie_and_explains_a_missing_ffmpeg() {
+    let case = Case::new(SMALL);
+    case.run_ok("run.h5", &[]);
+    let file = case.path("run.h5");
+    let snapshots = RunFile::open(Path::new(&file))
+        .unwrap()
+        .snapshot_count()
+        .unwrap();
+    let gif = case.path("run.gif");
+    let out = run_ok(&["render", &file, "--movie", &gif, "--fps", "4"]);
+    assert!(
+        out.contains(&format!("{snapshots} frames")) && out.contains("GIF"),
+        "{out}"
+    );
+    assert_eq!(&std::fs::read(&gif).unwrap()[..6], b"GIF89a");
+    let out = run(&["render", &file, "--movie", &gif]);
+    assert_eq!(code(&out), 2, "{}", text(&out.stderr));
+    assert!(text(&out.stderr).contains("--force"));
+    run_ok(&["render", &file, "--movie", &gif, "--every", "3", "--force"]);
+
+    // Without ffmpeg on PATH.
+    let empty = case.path("no-programs");
+    std::fs::create_dir(&empty).unwrap();
+    let without_ffmpeg = |args: &[&str]| floe().args(args).env("PATH", &empty).output().unwrap();
+    let mp4 = case.path("run.mp4");
+    let out = without_ffmpeg(&["render", &file, "--movie", &mp4]);
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 2, "{err}");
+    assert_no_panic(&err);
+    assert!(err.contains("ffmpeg") && err.contains("run.gif"), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(!Path::new(&mp4).exists());
+    let out = without_ffmpeg(&["render", &file, "--movie", &case.path("plain")]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert!(Path::new(&case.path("plain.gif")).exists());
+
+    // An ffmpeg that fails: its message, exit 1, no file left.
+    let broken = case.path("broken-ffmpeg");
+    std::fs::create_dir(&broken).unwrap();
+    let script = Path::new(&broken).join("ffmpeg");
+    std::fs::write(
+        &script,
+        "#!/bin/sh\n[ \"$1\" = -version ] && exit 0\necho 'Unknown encoder libx264' >&2\nexit 1\n",
+    )
+    .unwrap();
+    let mut mode = std::fs::metadata(&script).unwrap().permissions();
+    std::os::unix::fs::PermissionsExt::set_mode(&mut mode, 0o755);
+    std::fs::set_permissions(&script, mode).unwrap();
+    let out = floe()
+        .args(["render", &file, "--movie", &mp4])
+        .env("PATH", &broken)
+        .output()
+        .unwrap();
+    let err = text(&out.stderr);
+    assert_eq!(code(&out), 1, "{err}");
+    assert_no_panic(&err);
+    assert!(
+        err.contains("ffmpeg failed") && err.contains("Unknown encoder libx264"),
+        "{err}"
+    );
+    assert!(!Path::new(&mp4).exists() && !Path::new(&format!("{mp4}.partial")).exists());
+
+    // Bad flags: one message, exit 2, nothing written.
+    for args in [
+        vec!["--movie", "m.avi"],
+        vec!["--movie", "m.gif", "--fps", "0"],
+        vec!["--movie", "m.gif", "--fps", "nan"],
+        vec!["--fps", "10", "-o", "pictures"],
+        vec!["--field", "u", "-o", "pictures"],
+        vec!["--movie", "m.gif", "-o", "pictures"],
+        vec![],
+    ] {
+        let mut all = vec!["render", file.as_str()];
+        all.extend_from_slice(&args);
+        let out = floe()
+            .args(&all)
+            .current_dir(case.dir.path())
+            .output()
+            .unwrap();
+        let err = text(&out.stderr);
+        assert_eq!(code(&out), 2, "{args:?}: {err}");
+        assert_no_panic(&err);
+        assert_eq!(err.trim().lines().count(), 1, "{args:?}: {err}");
+    }
+    assert!(!case.dir.path().join("m.gif").exists() && !case.dir.path().join("pictures").exists());
+}
+
+/// A run paused by the previous checkpoint format (2) resumes, taking its
+/// time step from the stored scenario, and ends bitwise as a fresh run of
+/// the same scenario does.
+#[test]
+fn a_run_paused_in_the_previous_checkpoint_format_resumes_from_its_state() {
+    // The physics has changed since that floe (drag at second order,
+    // restitution with the clipped dashpot), so the resumed run cannot
+    // equal a fresh one; what must hold is that the checkpoint decodes to
+    // the state the old floe wrote beside it (its step-37 snapshot).
+    let case = Case::new(SMALL);
+    let old = case.path("old.h5");
+    std::fs::write(&old, FORMAT_2_PAUSED).unwrap();
+    let info = run_ok(&["info", &old]);
+    assert!(info.contains("paused at step 37"), "{info}");
+    let (last, snap, contacts, state) = {
+        let f = RunFile::open(Path::new(&old)).unwrap();
+        let last = f.snapshot_count().unwrap() - 1;
+        let state = f.checkpoint_state(|| Some(0.5)).unwrap().unwrap();
+        (
+            last,
+            f.snapshot(last).unwrap(),
+            f.contacts(last).unwrap(),
+            state,
+        )
+    };
+    assert_eq!((snap.step, state.steps), (37, 37));
+    let floes = state.floes.columns();
+    let pos: Vec<[f64; 2]> = floes.position.iter().map(|p| [p.x, p.y]).collect();
+    let vel: Vec<[f64; 2]> = floes.velocity.iter().map(|v| [v.x, v.y]).collect();
+    assert_eq!(bits2(&pos), bits2(&snap.position), "positions");
+    assert_eq!(bits2(&vel), bits2(&snap.velocity), "velocities");
+    assert_eq!(bits(&floes.angle), bits(&snap.angle), "angles");
+    assert_eq!(bits(&floes.angular_velocity), bits(&snap.angular_velocity));
+    let pairs: Vec<[u32; 2]> = state.contacts.iter().map(|c| [c.a, c.b]).collect();
+    assert_eq!(pairs, contacts.pair, "contact pairs");
+    let theta: Vec<f64> = state
+        .contacts
+        .iter()
+        .map(|c| c.friction.law_state[floe_friction::rate_state::THETA])
+        .collect();
+    assert_eq!(bits(&theta), bits(&contacts.theta), "theta");
+    let force: Vec<f64> = state
+        .contacts
+        .iter()
+        .map(|c| c.friction.tangential_force_n.abs())
+        .collect();
+    let snap_force: Vec<f64> = contacts
+        .tangential_force_n
+        .iter()
+        .map(|f| f.abs())
+        .collect();
+    assert_eq!(bits(&force), bits(&snap_force), "tangential forces");
+    // It resumes to the end, writing where the uninterrupted run would
+    // (the pause's own snapshot gives way to the cadence's).
+    let first = RunFile::open(Path::new(&old)).unwrap().snapshot(0).unwrap();
+    let out = case.resume("old.h5", &[]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert!(run_ok(&["info", &old]).contains("completed"));
+    let f = RunFile::open(Path::new(&old)).unwrap();
+    assert_eq!(
+        bits2(&f.snapshot(0).unwrap().position),
+        bits2(&first.position)
+    );
+    assert_eq!(f.snapshot(last).unwrap().step, 50);
+}
+
+/// The snapshot count `floe info` reports.
+fn info_snapshots(stdout: &str) -> usize {
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("snapshots"))
+        .unwrap_or_else(|| panic!("no snapshot line: {stdout}"));
+    line.split_whitespace()
+        .nth(1)
+        .unwrap()
+        .trim_end_matches(',')
+        .parse()
+        .unwrap()
+}
+
+#[test]
+fn floe_info_reads_a_file_while_a_run_writes_it() {
+    // A snapshot about every 15 steps and a checkpoint every 40: the file
+    // is flushed every few milliseconds while `floe info` reads it.
+    let busy = LONG
+        .replace("snapshot_every_s = 300.0", "snapshot_every_s = 10.0")
+        .replace("checkpoint_every_s = 60.0", "checkpoint_every_s = 30.0");
+    let case = Case::new(&busy);
+    let target = case.path("busy.h5");
+    let mut child = case.spawn("busy.h5", &["--threads", "1"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    let (mut calls, mut last) = (0, 0);
+    while child.try_wait().unwrap().is_none() {
+        let out = run(&["info", &target]);
+        let err = text(&out.stderr);
+        assert_eq!(code(&out), 0, "call {calls}: {err}");
+        let n = info_snapshots(&text(&out.stdout));
+        assert!(n >= last, "snapshots went from {last} to {n}");
+        (calls, last) = (calls + 1, n);
+    }
+    assert!(child.wait().unwrap().success());
+    assert!(calls >= 30, "only {calls} reads while the run wrote");
+}
+
+/// `run_small.toml` (dt = 0.5 s, 400 steps; snapshots every 25 s,
+/// observables every 3.5 s) with a window from 61 s to 131.2 s of snapshots
+/// every 2.5 s and observables every 1 s.
+const WINDOW: &str = "\n[[output.window]]\nfrom_s = 61.0\nto_s = 131.2\n\
+                      snapshot_every_s = 2.5\nobservables_every_s = 1.0\n";
+
+/// The times `t = n dt` (n = 0..=400, dt = 0.5 s) that are multiples of
+/// `base_s`, or of `window_s` within [61, 131.2] s, or the first or last.
+fn expected_times(base_s: f64, window_s: f64) -> Vec<f64> {
+    let multiple = |t: f64, every: f64| (t / every).fract() == 0.0;
+    (0..=400)
+        .map(|n| 0.5 * f64::from(n))
+        .filter(|&t| {
+            t == 0.0
+                || t == 200.0
+                || multiple(t, base_s)
+                || ((61.0..=131.2).contains(&t) && multiple(t, window_s))
+        })
+        .collect()
+}
+
+#[test]
+fn a_window_adds_its_cadence_inside_it_and_leaves_the_base_cadence_outside() {
+    let case = Case::new(&format!("{SMALL}{WINDOW}"));
+    case.run_ok("window.h5", &["--threads", "1"]);
+    let plain = Case::new(SMALL);
+    plain.run_ok("plain.h5", &["--threads", "1"]);
+    let f = RunFile::open(Path::new(&case.path("window.h5"))).unwrap();
+    let snapshots = f.snapshot_times().unwrap();
+    assert_eq!(snapshots, expected_times(25.0, 2.5));
+    assert_eq!(
+        snapshots.len(),
+        9 + 28 - 3,
+        "base and window, 75, 100 and 125 s in both"
+    );
+    let samples = f.observable("kinetic_translational").unwrap();
+    assert_eq!(samples.time_s, expected_times(3.5, 1.0));
+    // Writing more does not change the run: the samples outside the
+    // window are those of the run without it, bitwise.
+    let p = RunFile::open(Path::new(&plain.path("plain.h5"))).unwrap();
+    let base = p.observable("kinetic_translational").unwrap();
+    assert_eq!(base.time_s, expected_times(3.5, 3.5));
+    for (t, v) in base.time_s.iter().zip(&base.value) {
+        let k = samples.time_s.iter().position(|s| s == t).unwrap();
+        assert_eq!(samples.value[k].to_bits(), v.to_bits(), "t = {t}");
+    }
+    assert_eq!(
+        f.checkpoint_state(|| None).unwrap(),
+        p.checkpoint_state(|| None).unwrap()
+    );
+}
+
+#[test]
+fn a_run_paused_inside_a_window_resumes_bitwise() {
+    // Pauses at steps 137 (68.5 s) and 238 (119 s), both in the window and
+    // off its snapshot cadence (5 steps); 137 is off its observable cadence
+    // (2 steps), so the extras written there must be dropped on resume.
+    let case = Case::new(&format!("{SMALL}{WINDOW}"));
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    let paused = RunFile::open(Path::new(&case.path("parts.h5"))).unwrap();
+    assert_eq!(paused.snapshot_times().unwrap().last(), Some(&68.5));
+    drop(paused);
+    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+}
+
+#[test]
+fn ctrl_c_inside_a_window_then_resume_is_bitwise() {
+    // The long channel with a window over all but its first minute: the
+    // interrupt, after the first checkpoint past step 0 (60 s), lands in it.
+    let windowed = format!(
+        "{LONG}\n[[output.window]]\nfrom_s = 60.0\nto_s = 5400.0\n\
+         snapshot_every_s = 40.0\nobservables_every_s = 4.0\n"
+    );
+    let case = Case::new(&windowed);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    let target = case.path("parts.h5");
+    let mut child = case.spawn("parts.h5", &["--threads", "2"]);
+    wait_for_progress(&mut child, Path::new(&target));
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(out.status.code(), Some(130), "{}", text(&out.stderr));
+    let out = case.resume("parts.h5", &["--threads", "1"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}

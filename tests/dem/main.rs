@@ -1,0 +1,21 @@
+//! floe-dem: physics of the engine (conservation, forcing, contacts, order
+//! in time), its geometry (clipping, tessellations, broad phase) and
+//! bitwise continuation.
+
+mod broad_phase;
+mod checkpoint;
+mod clip;
+mod contact_symmetry;
+#[path = "../support/counting_allocator.rs"]
+mod counting_allocator;
+mod floe_edits;
+mod forcing;
+mod load_point;
+mod physics;
+mod power_law_floes;
+#[path = "../support/proptest_settings.rs"]
+mod proptest_settings;
+#[path = "../support/shape.rs"]
+mod shape_support;
+mod tessellation;
+mod time_order;
