@@ -52,13 +52,7 @@ impl Decomposition {
         domain: Rect,
         parts: usize,
     ) -> Result<Self, DemError> {
-        let bad = |name, value: f64, reason| {
-            Err(DemError::InvalidParameter {
-                name,
-                value,
-                reason,
-            })
-        };
+        let bad = crate::error::invalid_parameter;
         if parts == 0 {
             return bad("parts", 0.0, "needs at least one part");
         }

@@ -96,3 +96,17 @@ pub enum DemError {
 #[derive(Debug, Clone, PartialEq, Error)]
 #[error("{0}")]
 pub struct ForcingFailure(pub String);
+
+/// `Err(DemError::InvalidParameter { name, value, reason })`: the one way
+/// the checks of parameters refuse a value.
+pub(crate) fn invalid_parameter<T>(
+    name: &'static str,
+    value: f64,
+    reason: &'static str,
+) -> Result<T, DemError> {
+    Err(DemError::InvalidParameter {
+        name,
+        value,
+        reason,
+    })
+}

@@ -34,13 +34,7 @@ impl PowerLawSizes {
     /// # Errors
     /// [`DemError::InvalidParameter`] naming the parameter.
     pub fn validate(&self) -> Result<(), DemError> {
-        let bad = |name, value, reason| {
-            Err(DemError::InvalidParameter {
-                name,
-                value,
-                reason,
-            })
-        };
+        let bad = crate::error::invalid_parameter;
         if !(self.exponent.is_finite()
             && self.exponent > 0.0
             && self.exponent <= MAX_POWER_LAW_EXPONENT)

@@ -69,13 +69,7 @@ impl PlaneGrid {
     /// [`DemError::InvalidParameter`] for fewer than two nodes on an axis,
     /// or a spacing or origin that is not finite and positive.
     pub fn validate(&self) -> Result<(), DemError> {
-        let bad = |name, value, reason| {
-            Err(DemError::InvalidParameter {
-                name,
-                value,
-                reason,
-            })
-        };
+        let bad = crate::error::invalid_parameter;
         if self.nx < 2 || self.ny < 2 {
             return bad(
                 "grid nodes",
