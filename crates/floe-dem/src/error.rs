@@ -97,8 +97,8 @@ pub enum DemError {
 #[error("{0}")]
 pub struct ForcingFailure(pub String);
 
-/// `Err(DemError::InvalidParameter { name, value, reason })`: the one way
-/// the checks of parameters refuse a value.
+/// `Err(DemError::InvalidParameter { name, value, reason })`, for a check
+/// that refuses several parameters (in place of a closure in each).
 pub(crate) fn invalid_parameter<T>(
     name: &'static str,
     value: f64,

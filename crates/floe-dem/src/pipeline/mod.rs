@@ -5,11 +5,11 @@
 //! | boundary motion | `boundary_motion` | motion schedules, clock | velocities of scheduled prescribed floes |
 //! | drift | [`integrator`] | forces, velocities | positions, angles, half-step velocities; per-floe rotation; whether the candidate list is stale |
 //! | broad phase | [`broad_phase`] | positions, angles, radii | candidate pairs (rebuilt when stale) |
-//! | narrow phase | [`narrow_phase`] | candidate pairs, floes | contact list: overlaps, normal forces; contacts formed, continued, ended; contact memory |
+//! | narrow phase | [`narrow_phase`] | candidate pairs, floes | contact list: overlaps, normal forces; contacts formed, continued, ended; contact memory; the contacts' power sums |
 //! | friction | [`friction`] | each contact's load | its tangential spring and friction state (the one call of the law) |
 //! | force gathering | [`force_gathering`] | contacts, forcing | per-floe force and torque |
 //! | kick | [`integrator`] | forces and their rates with velocity | velocities; external forces at the new velocities |
-//! | energy accounting | [`energy_accounting`] | contacts, forces, velocities | the energy ledger |
+//! | energy accounting | [`energy_accounting`] | the contacts' power sums, forces, velocities | the energy ledger |
 //!
 //! [`World::step`](crate::world::World::step) runs them in that order;
 //! the world also offers the stages as four calls,
