@@ -140,6 +140,8 @@ fn bounds(lines: &[Line]) -> ((f64, f64), (f64, f64)) {
 
 /// Font size of tick labels and axis titles, pixels.
 const LABEL_FONT: f64 = 14.0;
+/// Font size of the legend's labels, pixels.
+const LEGEND_FONT: f64 = 14.0;
 
 /// An axis of a chart for plotters: a linear range whose mesh lines are
 /// [`Ticks`] (bold) and the values between them (light).
@@ -207,8 +209,8 @@ type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 
 /// The corner of the chart whose legend-sized box covers the fewest data
 /// points (upper right first on a tie): the legend is drawn there, not
-/// over the data. The box is estimated from the labels' widths and the
-/// chart's size in pixels, `x` and `y` its ranges.
+/// over the data. The box is estimated from the labels' widths against
+/// the plotting area's size in pixels, `x` and `y` its ranges.
 fn legend_corner(
     lines: &[Line],
     (x, y): ((f64, f64), (f64, f64)),
@@ -217,12 +219,13 @@ fn legend_corner(
     let labelled = lines.iter().filter(|l| !l.label.is_empty());
     let widest = labelled
         .clone()
-        .map(|l| text_width(&l.label, 14.0))
+        .map(|l| text_width(&l.label, LEGEND_FONT))
         .max()
         .unwrap_or(0);
-    // The plotting area is about the chart less its label areas and margins.
-    let box_w = f64::from(widest + 50) / f64::from(width.saturating_sub(120).max(1));
-    let box_h = 22.0 * labelled.count() as f64 / f64::from(height.saturating_sub(100).max(1));
+    // The legend's frame: a sample line, the label and margins, one row
+    // per label.
+    let box_w = f64::from(widest + 50) / f64::from(width.max(1));
+    let box_h = 22.0 * labelled.count() as f64 / f64::from(height.max(1));
     let corners = [
         (SeriesLabelPosition::UpperRight, true, true),
         (SeriesLabelPosition::UpperLeft, false, true),
@@ -307,12 +310,13 @@ fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
         }
     }
     if lines.iter().any(|l| !l.label.is_empty()) {
+        let corner = legend_corner(lines, (x, y), chart.plotting_area().dim_in_pixel());
         chart
             .configure_series_labels()
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
-            .label_font(("sans-serif", 14))
-            .position(legend_corner(lines, (x, y), (width, height)))
+            .label_font(("sans-serif", LEGEND_FONT))
+            .position(corner)
             .draw()
             .map_err(|e| e.to_string())?;
     }
