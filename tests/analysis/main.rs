@@ -5,5 +5,6 @@ mod grid_overlaps;
 mod metrics;
 #[path = "../support/proptest_settings.rs"]
 mod proptest_settings;
+mod uncertainty;
 #[path = "../support/union.rs"]
 mod union_support;

@@ -1053,3 +1053,39 @@ fn validate_accepts_generated_fields() {
     broken.thickness_m.pop();
     assert!(broken.validate().is_err());
 }
+
+#[test]
+fn shrunk_floes_keep_their_centroids_lie_inside_their_cells_and_lose_the_set_area() {
+    let dom = domain(OFFSETS[1]);
+    let gen = VoronoiFloes {
+        domain: dom,
+        count: 200,
+        seed: 3,
+        thickness: UNIFORM,
+        relax_iterations: 1,
+    };
+    let cells = gen.build().unwrap();
+    let mut shrunk = cells.clone();
+    shrunk.shrink_floes(0.75);
+    let scale = (dom.area_m2() / 200.0).sqrt();
+    for (k, (cell, floe)) in cells.polygons.iter().zip(&shrunk.polygons).enumerate() {
+        // Area by the exact factor, from an area computed independently.
+        let ratio = area(floe) / area(cell);
+        assert!((ratio - 0.75).abs() < 1e-9, "floe {k}: area ratio {ratio}");
+        let (a, b) = (cells.centroid_m(k), shrunk.centroid_m(k));
+        assert!((a - b).length() < 1e-9 * scale, "floe {k}: centroid moved");
+        // Inside its own cell, so no two floes overlap (the cells tile).
+        assert!(
+            floe.iter().all(|&v| point_in_convex(v, cell, 1e-9 * scale)),
+            "floe {k} leaves its cell"
+        );
+        assert_convex_ccw(floe, scale, &format!("shrunk floe {k}"));
+    }
+    // The whole region's ice is 3/4 of the tiling's.
+    let f = shrunk.total_area_m2() / cells.total_area_m2();
+    assert!((f - 0.75).abs() < 1e-12, "{f}");
+    // A fraction of 1 changes nothing to the bit.
+    let mut same = cells.clone();
+    same.shrink_floes(1.0);
+    assert!(bitwise_eq(&same, &cells));
+}

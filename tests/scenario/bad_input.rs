@@ -270,6 +270,25 @@ fn keys_that_do_not_apply_and_unknown_kinds_are_refused() {
         "tessellation.side_m",
         &["does not apply to kind `grid`"],
     );
+    let t = edit("gap_m = 100.0", "gap_m = 100.0\nfill_fraction = 0.8");
+    check(
+        &t,
+        "0.8",
+        0,
+        "tessellation.fill_fraction",
+        &["does not apply to kind `grid`"],
+    );
+    let voronoi = edit(
+        "kind = \"grid\"\ncolumns = 2\nrows = 2\ngap_m = 100.0",
+        "kind = \"voronoi\"\ncount = 20\nfill_fraction = 1.5",
+    );
+    check(
+        &voronoi,
+        "1.5",
+        0,
+        "tessellation.fill_fraction",
+        &["[0.1, 1]"],
+    );
     let t = edit("kind = \"grid\"", "kind = \"hexagon\"");
     check(
         &t,

@@ -304,3 +304,27 @@ fn periodic_diamond_packs_have_no_seam() {
         }
     }
 }
+
+#[test]
+fn the_wide_shear_cell_starts_loose_with_a_quarter_of_its_cells_open_water() {
+    // fill_fraction = 0.75: every Voronoi floe shrunk to 3/4 of its cell.
+    let loose = scenario("shear_cell_wide.toml");
+    let tiled_text = loose.text().replace("fill_fraction = 0.75\n", "");
+    let tiled = Scenario::from_text(&tiled_text, Path::new("tiled.toml")).unwrap();
+    let free_area = |s: &Scenario| {
+        let w = s.build().unwrap().world;
+        let f = w.floes().columns();
+        (0..f.len())
+            .filter(|&i| f.is_free(i))
+            .map(|i| f.area_m2[i])
+            .sum::<f64>()
+    };
+    let (a, b) = (free_area(&loose), free_area(&tiled));
+    // The walls glue the floes within 500 m of their faces: a shrunk floe
+    // may fall out of that band, so the free floes differ by a few at most.
+    let ratio = a / b;
+    assert!(
+        (0.72..0.78).contains(&ratio),
+        "free ice {a} against {b}: {ratio}"
+    );
+}

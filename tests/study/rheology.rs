@@ -22,6 +22,8 @@ fn args(out: &Path, laws: Vec<LawChoice>, speeds: Vec<f64>) -> RheologyArgs {
         scenario: Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/shear_cell.toml"),
         laws,
         speeds_m_per_s: speeds,
+        seeds: Vec::new(),
+        settings: Vec::new(),
         strain: 3.0,
         snapshots: 150,
         transient_fraction: 1.0 / 3.0,
@@ -158,4 +160,101 @@ fn a_scenario_that_is_not_a_shear_cell_is_refused_before_anything_runs() {
         0,
         "nothing written"
     );
+}
+
+/// `over_seeds.csv` as rows of (column -> value).
+fn seed_rows(dir: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let mut r = csv::Reader::from_path(dir.join("over_seeds.csv")).unwrap();
+    let header: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
+    r.records()
+        .map(|rec| {
+            header
+                .iter()
+                .cloned()
+                .zip(rec.unwrap().iter().map(str::to_string))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn seeds_make_different_packs_and_their_mean_carries_a_t_interval() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = args(dir.path(), laws("amontons"), vec![2.0]);
+    a.seeds = vec![1, 2, 3];
+    a.strain = 2.0;
+    a.snapshots = 64;
+    rheology(&a, &Quiet).unwrap();
+    let rows = results(dir.path());
+    assert_eq!(rows.len(), 3);
+    let seeds: Vec<&str> = rows.iter().map(|r| r["seed"].as_str()).collect();
+    assert_eq!(seeds, ["1", "2", "3"]);
+    // Each seed draws its own tessellation, so its own steady state.
+    let mu: Vec<f64> = rows.iter().map(|r| r["mu"].parse().unwrap()).collect();
+    assert!(mu[0] != mu[1] && mu[1] != mu[2], "{mu:?}");
+    // The mean over seeds and its 95 % interval, recomputed here from the
+    // runs' own values: t(0.975, 2) = 4.3027.
+    let mean = mu.iter().sum::<f64>() / 3.0;
+    let s = (mu.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / 2.0).sqrt();
+    let point = &seed_rows(dir.path())[0];
+    let got = |k: &str| point[k].parse::<f64>().unwrap();
+    assert_eq!(point["runs"], "3");
+    assert!((got("mu") - mean).abs() < 1e-12, "{} {mean}", got("mu"));
+    let ci = 4.3027 * s / 3f64.sqrt();
+    assert!(
+        (got("mu_ci95") - ci).abs() < 1e-4 * ci,
+        "{} {ci}",
+        got("mu_ci95")
+    );
+    let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+    assert!(md.contains("## Means over seeds"), "{md}");
+    assert!(dir.path().join("amontons_v2_s3.h5").exists());
+}
+
+#[test]
+fn set_and_seeds_reach_every_emitted_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = args(dir.path(), laws("amontons"), vec![0.5, 1.0]);
+    a.mode = Mode::Emit;
+    a.seeds = vec![1, 9];
+    a.settings =
+        vec![floe_scenario::settings::parse_setting("contact.youngs_modulus_pa=6e7").unwrap()];
+    rheology(&a, &Quiet).unwrap();
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "amontons_v0.5_s1.toml",
+            "amontons_v0.5_s9.toml",
+            "amontons_v1_s1.toml",
+            "amontons_v1_s9.toml"
+        ]
+    );
+    let shipped = floe_scenario::Scenario::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/shear_cell.toml"),
+    )
+    .unwrap();
+    let text = std::fs::read_to_string(dir.path().join("amontons_v1_s9.toml")).unwrap();
+    assert!(text.contains("seed = 9"), "{text}");
+    // Ten times the stiffness, the same floes (seed 1, the shipped file's):
+    // the automatic step is sqrt(10) times shorter.
+    let text = std::fs::read_to_string(dir.path().join("amontons_v1_s1.toml")).unwrap();
+    let s = floe_scenario::Scenario::from_text(&text, Path::new("x.toml")).unwrap();
+    let ratio = shipped.time_step().unwrap() / s.time_step().unwrap();
+    assert!((ratio - 10f64.sqrt()).abs() < 1e-9, "dt ratio {ratio}");
+    // A key given twice or with several values is refused before anything is written.
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = args(dir.path(), laws("amontons"), vec![0.5]);
+    a.settings = vec![floe_scenario::settings::parse_setting("dt_s=0.1,0.2").unwrap()];
+    let e = rheology(&a, &Quiet).unwrap_err().to_string();
+    assert!(e.contains("--set dt_s: one value per key"), "{e}");
+    a.settings.clear();
+    a.seeds = vec![3, 3];
+    let e = rheology(&a, &Quiet).unwrap_err().to_string();
+    assert!(e.contains("--seeds: a seed is given twice"), "{e}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
 }

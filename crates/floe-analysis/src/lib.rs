@@ -7,8 +7,9 @@
 //! floes coarse-grained onto a grid
 //! ([`grid_fields`]), the rheology of a shear cell
 //! ([`rheology`]), whether a driven pack has jammed ([`jam`]), the ice area through a
-//! gate across a strait ([`gate_flux`]), and means
-//! over time of series sampled unevenly ([`time_mean`]). No I/O and no engine types, so each
+//! gate across a strait ([`gate_flux`]), means
+//! over time of series sampled unevenly ([`time_mean`]), and the errors of
+//! means of correlated series and over seeds ([`uncertainty`]). No I/O and no engine types, so each
 //! metric can be checked on a constructed case with a known answer.
 #![deny(missing_docs)]
 
@@ -24,5 +25,6 @@ pub mod rheology;
 pub mod slip_events;
 pub mod stress;
 pub mod time_mean;
+pub mod uncertainty;
 
 pub use error::AnalysisError;

@@ -94,6 +94,7 @@ pub(crate) struct RawTessellation {
     pub floe_scale_m: Num,
     pub count: Count,
     pub relax_iterations: Count,
+    pub fill_fraction: Num,
     // grid
     pub columns: Count,
     pub rows: Count,
@@ -113,7 +114,7 @@ pub(crate) struct RawTessellation {
 impl RawTessellation {
     /// Every key but `kind`, in this struct's order, with its location when
     /// given: the kinds of [`crate::tessellation`] say which apply.
-    pub fn given(&self) -> [(Option<Range<usize>>, &'static str); 19] {
+    pub fn given(&self) -> [(Option<Range<usize>>, &'static str); 20] {
         fn at<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
             v.as_ref().map(|s| s.span())
         }
@@ -127,6 +128,7 @@ impl RawTessellation {
             (at(&self.floe_scale_m), "floe_scale_m"),
             (at(&self.count), "count"),
             (at(&self.relax_iterations), "relax_iterations"),
+            (at(&self.fill_fraction), "fill_fraction"),
             (at(&self.columns), "columns"),
             (at(&self.rows), "rows"),
             (at(&self.gap_m), "gap_m"),

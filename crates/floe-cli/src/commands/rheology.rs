@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use floe_friction::LawRegistry;
+use floe_scenario::settings::parse_setting;
 use floe_study::rheology::{self, RheologyArgs};
 
 use super::options::{parse_laws, MatchingArgs, StepLimit, Workers};
@@ -21,12 +22,23 @@ pub struct Args {
     /// Shear-cell scenario (periodic along x; bottom wall; top wall
     /// holding normal_stress_n_per_m), e.g. scenarios/shear_cell.toml.
     pub scenario: PathBuf,
+    /// KEY=VALUE: a dotted scenario key set before the runs are made
+    /// (repeatable; one value each), e.g. contact.youngs_modulus_pa=6e7 or
+    /// dt_s=0.25.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
     /// Laws, comma-separated.
     #[arg(long, default_value = "amontons,rate-state")]
     pub laws: String,
     /// The top wall's speeds along x, m/s, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "0.005,0.02,0.1,0.5,2")]
     pub speeds: Vec<f64>,
+    /// Seeds, comma-separated: every law and speed is run once per seed
+    /// (the scenario's `seed`, which draws the tessellation); runs are
+    /// named LAW_vSPEED_sSEED and the report gives the mean over seeds
+    /// with its 95 % confidence interval. Default: the scenario's seed.
+    #[arg(long, value_delimiter = ',')]
+    pub seeds: Vec<u64>,
     /// Shear strain of each run (its duration is strain x domain height / speed).
     #[arg(long, default_value_t = 6.0)]
     pub strain: f64,
@@ -64,10 +76,17 @@ impl Args {
             (_, true) => rheology::Mode::Gather,
             _ => rheology::Mode::Run,
         };
+        let settings = self
+            .set
+            .iter()
+            .map(|s| parse_setting(s))
+            .collect::<Result<Vec<_>, _>>()?;
         let args = RheologyArgs {
             scenario: self.scenario,
+            settings,
             laws: parse_laws(&self.laws)?,
             speeds_m_per_s: self.speeds,
+            seeds: self.seeds,
             strain: self.strain,
             snapshots: self.snapshots,
             transient_fraction: self.transient,
@@ -83,7 +102,7 @@ impl Args {
         let path = rheology::rheology(&args, &TerminalHooks { progress: false })?;
         Ok(match mode {
             rheology::Mode::Emit => format!(
-                "scenario files written to {}; run each LAW_vSPEED.toml with `floe run ... -o LAW_vSPEED.h5`, then the same command with --gather",
+                "scenario files written to {}; run each LAW_vSPEED[_sSEED].toml with `floe run ... -o LAW_vSPEED[_sSEED].h5`, then the same command with --gather",
                 path.display()
             ),
             _ => format!("report: {}", path.display()),

@@ -145,6 +145,25 @@ impl Tessellation {
         report
     }
 
+    /// Shrinks every floe about its area centroid to `area_fraction` of its
+    /// area (lengths by its square root): open water between floes that
+    /// tiled the region, for a loose pack that a wall or the wind then
+    /// compacts. A convex floe shrunk about an interior point stays inside
+    /// its cell, so the floes still do not overlap. `area_fraction` in
+    /// (0, 1]; at 1 the floes keep their bits.
+    pub fn shrink_floes(&mut self, area_fraction: f64) {
+        if area_fraction == 1.0 {
+            return;
+        }
+        let s = area_fraction.sqrt();
+        for p in &mut self.polygons {
+            let c = polygon_centroid(p);
+            for v in p.iter_mut() {
+                *v = c + (*v - c) * s;
+            }
+        }
+    }
+
     /// Area centroid of floe `index` (world coordinates, m). Panics if
     /// `index` is out of range.
     pub fn centroid_m(&self, index: usize) -> Vec2 {

@@ -21,6 +21,7 @@ struct PowerLaw {
     sizes: SizeDistribution,
     relax_iterations: usize,
     relax_span: Option<Range<usize>>,
+    fill_fraction: f64,
 }
 
 /// The keys of a Voronoi tessellation with `size_distribution`.
@@ -55,6 +56,7 @@ pub(super) fn resolve(k: &Keys<'_>) -> Result<Arc<dyn Generate>, ScenarioError> 
         sizes: resolve_size_distribution(f, sizes)?,
         relax_iterations,
         relax_span: span_of(&t.relax_iterations),
+        fill_fraction: super::voronoi::fill_fraction(k)?,
     }))
 }
 
@@ -117,6 +119,7 @@ impl Generate for PowerLaw {
                 sig(drop.dropped_area_m2)
             ));
         }
+        super::voronoi::fill(&mut t, self.fill_fraction, report);
         let placed = (g.place)(t, report)?;
         if g.concentration_grid {
             let polygons: Vec<Vec<Vec2>> = placed.iter().map(|p| p.polygon.clone()).collect();

@@ -7,6 +7,7 @@ use floe_analysis::love_weber::ContactForces;
 use floe_analysis::rheology::{
     cell_sample, inertial_number, CellSample, CellSnapshot, NOT_TOUCHING,
 };
+use floe_analysis::uncertainty::{blocked_mean, blocked_ratio, MeanError};
 use floe_analysis::AnalysisError;
 use floe_io::{RunFile, Series};
 
@@ -58,8 +59,9 @@ pub fn cell_samples(path: &Path) -> Result<Vec<(f64, Option<CellSample>)>, Error
     Ok(out)
 }
 
-/// A mean over samples, with the standard error of the mean from the
-/// scatter (samples taken as independent: snapshots far apart in strain).
+/// A mean over a run's steady samples, with its standard error from
+/// blocking ([`blocked_mean`]: successive snapshots are correlated, and
+/// the error allows for it).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Mean {
     /// The mean.
@@ -68,23 +70,17 @@ pub struct Mean {
     pub error: f64,
 }
 
-fn mean(values: impl Iterator<Item = f64> + Clone) -> Mean {
-    let n = values.clone().count() as f64;
-    let m = values.clone().sum::<f64>() / n;
-    let var = values.map(|v| (v - m).powi(2)).sum::<f64>() / (n - 1.0).max(1.0);
-    Mean {
-        value: m,
-        error: (var / n).sqrt(),
+impl From<MeanError> for Mean {
+    fn from(e: MeanError) -> Self {
+        Self {
+            value: e.mean,
+            error: e.error,
+        }
     }
 }
 
-fn ratio(num: Mean, den: Mean) -> Mean {
-    let value = num.value / den.value;
-    Mean {
-        value,
-        error: value.abs()
-            * ((num.error / num.value).powi(2) + (den.error / den.value).powi(2)).sqrt(),
-    }
+fn mean(values: impl Iterator<Item = f64>) -> Mean {
+    blocked_mean(&values.collect::<Vec<f64>>()).into()
 }
 
 /// The steady state of one cell run: means over the samples from
@@ -106,8 +102,14 @@ pub struct SteadyCell {
     pub bulk_shear_stress_n_per_m: Mean,
     /// `mu = <tau> / <P>` on the walls (a ratio of means: in stick-slip `P`
     /// nearly vanishes between events, and a mean of ratios would not be
-    /// defined), its error from the two errors as if independent.
+    /// defined), its blocked error by the delta method ([`blocked_ratio`]).
     pub mu: Mean,
+    /// Whether the blocked error of `mu` reached its plateau (`false`: the
+    /// steady part is short for its correlation time; the error is a lower
+    /// bound).
+    pub mu_error_converged: bool,
+    /// Snapshots per block at which the error of `mu` was read.
+    pub mu_block_samples: usize,
     /// Solid fraction in the middle half of the layer.
     pub solid_fraction: Mean,
     /// Shear rate of the fitted profile, 1/s.
@@ -150,6 +152,11 @@ pub fn steady(
     let pick = |f: fn(&CellSample) -> f64| mean(used.iter().map(move |s| f(s)));
     let p = pick(|s| s.wall_normal_stress_n_per_m);
     let shear = pick(|s| s.wall_shear_stress_n_per_m);
+    let series = |f: fn(&CellSample) -> f64| used.iter().map(|s| f(s)).collect::<Vec<f64>>();
+    let mu = blocked_ratio(
+        &series(|s| s.wall_shear_stress_n_per_m),
+        &series(|s| s.wall_normal_stress_n_per_m),
+    );
     let rate = pick(|s| s.shear_rate_per_s);
     let first = used[0];
     Ok(SteadyCell {
@@ -159,7 +166,9 @@ pub fn steady(
         wall_shear_stress_n_per_m: shear,
         bulk_normal_stress_n_per_m: pick(|s| s.bulk_normal_stress_n_per_m()),
         bulk_shear_stress_n_per_m: pick(|s| s.bulk_shear_stress_n_per_m()),
-        mu: ratio(shear, p),
+        mu: mu.into(),
+        mu_error_converged: mu.converged,
+        mu_block_samples: mu.block_samples,
         solid_fraction: pick(|s| s.solid_fraction),
         shear_rate_per_s: rate,
         wall_shear_rate_per_s: pick(|s| s.wall_shear_rate_per_s),

@@ -7,6 +7,7 @@
 //! from the measuring, for a job array.
 
 pub mod measure;
+pub mod over_seeds;
 mod report;
 
 use std::path::{Path, PathBuf};
@@ -24,16 +25,25 @@ use floe_run::run_file::{thread_count, Provenance, RunHooks};
 use floe_run::same_file::refuse_overwriting_input;
 use floe_run::Error;
 use measure::{cell_samples, steady, SteadyCell};
+use over_seeds::over_seeds;
 
 /// What `floe rheology` was asked to do.
 #[derive(Debug, Clone)]
 pub struct RheologyArgs {
     /// The shear-cell scenario.
     pub scenario: PathBuf,
+    /// Keys set in the scenario before anything else (`--set KEY=VALUE`,
+    /// one value each: e.g. the contact stiffness or `dt_s` of a
+    /// convergence check); the laws' and speeds' own keys are set after.
+    pub settings: Vec<Setting>,
     /// The laws, in report order.
     pub laws: Vec<LawChoice>,
     /// The top wall's speeds along x, m/s.
     pub speeds_m_per_s: Vec<f64>,
+    /// Seeds of the tessellation (the scenario's `seed`), each run at every
+    /// law and speed; empty: the scenario's own seed, and run names
+    /// without a seed.
+    pub seeds: Vec<u64>,
     /// Shear strain each run lasts: duration = strain x domain height / speed.
     pub strain: f64,
     /// Snapshots each run writes (the measured samples).
@@ -78,6 +88,8 @@ pub struct CellRun {
     pub law: String,
     /// The top wall's speed, m/s.
     pub speed_m_per_s: f64,
+    /// The seed set by `--seeds` (`None`: the scenario's own).
+    pub seed: Option<u64>,
     /// The run's measured steady state.
     pub steady: SteadyCell,
 }
@@ -89,6 +101,7 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
     check_args(args)?;
     let text = floe_run::run_file::read_anchored(&args.scenario)?;
     let origin = args.scenario.as_path();
+    let text = apply(&text, origin, &args.settings, &vec![0; args.settings.len()])?;
     let scenario = Scenario::from_text_with(&text, origin, &args.registry)?;
     let domain = scenario.domain();
     let not_a_cell = |why: &str| {
@@ -124,7 +137,16 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
             &reference_text,
             args.matching,
         )?;
-        for &v in &args.speeds_m_per_s {
+        let seeds: Vec<Option<u64>> = if args.seeds.is_empty() {
+            vec![None]
+        } else {
+            args.seeds.iter().copied().map(Some).collect()
+        };
+        for (&v, seed) in args
+            .speeds_m_per_s
+            .iter()
+            .flat_map(|v| seeds.iter().map(move |s| (v, *s)))
+        {
             let duration = args.strain * height / v;
             let set = |key: &str, value: String| Setting {
                 key: key.split('.').map(str::to_string).collect(),
@@ -149,14 +171,19 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
                     format!("{:?}", duration / 10.0),
                 ),
             ];
-            let variant_text = apply(&law_text, origin, &settings, &[0; 5])?;
-            let name = format!("{}_v{v}", law.name());
+            let mut settings = settings.to_vec();
+            let mut name = format!("{}_v{v}", law.name());
+            if let Some(seed) = seed {
+                settings.push(set("seed", seed.to_string()));
+                name.push_str(&format!("_s{seed}"));
+            }
+            let variant_text = apply(&law_text, origin, &settings, &[0; 6])?;
             let file = args.out_dir.join(format!("{name}.toml"));
             Scenario::from_text_with(&variant_text, &file, &args.registry)?
                 .with_max_steps(args.step_limit)
                 .build()?;
             jobs.push((file, args.out_dir.join(format!("{name}.h5"))));
-            plan.push((law.name().to_string(), v, variant_text));
+            plan.push((law.name().to_string(), v, seed, variant_text));
         }
     }
     let report_path = args.out_dir.join("report.md");
@@ -182,7 +209,7 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
         }
     }
     std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
-    for ((file, _), (_, _, variant_text)) in jobs.iter().zip(&plan) {
+    for ((file, _), (_, _, _, variant_text)) in jobs.iter().zip(&plan) {
         std::fs::write(file, variant_text).map_err(|e| Error::io(file, e))?;
     }
     if args.mode == Mode::Emit {
@@ -215,29 +242,33 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
 fn measure_and_report(
     args: &RheologyArgs,
     jobs: &[(PathBuf, PathBuf)],
-    plan: &[(String, f64, String)],
+    plan: &[(String, f64, Option<u64>, String)],
     report_path: &Path,
 ) -> Result<PathBuf, Error> {
     let mut runs = Vec::with_capacity(jobs.len());
-    for ((_, output), (law, v, _)) in jobs.iter().zip(plan) {
+    for ((_, output), (law, v, seed, _)) in jobs.iter().zip(plan) {
         let samples = cell_samples(output)?;
         let contact_mu = floe_io::RunFile::open(output)?.observable("mean_mu")?;
         runs.push(CellRun {
             law: law.clone(),
             speed_m_per_s: *v,
+            seed: *seed,
             steady: steady(&samples, &contact_mu, args.transient_fraction)?,
         });
     }
+    // Each law's fit goes through its means over seeds (the runs
+    // themselves without --seeds).
+    let points = over_seeds(&runs);
     let mut fits = Vec::new();
     for law in &args.laws {
-        let (i, mu): (Vec<f64>, Vec<f64>) = runs
+        let (i, mu): (Vec<f64>, Vec<f64>) = points
             .iter()
-            .filter(|r| r.law == law.name())
-            .map(|r| (r.steady.inertial_number, r.steady.mu.value))
+            .filter(|p| p.law == law.name())
+            .map(|p| (p.inertial_number.mean, p.mu.mean))
             .unzip();
         fits.push((law.name().to_string(), fit_mu_of_i(&i, &mu).ok()));
     }
-    report::write(&args.out_dir, &args.scenario, args, &runs, &fits)?;
+    report::write(&args.out_dir, &args.scenario, args, &runs, &points, &fits)?;
     Ok(report_path.to_path_buf())
 }
 
@@ -259,6 +290,17 @@ fn check_args(args: &RheologyArgs) -> Result<(), Error> {
     sorted.sort_by(f64::total_cmp);
     if sorted.windows(2).any(|w| w[0] == w[1]) {
         return Err(Error::Usage("--speeds: a speed is given twice".into()));
+    }
+    if let Some(s) = args.settings.iter().find(|s| s.values.len() != 1) {
+        return Err(Error::Usage(format!(
+            "--set {}: one value per key here (floe sweep takes several)",
+            s.dotted()
+        )));
+    }
+    let mut seeds = args.seeds.clone();
+    seeds.sort_unstable();
+    if seeds.windows(2).any(|w| w[0] == w[1]) {
+        return Err(Error::Usage("--seeds: a seed is given twice".into()));
     }
     if !(args.strain.is_finite() && args.strain > 0.0 && args.strain <= 1e3) {
         return usage("--strain", args.strain, "a shear strain in (0, 1000]");

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use floe_analysis::rheology::MuOfI;
 
+use super::over_seeds::SeedPoint;
 use super::{CellRun, RheologyArgs};
 use crate::plot::{panels, Axes, Line};
 use floe_run::Error;
@@ -16,18 +17,23 @@ pub(super) fn write(
     scenario: &Path,
     args: &RheologyArgs,
     runs: &[CellRun],
+    points: &[SeedPoint],
     fits: &[(String, Option<MuOfI>)],
 ) -> Result<(), Error> {
     write_csv(&dir.join("results.csv"), runs)?;
-    draw(&dir.join("rheology.png"), runs, fits)?;
-    let md = markdown(scenario, args, runs, fits);
+    let seeded = runs.iter().any(|r| r.seed.is_some());
+    if seeded {
+        write_seed_csv(&dir.join("over_seeds.csv"), points)?;
+    }
+    draw(&dir.join("rheology.png"), runs, points, fits)?;
+    let md = markdown(scenario, args, runs, points, fits);
     let path = dir.join("report.md");
     std::fs::write(&path, md).map_err(|e| Error::io(&path, e))
 }
 
 fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
     let mut text = String::from(
-        "law,speed_m_per_s,samples,inertial_number,mu,mu_error,wall_normal_stress_n_per_m,\
+        "law,speed_m_per_s,seed,samples,inertial_number,mu,mu_error,mu_error_converged,wall_normal_stress_n_per_m,\
          wall_normal_stress_error,bulk_normal_stress_n_per_m,wall_shear_stress_n_per_m,\
          bulk_shear_stress_n_per_m,solid_fraction,solid_fraction_error,shear_rate_per_s,\
          wall_shear_rate_per_s,height_m,unconfined_snapshots,contact_mu\n",
@@ -36,13 +42,15 @@ fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
         let s = &r.steady;
         let _ = writeln!(
             text,
-            "{},{},{},{:e},{},{},{},{},{},{},{},{},{},{:e},{:e},{},{},{}",
+            "{},{},{},{},{:e},{},{},{},{},{},{},{},{},{},{},{:e},{:e},{},{},{}",
             r.law,
             r.speed_m_per_s,
+            r.seed.map_or(String::new(), |s| s.to_string()),
             s.samples,
             s.inertial_number,
             s.mu.value,
             s.mu.error,
+            s.mu_error_converged,
             s.wall_normal_stress_n_per_m.value,
             s.wall_normal_stress_n_per_m.error,
             s.bulk_normal_stress_n_per_m.value,
@@ -60,7 +68,42 @@ fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
 }
 
-fn draw(path: &Path, runs: &[CellRun], fits: &[(String, Option<MuOfI>)]) -> Result<(), Error> {
+fn write_seed_csv(path: &Path, points: &[SeedPoint]) -> Result<(), Error> {
+    let mut text = String::from(
+        "law,speed_m_per_s,runs,inertial_number,inertial_number_ci95,mu,mu_ci95,mu_spread,\
+         mean_run_error_of_mu,solid_fraction,solid_fraction_ci95,contact_mu,contact_mu_ci95\n",
+    );
+    for p in points {
+        let _ = writeln!(
+            text,
+            "{},{},{},{:e},{:e},{},{},{},{},{},{},{},{}",
+            p.law,
+            p.speed_m_per_s,
+            p.mu.n,
+            p.inertial_number.mean,
+            p.inertial_number.ci95,
+            p.mu.mean,
+            p.mu.ci95,
+            p.mu.spread,
+            p.mean_run_error_of_mu,
+            p.solid_fraction.mean,
+            p.solid_fraction.ci95,
+            p.contact_mu.mean,
+            p.contact_mu.ci95,
+        );
+    }
+    std::fs::write(path, text).map_err(|e| Error::io(path, e))
+}
+
+fn draw(
+    path: &Path,
+    runs: &[CellRun],
+    points: &[SeedPoint],
+    fits: &[(String, Option<MuOfI>)],
+) -> Result<(), Error> {
+    if runs.iter().any(|r| r.seed.is_some()) {
+        return draw_over_seeds(path, runs, points, fits);
+    }
     let mut mu_lines = Vec::new();
     let mut phi_lines = Vec::new();
     for (k, (law, fit)) in fits.iter().enumerate() {
@@ -113,10 +156,101 @@ fn draw(path: &Path, runs: &[CellRun], fits: &[(String, Option<MuOfI>)]) -> Resu
     )
 }
 
+/// mu(I) and the solid fraction with every seed's run as a small marker
+/// and the means over seeds with their 95 % intervals as bars.
+fn draw_over_seeds(
+    path: &Path,
+    runs: &[CellRun],
+    points: &[SeedPoint],
+    fits: &[(String, Option<MuOfI>)],
+) -> Result<(), Error> {
+    let mut mu_lines = Vec::new();
+    let mut phi_lines = Vec::new();
+    for (k, (law, fit)) in fits.iter().enumerate() {
+        let mine: Vec<&SeedPoint> = points.iter().filter(|p| &p.law == law).collect();
+        let each: Vec<&CellRun> = runs.iter().filter(|r| &r.law == law).collect();
+        let x = |i: f64| i.log10();
+        let run_points = |f: &dyn Fn(&CellRun) -> f64| -> Vec<(f64, f64)> {
+            each.iter()
+                .map(|r| (x(r.steady.inertial_number), f(r)))
+                .collect()
+        };
+        mu_lines.push(
+            Line::markers(format!("{law}: runs"), run_points(&|r| r.steady.mu.value)).coloured(k),
+        );
+        phi_lines.push(
+            Line::markers(
+                format!("{law}: runs"),
+                run_points(&|r| r.steady.solid_fraction.value),
+            )
+            .coloured(k),
+        );
+        let means = |f: &dyn Fn(&SeedPoint) -> (f64, f64)| -> (Vec<(f64, f64)>, Vec<Line>) {
+            let centres = mine
+                .iter()
+                .map(|p| (x(p.inertial_number.mean), f(p).0))
+                .collect();
+            let bars = mine
+                .iter()
+                .filter(|p| f(p).1.is_finite())
+                .map(|p| {
+                    let (m, ci) = f(p);
+                    let xi = x(p.inertial_number.mean);
+                    Line::new("", vec![(xi, m - ci), (xi, m + ci)]).coloured(k)
+                })
+                .collect();
+            (centres, bars)
+        };
+        let (centres, bars) = means(&|p| (p.mu.mean, p.mu.ci95));
+        mu_lines.push(Line::new(format!("{law}: mean over seeds, 95 % CI"), centres).coloured(k));
+        mu_lines.extend(bars);
+        let (centres, bars) = means(&|p| (p.solid_fraction.mean, p.solid_fraction.ci95));
+        phi_lines.push(Line::new(format!("{law}: mean over seeds, 95 % CI"), centres).coloured(k));
+        phi_lines.extend(bars);
+        if let Some(fit) = fit {
+            let (lo, hi) = mine
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    let xi = x(p.inertial_number.mean);
+                    (a.min(xi), b.max(xi))
+                });
+            let curve = (0..=100)
+                .map(|j| {
+                    let xi = lo + (hi - lo) * j as f64 / 100.0;
+                    (xi, fit.mu(10f64.powf(xi)))
+                })
+                .collect();
+            mu_lines.push(Line::new(format!("{law}: fit"), curve).coloured(k));
+        }
+    }
+    panels(
+        path,
+        &[
+            (
+                Axes {
+                    title: "friction of the layer, tau/P on the walls",
+                    x: "log10 inertial number I",
+                    y: "mu",
+                },
+                mu_lines,
+            ),
+            (
+                Axes {
+                    title: "solid fraction (middle half of the layer)",
+                    x: "log10 inertial number I",
+                    y: "solid fraction",
+                },
+                phi_lines,
+            ),
+        ],
+    )
+}
+
 fn markdown(
     scenario: &Path,
     args: &RheologyArgs,
     runs: &[CellRun],
+    points: &[SeedPoint],
     fits: &[(String, Option<MuOfI>)],
 ) -> String {
     let mut md = format!(
@@ -127,26 +261,59 @@ fn markdown(
          plus the momentum flux of the fluctuations over the layer, an independent \
          measure of the same stresses. `I = shear rate x floe size x sqrt(areal density / P)`, \
          the shear rate from a linear fit of the floes' velocity across the layer. \
-         The contacts' mu is `sum |F_t| / sum F_n` over all contacts (observable `mean_mu`).\n\n",
+         The contacts' mu is `sum |F_t| / sum F_n` over all contacts (observable `mean_mu`). \
+         A run's errors are standard errors from blocking the snapshots' series (they allow \
+         for the correlation of successive snapshots); an error marked `*` did not reach \
+         its plateau (the steady part is short for its correlation time: a lower bound).\n\n",
         scenario.display(),
         parameter(args.strain),
         sig(args.transient_fraction),
         args.snapshots,
     );
+    if runs.iter().any(|r| r.seed.is_some()) {
+        md.push_str(
+            "## Means over seeds\n\nEach law and speed over its seeds (the tessellation drawn \
+             anew): means with their 95 % confidence intervals from the seeds' scatter \
+             (Student's t); \"one run's error\" is the mean of the runs' own blocked errors, \
+             the uncertainty one seed would have claimed.\n\n\
+             | law | wall speed (m/s) | seeds | I | mu (wall) | one run's error | contacts' mu | solid fraction |\n\
+             |---|---|---|---|---|---|---|---|\n",
+        );
+        for p in points {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {} | {:.3} +- {:.3} | {:.3} | {:.3} +- {:.3} | {:.3} +- {:.3} |",
+                p.law,
+                parameter(p.speed_m_per_s),
+                p.mu.n,
+                sig(p.inertial_number.mean),
+                p.mu.mean,
+                p.mu.ci95,
+                p.mean_run_error_of_mu,
+                p.contact_mu.mean,
+                p.contact_mu.ci95,
+                p.solid_fraction.mean,
+                p.solid_fraction.ci95,
+            );
+        }
+        md.push_str("\n## Runs\n\n");
+    }
     md.push_str(
-        "| law | wall speed (m/s) | I | mu (wall) | contacts' mu | P wall / bulk (N/m) | tau wall / bulk (N/m) | solid fraction | shear rate fit / walls (1/s) |\n\
-         |---|---|---|---|---|---|---|---|---|\n",
+        "| law | wall speed (m/s) | seed | I | mu (wall) | contacts' mu | P wall / bulk (N/m) | tau wall / bulk (N/m) | solid fraction | shear rate fit / walls (1/s) |\n\
+         |---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in runs {
         let s = &r.steady;
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {:.3} +- {:.3} | {:.3} | {:.0} / {:.0} | {:.0} / {:.0} | {:.3} +- {:.3} | {} / {} |",
+            "| {} | {} | {} | {} | {:.3} +- {:.3}{} | {:.3} | {:.0} / {:.0} | {:.0} / {:.0} | {:.3} +- {:.3} | {} / {} |",
             r.law,
             parameter(r.speed_m_per_s),
+            r.seed.map_or("-".to_string(), |s| s.to_string()),
             sig(s.inertial_number),
             s.mu.value,
             s.mu.error,
+            if s.mu_error_converged { "" } else { "*" },
             s.contact_mu,
             s.wall_normal_stress_n_per_m.value,
             s.bulk_normal_stress_n_per_m.value,
@@ -161,9 +328,10 @@ fn markdown(
     for r in runs.iter().filter(|r| r.steady.unconfined > 0) {
         let _ = writeln!(
             md,
-            "\n{} at {} m/s: in {} of the steady part's snapshots the floes touched one wall or none (the layer lost its confinement); they are left out.",
+            "\n{} at {} m/s{}: in {} of the steady part's snapshots the floes touched one wall or none (the layer lost its confinement); they are left out.",
             r.law,
             parameter(r.speed_m_per_s),
+            r.seed.map_or(String::new(), |s| format!(", seed {s}")),
             r.steady.unconfined
         );
     }

@@ -1,0 +1,57 @@
+//! A shear cell's runs at one law and speed, over their seeds: means with
+//! 95 % confidence intervals from the seeds' scatter.
+
+use floe_analysis::uncertainty::{seed_mean, SeedMean};
+
+use super::CellRun;
+
+/// One law and wall speed over its seeds.
+#[derive(Debug, Clone)]
+pub struct SeedPoint {
+    /// The law's name.
+    pub law: String,
+    /// The top wall's speed, m/s.
+    pub speed_m_per_s: f64,
+    /// Inertial number.
+    pub inertial_number: SeedMean,
+    /// The layer's friction, tau/P on the walls.
+    pub mu: SeedMean,
+    /// Solid fraction in the middle half of the layer.
+    pub solid_fraction: SeedMean,
+    /// The contacts' own friction.
+    pub contact_mu: SeedMean,
+    /// The runs' own (blocked) errors of mu, averaged: the uncertainty of
+    /// one run, to set beside the seeds' scatter.
+    pub mean_run_error_of_mu: f64,
+}
+
+/// `runs` grouped by law and speed (in the order first met), each group
+/// over its seeds; a group of one run has NaN intervals.
+pub fn over_seeds(runs: &[CellRun]) -> Vec<SeedPoint> {
+    let mut keys: Vec<(&str, f64)> = Vec::new();
+    for r in runs {
+        if !keys.contains(&(r.law.as_str(), r.speed_m_per_s)) {
+            keys.push((r.law.as_str(), r.speed_m_per_s));
+        }
+    }
+    keys.into_iter()
+        .map(|(law, v)| {
+            let group: Vec<&CellRun> = runs
+                .iter()
+                .filter(|r| r.law == law && r.speed_m_per_s == v)
+                .collect();
+            let of = |f: &dyn Fn(&CellRun) -> f64| {
+                seed_mean(&group.iter().map(|r| f(r)).collect::<Vec<f64>>())
+            };
+            SeedPoint {
+                law: law.to_string(),
+                speed_m_per_s: v,
+                inertial_number: of(&|r| r.steady.inertial_number),
+                mu: of(&|r| r.steady.mu.value),
+                solid_fraction: of(&|r| r.steady.solid_fraction.value),
+                contact_mu: of(&|r| r.steady.contact_mu),
+                mean_run_error_of_mu: of(&|r| r.steady.mu.error).mean,
+            }
+        })
+        .collect()
+}
