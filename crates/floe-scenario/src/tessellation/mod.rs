@@ -9,6 +9,7 @@
 mod diamond;
 mod double_shear;
 pub(crate) mod double_shear_geometry;
+mod fill;
 mod grid;
 mod power_law;
 mod voronoi;

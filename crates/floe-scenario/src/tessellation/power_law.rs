@@ -56,7 +56,7 @@ pub(super) fn resolve(k: &Keys<'_>) -> Result<Arc<dyn Generate>, ScenarioError> 
         sizes: resolve_size_distribution(f, sizes)?,
         relax_iterations,
         relax_span: span_of(&t.relax_iterations),
-        fill_fraction: super::voronoi::fill_fraction(k)?,
+        fill_fraction: super::fill::fill_fraction(k)?,
     }))
 }
 
@@ -119,7 +119,7 @@ impl Generate for PowerLaw {
                 sig(drop.dropped_area_m2)
             ));
         }
-        super::voronoi::fill(&mut t, self.fill_fraction, report);
+        super::fill::fill(&mut t, self.fill_fraction, report);
         let placed = (g.place)(t, report)?;
         if g.concentration_grid {
             let polygons: Vec<Vec<Vec2>> = placed.iter().map(|p| p.polygon.clone()).collect();

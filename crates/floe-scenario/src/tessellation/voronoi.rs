@@ -6,13 +6,13 @@
 use std::ops::Range;
 use std::sync::Arc;
 
-use floe_dem::tessellation::{Tessellation, VoronoiFloes, MAX_FLOES};
+use floe_dem::tessellation::{VoronoiFloes, MAX_FLOES};
 
-use super::{power_law, Generate, Generation, Keys, Kind, MAX_RELAX_ITERATIONS};
+use super::{fill, power_law, Generate, Generation, Keys, Kind, MAX_RELAX_ITERATIONS};
 use crate::error::ScenarioError;
 use crate::numbers::{sig, thousands};
 use crate::piece::Piece;
-use crate::resolve::limits::{count, length, within};
+use crate::resolve::limits::{count, length};
 use crate::source_file::SourceFile;
 
 /// Its line of [`super::KINDS`].
@@ -47,37 +47,6 @@ struct Voronoi {
     sites: Sites,
     relax_iterations: usize,
     fill_fraction: f64,
-}
-
-/// Smallest `fill_fraction`: below it the floes are far apart, not a pack.
-const MIN_FILL_FRACTION: f64 = 0.1;
-
-/// `tessellation.fill_fraction`: the fraction of its cell's area each floe
-/// keeps, shrunk about its centroid (default 1: the cells fill the region).
-pub(super) fn fill_fraction(k: &Keys<'_>) -> Result<f64, ScenarioError> {
-    match &k.t.fill_fraction {
-        Some(v) => within(
-            k.f,
-            v,
-            "tessellation.fill_fraction",
-            MIN_FILL_FRACTION,
-            1.0,
-            false,
-        ),
-        None => Ok(1.0),
-    }
-}
-
-/// Shrinks the floes of `t` to `fill` of their cells' areas (nothing at
-/// 1), with a report line.
-pub(super) fn fill(t: &mut Tessellation, fill: f64, report: &mut Vec<String>) {
-    if fill < 1.0 {
-        t.shrink_floes(fill);
-        report.push(format!(
-            "  each floe shrunk about its centroid to {} of its cell's area (open water between the floes)",
-            sig(fill)
-        ));
-    }
 }
 
 /// Refuses a tessellation of `sites` Voronoi sites relaxed `iterations`
@@ -137,7 +106,7 @@ fn resolve(k: &Keys<'_>) -> Result<Arc<dyn Generate>, ScenarioError> {
     Ok(Arc::new(Voronoi {
         sites,
         relax_iterations,
-        fill_fraction: fill_fraction(k)?,
+        fill_fraction: fill::fill_fraction(k)?,
     }))
 }
 
@@ -183,7 +152,7 @@ impl Generate for Voronoi {
             relax_iterations
         ));
         report.push(g.dropped_line("cells", drop.dropped, drop.dropped_area_m2));
-        fill(&mut t, self.fill_fraction, report);
+        fill::fill(&mut t, self.fill_fraction, report);
         (g.place)(t, report)
     }
 }

@@ -126,20 +126,19 @@ pub struct SteadyCell {
 }
 
 /// Means over the samples from `from_fraction` (in [0, 1)) of the list on;
-/// `contact_mu` is the run's `mean_mu` observable.
+/// `contact_mu` is the run's `mean_mu` observable. `None` when fewer than
+/// two snapshots of that part have the floes touching both walls (the
+/// layer lost its confinement: not a dense flow to measure).
 pub fn steady(
     samples: &[(f64, Option<CellSample>)],
     contact_mu: &Series,
     from_fraction: f64,
-) -> Result<SteadyCell, Error> {
+) -> Option<SteadyCell> {
     let start = ((samples.len() as f64) * from_fraction).floor() as usize;
     let part = &samples[start.min(samples.len())..];
     let used: Vec<&CellSample> = part.iter().filter_map(|(_, s)| s.as_ref()).collect();
     if used.len() < 2 {
-        return Err(Error::Usage(format!(
-            "the cell's steady part has {} snapshots in which the floes touch both walls; at least 2 are needed (more snapshots: --snapshots)",
-            used.len()
-        )));
+        return None;
     }
     let from_s = part.first().map_or(f64::INFINITY, |(t, _)| *t);
     let late: Vec<f64> = contact_mu
@@ -159,7 +158,7 @@ pub fn steady(
     );
     let rate = pick(|s| s.shear_rate_per_s);
     let first = used[0];
-    Ok(SteadyCell {
+    Some(SteadyCell {
         samples: used.len(),
         unconfined: part.len() - used.len(),
         wall_normal_stress_n_per_m: p,

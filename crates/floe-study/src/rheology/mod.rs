@@ -246,15 +246,26 @@ fn measure_and_report(
     report_path: &Path,
 ) -> Result<PathBuf, Error> {
     let mut runs = Vec::with_capacity(jobs.len());
+    let mut unconfined = Vec::new();
     for ((_, output), (law, v, seed, _)) in jobs.iter().zip(plan) {
         let samples = cell_samples(output)?;
         let contact_mu = floe_io::RunFile::open(output)?.observable("mean_mu")?;
-        runs.push(CellRun {
-            law: law.clone(),
-            speed_m_per_s: *v,
-            seed: *seed,
-            steady: steady(&samples, &contact_mu, args.transient_fraction)?,
-        });
+        match steady(&samples, &contact_mu, args.transient_fraction) {
+            Some(steady) => runs.push(CellRun {
+                law: law.clone(),
+                speed_m_per_s: *v,
+                seed: *seed,
+                steady,
+            }),
+            None => unconfined.push(output.clone()),
+        }
+    }
+    if runs.is_empty() {
+        return Err(Error::Usage(format!(
+            "no run has two snapshots in its steady part in which the floes touch both walls \
+             ({} runs); more snapshots (--snapshots) or a lower speed",
+            unconfined.len()
+        )));
     }
     // Each law's fit goes through its means over seeds (the runs
     // themselves without --seeds).
@@ -268,7 +279,14 @@ fn measure_and_report(
             .unzip();
         fits.push((law.name().to_string(), fit_mu_of_i(&i, &mu).ok()));
     }
-    report::write(&args.out_dir, &args.scenario, args, &runs, &points, &fits)?;
+    report::write(
+        &args.out_dir,
+        &args.scenario,
+        args,
+        (&runs, &unconfined),
+        &points,
+        &fits,
+    )?;
     Ok(report_path.to_path_buf())
 }
 

@@ -1,7 +1,7 @@
 //! `floe rheology`'s outputs: `results.csv`, `report.md`, `rheology.png`.
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use floe_analysis::rheology::MuOfI;
 
@@ -16,7 +16,7 @@ pub(super) fn write(
     dir: &Path,
     scenario: &Path,
     args: &RheologyArgs,
-    runs: &[CellRun],
+    (runs, unconfined): (&[CellRun], &[PathBuf]),
     points: &[SeedPoint],
     fits: &[(String, Option<MuOfI>)],
 ) -> Result<(), Error> {
@@ -26,7 +26,16 @@ pub(super) fn write(
         write_seed_csv(&dir.join("over_seeds.csv"), points)?;
     }
     draw(&dir.join("rheology.png"), runs, points, fits)?;
-    let md = markdown(scenario, args, runs, points, fits);
+    let mut md = markdown(scenario, args, runs, points, fits);
+    if !unconfined.is_empty() {
+        md.push_str(
+            "\nNot measured: in these runs fewer than two snapshots of the steady part have \
+             the floes touching both walls (the layer lost its confinement; not a dense flow):\n\n",
+        );
+        for path in unconfined {
+            let _ = writeln!(md, "- {}", path.display());
+        }
+    }
     let path = dir.join("report.md");
     std::fs::write(&path, md).map_err(|e| Error::io(&path, e))
 }
