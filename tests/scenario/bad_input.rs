@@ -289,6 +289,11 @@ fn keys_that_do_not_apply_and_unknown_kinds_are_refused() {
         "tessellation.fill_fraction",
         &["[0.1, 1]"],
     );
+    let t = edit(
+        "thickness_m = 1.0",
+        "thickness_m = 1.0\ninitial_shear_rate_per_s = 2.0",
+    );
+    check(&t, "2.0", 0, "ice.initial_shear_rate_per_s", &["[-1, 1]"]);
     let t = edit("kind = \"grid\"", "kind = \"hexagon\"");
     check(
         &t,

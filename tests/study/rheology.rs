@@ -38,6 +38,7 @@ fn args(out: &Path, laws: Vec<LawChoice>, speeds: Vec<f64>) -> RheologyArgs {
         provenance: Provenance::of_this_process("test"),
         registry: LawRegistry::builtin(),
         step_limit: floe_scenario::MAX_RUN_STEPS,
+        linear_start: false,
     }
 }
 
@@ -257,4 +258,32 @@ fn set_and_seeds_reach_every_emitted_run() {
     let e = rheology(&a, &Quiet).unwrap_err().to_string();
     assert!(e.contains("--seeds: a seed is given twice"), "{e}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn a_linear_start_gives_every_free_floe_the_cells_shear_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = args(dir.path(), laws("amontons"), vec![2.0]);
+    a.mode = Mode::Emit;
+    a.linear_start = true;
+    rheology(&a, &Quiet).unwrap();
+    let text = std::fs::read_to_string(dir.path().join("amontons_v2.toml")).unwrap();
+    // The top wall's speed over the domain height (5 km).
+    assert!(text.contains("initial_shear_rate_per_s = 0.0004"), "{text}");
+    let s = floe_scenario::Scenario::from_text(&text, Path::new("x.toml")).unwrap();
+    let w = s.build().unwrap().world;
+    let f = w.floes().columns();
+    let mut free = 0;
+    for i in (0..f.len()).filter(|&i| f.is_free(i)) {
+        // u = 2 m/s x y / 5000 m at the centroid; no spin, no v.
+        let expected = 2.0 * f.position[i].y / 5000.0;
+        let u = f.velocity[i];
+        assert!(
+            (u.x - expected).abs() < 1e-12,
+            "floe {i}: {u:?} against {expected}"
+        );
+        assert_eq!(u.y, 0.0);
+        free += 1;
+    }
+    assert!(free > 100, "{free} free floes");
 }

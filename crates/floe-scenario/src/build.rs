@@ -66,13 +66,17 @@ fn generate(
                          report: &mut Vec<String>|
              -> Result<Vec<Piece>, ScenarioError> {
                 place_from_grids(f, r, region, &mut t, frame, report)?;
+                let heights: Vec<f64> = (0..t.len())
+                    .map(|i| t.centroid_m(i).y - region.min.y)
+                    .collect();
                 Ok(t.polygons
                     .into_iter()
                     .zip(t.thickness_m)
-                    .map(|(polygon, thickness_m)| Piece {
+                    .zip(heights)
+                    .map(|((polygon, thickness_m), height)| Piece {
                         polygon,
                         thickness_m,
-                        velocity: v0,
+                        velocity: v0.at(height),
                         angular_velocity: 0.0,
                         prescribed: false,
                         schedule: None,
@@ -118,9 +122,11 @@ fn generate(
                     thickness_m: e.thickness_m.unwrap_or(h),
                     velocity: match &e.schedule {
                         Some(s) => s.velocity_at(0.0).0,
-                        None => e
-                            .velocity
-                            .unwrap_or(if e.prescribed { Vec2::ZERO } else { v0 }),
+                        None => e.velocity.unwrap_or(if e.prescribed {
+                            Vec2::ZERO
+                        } else {
+                            v0.at(centroid_height(&e.vertices, region))
+                        }),
                     },
                     angular_velocity: match &e.schedule {
                         Some(s) => s.velocity_at(0.0).1,
@@ -135,6 +141,15 @@ fn generate(
                 .collect())
         }
     }
+}
+
+/// The height of a polygon's area centroid above the bottom of `region`.
+fn centroid_height(polygon: &[Vec2], region: Rect) -> f64 {
+    let one = Tessellation {
+        polygons: vec![polygon.to_vec()],
+        thickness_m: vec![1.0],
+    };
+    one.centroid_m(0).y - region.min.y
 }
 
 /// Builds the floes (free, prescribed, walls) and checks their layout.

@@ -192,6 +192,7 @@ pub(crate) struct RawIce {
     pub thickness_range_m: Pair,
     pub density_kg_per_m3: Num,
     pub initial_velocity_m_per_s: Pair,
+    pub initial_shear_rate_per_s: Num,
     /// `concentration_grid = { file, variable, time_index, units }`
     pub concentration_grid: Option<Spanned<RawGridField>>,
     /// `thickness_grid = { file, variable, time_index }`

@@ -57,6 +57,11 @@ pub struct Args {
     /// Threads and --force.
     #[command(flatten)]
     pub workers: Workers,
+    /// How the free floes start: `linear` (the simple-shear profile
+    /// from the fixed wall to the moving one, so that the flow need not
+    /// diffuse across the layer from the moving wall first) or `rest`.
+    #[arg(long, value_parser = ["linear", "rest"], default_value = "linear")]
+    pub initial_profile: String,
     /// Only write the runs' scenario files (LAW_vSPEED.toml), for a job array.
     #[arg(long)]
     pub emit: bool,
@@ -98,6 +103,7 @@ impl Args {
             provenance: provenance(),
             registry: LawRegistry::builtin(),
             step_limit: self.step_limit.step_limit,
+            linear_start: self.initial_profile == "linear",
         };
         let path = rheology::rheology(&args, &TerminalHooks { progress: false })?;
         Ok(match mode {

@@ -5,7 +5,7 @@ use floe_dem::tessellation::ThicknessDistribution;
 use floe_dem::Vec2;
 use toml::Spanned;
 
-use super::limits::{at_most, density, thickness, MAX_THICKNESS_M, MIN_THICKNESS_M};
+use super::limits::{at_most, density, thickness, within, MAX_THICKNESS_M, MIN_THICKNESS_M};
 use crate::error::ScenarioError;
 use crate::numbers::{short, short_list};
 use crate::source_file::SourceFile;
@@ -20,14 +20,14 @@ pub const DEFAULT_THICKNESS_M: f64 = 1.0;
 pub(crate) fn resolve_ice(
     f: &SourceFile,
     raw: Option<&Spanned<RawIce>>,
-) -> Result<(ThicknessDistribution, f64, Vec2), ScenarioError> {
+) -> Result<(ThicknessDistribution, f64, InitialVelocity), ScenarioError> {
     let Some(raw) = raw else {
         return Ok((
             ThicknessDistribution::Uniform {
                 thickness_m: DEFAULT_THICKNESS_M,
             },
             DEFAULT_ICE_DENSITY_KG_PER_M3,
-            Vec2::ZERO,
+            InitialVelocity::default(),
         ));
     };
     let ice = raw.get_ref();
@@ -114,9 +114,53 @@ pub(crate) fn resolve_ice(
         },
         None => DEFAULT_ICE_DENSITY_KG_PER_M3,
     };
-    let velocity = match &ice.initial_velocity_m_per_s {
+    let uniform = match &ice.initial_velocity_m_per_s {
         Some(v) => f.pair(v, "ice.initial_velocity_m_per_s")?,
         None => Vec2::ZERO,
     };
-    Ok((thickness, density, velocity))
+    let shear_rate_per_s = match &ice.initial_shear_rate_per_s {
+        Some(v) => within(
+            f,
+            v,
+            "ice.initial_shear_rate_per_s",
+            -MAX_INITIAL_SHEAR_RATE_PER_S,
+            MAX_INITIAL_SHEAR_RATE_PER_S,
+            false,
+        )?,
+        None => 0.0,
+    };
+    Ok((
+        thickness,
+        density,
+        InitialVelocity {
+            uniform,
+            shear_rate_per_s,
+        },
+    ))
+}
+
+/// Largest `initial_shear_rate_per_s` magnitude: one radian a second is
+/// far beyond any ice (and keeps the start's speeds bounded).
+const MAX_INITIAL_SHEAR_RATE_PER_S: f64 = 1.0;
+
+/// The free floes' velocity at the start: `uniform + (rate (y - y0), 0)`
+/// at a floe's centroid height `y - y0` above the bottom of the ice region
+/// (`[ice] initial_velocity_m_per_s`, `initial_shear_rate_per_s`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct InitialVelocity {
+    /// The same for every floe, m/s.
+    pub uniform: Vec2,
+    /// `du_x/dy`, 1/s: a simple-shear start (a shear cell's linear profile).
+    pub shear_rate_per_s: f64,
+}
+
+impl InitialVelocity {
+    /// The velocity of a free floe whose centroid is `height_m` above the
+    /// bottom of the ice region.
+    pub fn at(&self, height_m: f64) -> Vec2 {
+        if self.shear_rate_per_s == 0.0 {
+            return self.uniform;
+        }
+        self.uniform + Vec2::new(self.shear_rate_per_s * height_m, 0.0)
+    }
 }

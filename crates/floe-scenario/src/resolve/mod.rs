@@ -20,7 +20,6 @@ use std::path::Path;
 use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
 use floe_dem::tessellation::ThicknessDistribution;
-use floe_dem::Vec2;
 use floe_friction::LawRegistry;
 use toml::Spanned;
 
@@ -48,7 +47,7 @@ pub use crate::tessellation::{DEFAULT_MIN_AREA_FRACTION, MAX_RELAX_ITERATIONS, M
 pub use contact::YOUNGS_MODULUS_RANGE_PA;
 pub(crate) use floes::FloeSource;
 pub use floes::LOAD_POINT_STIFFNESS_RANGE_N_PER_M;
-pub use ice::{DEFAULT_ICE_DENSITY_KG_PER_M3, DEFAULT_THICKNESS_M};
+pub use ice::{InitialVelocity, DEFAULT_ICE_DENSITY_KG_PER_M3, DEFAULT_THICKNESS_M};
 pub(crate) use limits::dem_error;
 pub use limits::{MAX_DENSITY_KG_PER_M3, MAX_LENGTH_M, MAX_THICKNESS_M, MIN_THICKNESS_M};
 pub use output::MAX_OUTPUT_WINDOWS;
@@ -88,7 +87,7 @@ pub(crate) struct Resolved {
     /// `[ice] concentration_grid` and `thickness_grid`.
     pub ice_grids: IceGrids,
     pub density_kg_per_m3: f64,
-    pub initial_velocity: Vec2,
+    pub initial_velocity: InitialVelocity,
     pub model: ContactModel,
     pub forcing: Forcing,
     pub walls: Vec<Wall>,

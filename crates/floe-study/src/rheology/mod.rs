@@ -67,6 +67,10 @@ pub struct RheologyArgs {
     pub registry: LawRegistry,
     /// Most time steps a run may take.
     pub step_limit: f64,
+    /// Whether the free floes start with the cell's linear shear profile
+    /// (the top wall's speed over the domain height, `[ice]
+    /// initial_shear_rate_per_s`) or at rest.
+    pub linear_start: bool,
 }
 
 /// What `floe rheology` does with the cells.
@@ -172,12 +176,18 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
                 ),
             ];
             let mut settings = settings.to_vec();
+            if args.linear_start {
+                settings.push(set(
+                    "ice.initial_shear_rate_per_s",
+                    format!("{:?}", v / height),
+                ));
+            }
             let mut name = format!("{}_v{v}", law.name());
             if let Some(seed) = seed {
                 settings.push(set("seed", seed.to_string()));
                 name.push_str(&format!("_s{seed}"));
             }
-            let variant_text = apply(&law_text, origin, &settings, &[0; 6])?;
+            let variant_text = apply(&law_text, origin, &settings, &vec![0; settings.len()])?;
             let file = args.out_dir.join(format!("{name}.toml"));
             Scenario::from_text_with(&variant_text, &file, &args.registry)?
                 .with_max_steps(args.step_limit)
