@@ -253,6 +253,13 @@ fn set_and_seeds_reach_every_emitted_run() {
     a.settings = vec![floe_scenario::settings::parse_setting("dt_s=0.1,0.2").unwrap()];
     let e = rheology(&a, &Quiet).unwrap_err().to_string();
     assert!(e.contains("--set dt_s: one value per key"), "{e}");
+    // A key the scenario does not take is blamed on the flag that set it.
+    a.settings = vec![floe_scenario::settings::parse_setting("contact.youngs=0.1").unwrap()];
+    let e = rheology(&a, &Quiet).unwrap_err().to_string();
+    assert!(
+        e.contains("shear_cell.toml with --set contact.youngs=0.1:") && e.contains("unknown field"),
+        "{e}"
+    );
     a.settings.clear();
     a.seeds = vec![3, 3];
     let e = rheology(&a, &Quiet).unwrap_err().to_string();

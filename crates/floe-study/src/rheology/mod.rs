@@ -105,7 +105,22 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
     check_args(args)?;
     let text = floe_run::run_file::read_anchored(&args.scenario)?;
     let origin = args.scenario.as_path();
-    let text = apply(&text, origin, &args.settings, &vec![0; args.settings.len()])?;
+    let text = if args.settings.is_empty() {
+        text
+    } else {
+        // A key the scenario does not take is blamed on the flag: the
+        // message's file names the settings, as `floe sweep`'s does.
+        floe_scenario::settings::check_distinct(&args.settings)?;
+        let set_text = apply(&text, origin, &args.settings, &vec![0; args.settings.len()])?;
+        let given: Vec<String> = args
+            .settings
+            .iter()
+            .map(|s| format!("--set {}={}", s.dotted(), s.values[0]))
+            .collect();
+        let with = PathBuf::from(format!("{} with {}", origin.display(), given.join(" ")));
+        Scenario::from_text_with(&set_text, &with, &args.registry)?;
+        set_text
+    };
     let scenario = Scenario::from_text_with(&text, origin, &args.registry)?;
     let domain = scenario.domain();
     let not_a_cell = |why: &str| {
