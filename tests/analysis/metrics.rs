@@ -404,6 +404,32 @@ fn a_floe_squeezed_and_sheared_between_two_walls() {
     assert!(close(s.solid_fraction, 0.2), "{s:?}");
     assert!(close(s.wall_shear_rate_per_s, 0.5 / 400.0), "{s:?}");
     assert!(close(s.floe_size_m, 400.0), "{s:?}");
+    let [bottom, top] = s.wall_normal_stress_bottom_top_n_per_m;
+    assert!(close(bottom, 1500.0) && close(top, 1500.0), "{s:?}");
+    // The bottom wall pushing harder (4 MN: the floe accelerating upwards,
+    // as a dilating layer's middle does): each wall's own stress, and their
+    // mean on the walls.
+    let normal_force = [4e6, 3e6];
+    let s = cell_sample(&CellSnapshot {
+        period_x_m: length,
+        position: &position,
+        velocity: &velocity,
+        area_m2: &area,
+        mass_kg: &mass,
+        prescribed: &prescribed,
+        vertices: &vertices,
+        contacts: ContactForces {
+            pair: &pair,
+            point: &point,
+            normal: &normal,
+            normal_force_n: &normal_force,
+            tangential_force_n: &tangential_force,
+        },
+    })
+    .unwrap();
+    let [bottom, top] = s.wall_normal_stress_bottom_top_n_per_m;
+    assert!(close(bottom, 2000.0) && close(top, 1500.0), "{s:?}");
+    assert!(close(s.wall_normal_stress_n_per_m, 1750.0), "{s:?}");
 }
 
 #[test]

@@ -57,6 +57,10 @@ pub struct CellSample {
     pub height_m: f64,
     /// Mean normal stress the ice puts on the two walls, N/m.
     pub wall_normal_stress_n_per_m: f64,
+    /// Normal stress on the bottom wall and on the top wall, N/m: equal in
+    /// the mean in a steady state (the layer's momentum across it is
+    /// bounded); apart while the layer still dilates or compacts.
+    pub wall_normal_stress_bottom_top_n_per_m: [f64; 2],
     /// Mean shear stress on the two walls, N/m.
     pub wall_shear_stress_n_per_m: f64,
     /// Love-Weber stress of the contacts over the layer (`L H`), N/m.
@@ -252,6 +256,7 @@ pub fn cell_sample(s: &CellSnapshot) -> Result<CellSample, AnalysisError> {
     Ok(CellSample {
         height_m: h,
         wall_normal_stress_n_per_m: 0.5 * (force[1][1] - force[0][1]) / length,
+        wall_normal_stress_bottom_top_n_per_m: [-force[0][1] / length, force[1][1] / length],
         wall_shear_stress_n_per_m: 0.5 * (force[0][0] - force[1][0]) / length,
         contact_stress_n_per_m: contact,
         kinetic_stress_n_per_m: kinetic,

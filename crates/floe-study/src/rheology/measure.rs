@@ -94,6 +94,9 @@ pub struct SteadyCell {
     pub unconfined: usize,
     /// Normal stress on the walls, N/m.
     pub wall_normal_stress_n_per_m: Mean,
+    /// Normal stress on the bottom wall and on the top wall, N/m (apart
+    /// while the layer is not yet steady: its height still changing).
+    pub wall_normal_stress_bottom_top_n_per_m: [Mean; 2],
     /// Shear stress on the walls, N/m.
     pub wall_shear_stress_n_per_m: Mean,
     /// Normal stress from the contacts and fluctuations inside, N/m.
@@ -162,6 +165,10 @@ pub fn steady(
         samples: used.len(),
         unconfined: part.len() - used.len(),
         wall_normal_stress_n_per_m: p,
+        wall_normal_stress_bottom_top_n_per_m: [
+            pick(|s| s.wall_normal_stress_bottom_top_n_per_m[0]),
+            pick(|s| s.wall_normal_stress_bottom_top_n_per_m[1]),
+        ],
         wall_shear_stress_n_per_m: shear,
         bulk_normal_stress_n_per_m: pick(|s| s.bulk_normal_stress_n_per_m()),
         bulk_shear_stress_n_per_m: pick(|s| s.bulk_shear_stress_n_per_m()),

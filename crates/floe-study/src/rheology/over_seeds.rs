@@ -20,6 +20,9 @@ pub struct SeedPoint {
     pub solid_fraction: SeedMean,
     /// The contacts' own friction.
     pub contact_mu: SeedMean,
+    /// Normal stress on the bottom and on the top wall, N/m (apart: the
+    /// layer was not yet steady).
+    pub wall_normal_stress_bottom_top_n_per_m: [SeedMean; 2],
     /// The runs' own (blocked) errors of mu, averaged: the uncertainty of
     /// one run, to set beside the seeds' scatter.
     pub mean_run_error_of_mu: f64,
@@ -50,6 +53,8 @@ pub fn over_seeds(runs: &[CellRun]) -> Vec<SeedPoint> {
                 mu: of(&|r| r.steady.mu.value),
                 solid_fraction: of(&|r| r.steady.solid_fraction.value),
                 contact_mu: of(&|r| r.steady.contact_mu),
+                wall_normal_stress_bottom_top_n_per_m: [0, 1]
+                    .map(|k| of(&|r| r.steady.wall_normal_stress_bottom_top_n_per_m[k].value)),
                 mean_run_error_of_mu: of(&|r| r.steady.mu.error).mean,
             }
         })

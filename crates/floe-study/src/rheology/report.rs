@@ -45,13 +45,14 @@ fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
         "law,speed_m_per_s,seed,samples,inertial_number,mu,mu_error,mu_error_converged,wall_normal_stress_n_per_m,\
          wall_normal_stress_error,bulk_normal_stress_n_per_m,wall_shear_stress_n_per_m,\
          bulk_shear_stress_n_per_m,solid_fraction,solid_fraction_error,shear_rate_per_s,\
-         wall_shear_rate_per_s,height_m,unconfined_snapshots,contact_mu\n",
+         wall_shear_rate_per_s,height_m,unconfined_snapshots,contact_mu,\
+         bottom_wall_normal_stress_n_per_m,top_wall_normal_stress_n_per_m\n",
     );
     for r in runs {
         let s = &r.steady;
         let _ = writeln!(
             text,
-            "{},{},{},{},{:e},{},{},{},{},{},{},{},{},{},{},{:e},{:e},{},{},{}",
+            "{},{},{},{},{:e},{},{},{},{},{},{},{},{},{},{},{:e},{:e},{},{},{},{},{}",
             r.law,
             r.speed_m_per_s,
             r.seed.map_or(String::new(), |s| s.to_string()),
@@ -72,6 +73,8 @@ fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
             s.height_m.value,
             s.unconfined,
             s.contact_mu,
+            s.wall_normal_stress_bottom_top_n_per_m[0].value,
+            s.wall_normal_stress_bottom_top_n_per_m[1].value,
         );
     }
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
@@ -285,13 +288,13 @@ fn markdown(
              anew): means with their 95 % confidence intervals from the seeds' scatter \
              (Student's t); \"one run's error\" is the mean of the runs' own blocked errors, \
              the uncertainty one seed would have claimed.\n\n\
-             | law | wall speed (m/s) | seeds | I | mu (wall) | one run's error | contacts' mu | solid fraction |\n\
-             |---|---|---|---|---|---|---|---|\n",
+             | law | wall speed (m/s) | seeds | I | mu (wall) | one run's error | contacts' mu | solid fraction | P bottom / top (N/m) |\n\
+             |---|---|---|---|---|---|---|---|---|\n",
         );
         for p in points {
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {} | {:.3} +- {:.3} | {:.3} | {:.3} +- {:.3} | {:.3} +- {:.3} |",
+                "| {} | {} | {} | {} | {:.3} +- {:.3} | {:.3} | {:.3} +- {:.3} | {:.3} +- {:.3} | {:.0} / {:.0} |",
                 p.law,
                 parameter(p.speed_m_per_s),
                 p.mu.n,
@@ -303,19 +306,21 @@ fn markdown(
                 p.contact_mu.ci95,
                 p.solid_fraction.mean,
                 p.solid_fraction.ci95,
+                p.wall_normal_stress_bottom_top_n_per_m[0].mean,
+                p.wall_normal_stress_bottom_top_n_per_m[1].mean,
             );
         }
         md.push_str("\n## Runs\n\n");
     }
     md.push_str(
-        "| law | wall speed (m/s) | seed | I | mu (wall) | contacts' mu | P wall / bulk (N/m) | tau wall / bulk (N/m) | solid fraction | shear rate fit / walls (1/s) |\n\
+        "| law | wall speed (m/s) | seed | I | mu (wall) | contacts' mu | P bottom / top / bulk (N/m) | tau wall / bulk (N/m) | solid fraction | shear rate fit / walls (1/s) |\n\
          |---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in runs {
         let s = &r.steady;
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {:.3} +- {:.3}{} | {:.3} | {:.0} / {:.0} | {:.0} / {:.0} | {:.3} +- {:.3} | {} / {} |",
+            "| {} | {} | {} | {} | {:.3} +- {:.3}{} | {:.3} | {:.0} / {:.0} / {:.0} | {:.0} / {:.0} | {:.3} +- {:.3} | {} / {} |",
             r.law,
             parameter(r.speed_m_per_s),
             r.seed.map_or("-".to_string(), |s| s.to_string()),
@@ -324,7 +329,8 @@ fn markdown(
             s.mu.error,
             if s.mu_error_converged { "" } else { "*" },
             s.contact_mu,
-            s.wall_normal_stress_n_per_m.value,
+            s.wall_normal_stress_bottom_top_n_per_m[0].value,
+            s.wall_normal_stress_bottom_top_n_per_m[1].value,
             s.bulk_normal_stress_n_per_m.value,
             s.wall_shear_stress_n_per_m.value,
             s.bulk_shear_stress_n_per_m.value,
