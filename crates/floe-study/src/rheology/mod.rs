@@ -105,22 +105,7 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
     check_args(args)?;
     let text = floe_run::run_file::read_anchored(&args.scenario)?;
     let origin = args.scenario.as_path();
-    let text = if args.settings.is_empty() {
-        text
-    } else {
-        // A key the scenario does not take is blamed on the flag: the
-        // message's file names the settings, as `floe sweep`'s does.
-        floe_scenario::settings::check_distinct(&args.settings)?;
-        let set_text = apply(&text, origin, &args.settings, &vec![0; args.settings.len()])?;
-        let given: Vec<String> = args
-            .settings
-            .iter()
-            .map(|s| format!("--set {}={}", s.dotted(), s.values[0]))
-            .collect();
-        let with = PathBuf::from(format!("{} with {}", origin.display(), given.join(" ")));
-        Scenario::from_text_with(&set_text, &with, &args.registry)?;
-        set_text
-    };
+    let text = with_user_settings(&text, args)?;
     let scenario = Scenario::from_text_with(&text, origin, &args.registry)?;
     let domain = scenario.domain();
     let not_a_cell = |why: &str| {
@@ -261,6 +246,26 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
         )));
     }
     measure_and_report(args, &jobs, &plan, &report_path)
+}
+
+/// `text` with the `--set` keys applied. A key the scenario does not take
+/// is blamed on the flag: the message's file names the settings, as
+/// `floe sweep`'s does.
+fn with_user_settings(text: &str, args: &RheologyArgs) -> Result<String, Error> {
+    if args.settings.is_empty() {
+        return Ok(text.to_string());
+    }
+    let origin = args.scenario.as_path();
+    floe_scenario::settings::check_distinct(&args.settings)?;
+    let set_text = apply(text, origin, &args.settings, &vec![0; args.settings.len()])?;
+    let given: Vec<String> = args
+        .settings
+        .iter()
+        .map(|s| format!("--set {}={}", s.dotted(), s.values[0]))
+        .collect();
+    let with = PathBuf::from(format!("{} with {}", origin.display(), given.join(" ")));
+    Scenario::from_text_with(&set_text, &with, &args.registry)?;
+    Ok(set_text)
 }
 
 /// Measures each run of `jobs`, fits each law and writes the report.
