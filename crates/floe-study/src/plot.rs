@@ -303,10 +303,19 @@ fn draw_chart(area: &Area, axes: Axes, lines: &[Line]) -> Result<(), String> {
                 .draw_series(LineSeries::new(pts, color.stroke_width(2)))
                 .map_err(|e| e.to_string())?
         };
-        if !line.label.is_empty() {
-            series.label(line.label.clone()).legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
+        // The legend shows what the chart draws: a dot for markers.
+        match (line.label.is_empty(), line.markers) {
+            (true, _) => {}
+            (false, true) => {
+                series
+                    .label(line.label.clone())
+                    .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
+            }
+            (false, false) => {
+                series.label(line.label.clone()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            }
         }
     }
     if lines.iter().any(|l| !l.label.is_empty()) {

@@ -27,6 +27,9 @@ use floe_run::Error;
 use measure::{cell_samples, steady, SteadyCell};
 use over_seeds::over_seeds;
 
+/// Parameters of the fitted `mu(I)` (`mu_s`, `mu_2`, `I_0`).
+const MU_OF_I_PARAMETERS: usize = 3;
+
 /// What `floe rheology` was asked to do.
 #[derive(Debug, Clone)]
 pub struct RheologyArgs {
@@ -307,7 +310,12 @@ fn measure_and_report(
             .filter(|p| p.law == law.name())
             .map(|p| (p.inertial_number.mean, p.mu.mean))
             .unzip();
-        fits.push((law.name().to_string(), fit_mu_of_i(&i, &mu).ok()));
+        // Three parameters: through three points any curve fits exactly,
+        // so a fit needs a fourth to say anything.
+        let fit = (i.len() > MU_OF_I_PARAMETERS)
+            .then(|| fit_mu_of_i(&i, &mu).ok())
+            .flatten();
+        fits.push((law.name().to_string(), fit));
     }
     report::write(
         &args.out_dir,

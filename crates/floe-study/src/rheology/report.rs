@@ -372,7 +372,7 @@ fn markdown(
                 );
             }
             None => {
-                let _ = writeln!(md, "| {law} | | | | needs three speeds |");
+                let _ = writeln!(md, "| {law} | | | | needs four speeds (three parameters) |");
             }
         }
     }
