@@ -211,6 +211,43 @@ fn seeds_make_different_packs_and_their_mean_carries_a_t_interval() {
     let md = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
     assert!(md.contains("## Means over seeds"), "{md}");
     assert!(dir.path().join("amontons_v2_s3.h5").exists());
+    assert_eq!(
+        point["mu_less_first_law_paired"], "",
+        "the first law has no pair"
+    );
+}
+
+#[test]
+fn a_second_law_is_compared_with_the_first_seed_by_seed() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut a = args(dir.path(), laws("amontons,rate-state"), vec![2.0]);
+    a.seeds = vec![1, 2, 3];
+    a.strain = 1.0;
+    a.snapshots = 32;
+    rheology(&a, &Quiet).unwrap();
+    let rows = results(dir.path());
+    let mu = |law: &str, seed: &str| -> f64 {
+        rows.iter()
+            .find(|r| r["law"] == law && r["seed"] == seed)
+            .unwrap()["mu"]
+            .parse()
+            .unwrap()
+    };
+    // The differences recomputed here, pair by pair, from the runs' values.
+    let d: Vec<f64> = ["1", "2", "3"]
+        .iter()
+        .map(|s| mu("rate-state", s) - mu("amontons", s))
+        .collect();
+    let mean = d.iter().sum::<f64>() / 3.0;
+    let sd = (d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / 2.0).sqrt();
+    let second = seed_rows(dir.path())
+        .into_iter()
+        .find(|r| r["law"] == "rate-state")
+        .unwrap();
+    let got = |k: &str| second[k].parse::<f64>().unwrap();
+    assert!((got("mu_less_first_law_paired") - mean).abs() < 1e-12);
+    let ci = 4.3027 * sd / 3f64.sqrt();
+    assert!((got("mu_less_first_law_paired_ci95") - ci).abs() < 1e-4 * ci.max(1e-12));
 }
 
 #[test]

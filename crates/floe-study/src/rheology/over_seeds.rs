@@ -26,6 +26,11 @@ pub struct SeedPoint {
     /// The runs' own (blocked) errors of mu, averaged: the uncertainty of
     /// one run, to set beside the seeds' scatter.
     pub mean_run_error_of_mu: f64,
+    /// This law's mu less the first law's at the same speed, seed by seed
+    /// (a seed draws the same floes for every law, so the pairs differ in
+    /// the law only), over the seeds both ran; `None` for the first law
+    /// or without common seeds.
+    pub mu_less_first_law: Option<SeedMean>,
 }
 
 /// `runs` grouped by law and speed (in the order first met), each group
@@ -56,7 +61,27 @@ pub fn over_seeds(runs: &[CellRun]) -> Vec<SeedPoint> {
                 wall_normal_stress_bottom_top_n_per_m: [0, 1]
                     .map(|k| of(&|r| r.steady.wall_normal_stress_bottom_top_n_per_m[k].value)),
                 mean_run_error_of_mu: of(&|r| r.steady.mu.error).mean,
+                mu_less_first_law: paired_with_first_law(runs, law, v),
             }
         })
         .collect()
+}
+
+/// The seed-by-seed difference in mu between `law` and the first law of
+/// `runs` at the speed `v`, over the seeds both have.
+fn paired_with_first_law(runs: &[CellRun], law: &str, v: f64) -> Option<SeedMean> {
+    let first = runs.first()?.law.as_str();
+    if first == law {
+        return None;
+    }
+    let at = |l: &str, seed: Option<u64>| {
+        runs.iter()
+            .find(|r| r.law == l && r.speed_m_per_s == v && r.seed == seed)
+    };
+    let differences: Vec<f64> = runs
+        .iter()
+        .filter(|r| r.law == law && r.speed_m_per_s == v && r.seed.is_some())
+        .filter_map(|r| Some(r.steady.mu.value - at(first, r.seed)?.steady.mu.value))
+        .collect();
+    (!differences.is_empty()).then(|| seed_mean(&differences))
 }

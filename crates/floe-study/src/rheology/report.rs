@@ -83,12 +83,13 @@ fn write_csv(path: &Path, runs: &[CellRun]) -> Result<(), Error> {
 fn write_seed_csv(path: &Path, points: &[SeedPoint]) -> Result<(), Error> {
     let mut text = String::from(
         "law,speed_m_per_s,runs,inertial_number,inertial_number_ci95,mu,mu_ci95,mu_spread,\
-         mean_run_error_of_mu,solid_fraction,solid_fraction_ci95,contact_mu,contact_mu_ci95\n",
+         mean_run_error_of_mu,solid_fraction,solid_fraction_ci95,contact_mu,contact_mu_ci95,\
+         mu_less_first_law_paired,mu_less_first_law_paired_ci95\n",
     );
     for p in points {
         let _ = writeln!(
             text,
-            "{},{},{},{:e},{:e},{},{},{},{},{},{},{},{}",
+            "{},{},{},{:e},{:e},{},{},{},{},{},{},{},{},{},{}",
             p.law,
             p.speed_m_per_s,
             p.mu.n,
@@ -102,6 +103,10 @@ fn write_seed_csv(path: &Path, points: &[SeedPoint]) -> Result<(), Error> {
             p.solid_fraction.ci95,
             p.contact_mu.mean,
             p.contact_mu.ci95,
+            p.mu_less_first_law
+                .map_or(String::new(), |d| d.mean.to_string()),
+            p.mu_less_first_law
+                .map_or(String::new(), |d| d.ci95.to_string()),
         );
     }
     std::fs::write(path, text).map_err(|e| Error::io(path, e))
@@ -287,14 +292,17 @@ fn markdown(
             "## Means over seeds\n\nEach law and speed over its seeds (the tessellation drawn \
              anew): means with their 95 % confidence intervals from the seeds' scatter \
              (Student's t); \"one run's error\" is the mean of the runs' own blocked errors, \
-             the uncertainty one seed would have claimed.\n\n\
-             | law | wall speed (m/s) | seeds | I | mu (wall) | one run's error | contacts' mu | solid fraction | P bottom / top (N/m) |\n\
-             |---|---|---|---|---|---|---|---|---|\n",
+             the uncertainty one seed would have claimed. A seed draws the same floes for \
+             every law, so a law's difference from the first law is also given seed by seed \
+             (paired: the pairs differ in the law only, and their scatter leaves out the \
+             packings').\n\n\
+             | law | wall speed (m/s) | seeds | I | mu (wall) | one run's error | mu less the first law's, paired by seed | contacts' mu | solid fraction | P bottom / top (N/m) |\n\
+             |---|---|---|---|---|---|---|---|---|---|\n",
         );
         for p in points {
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {} | {:.3} +- {:.3} | {:.3} | {:.3} +- {:.3} | {:.3} +- {:.3} | {:.0} / {:.0} |",
+                "| {} | {} | {} | {} | {:.3} +- {:.3} | {:.3} | {} | {:.3} +- {:.3} | {:.3} +- {:.3} | {:.0} / {:.0} |",
                 p.law,
                 parameter(p.speed_m_per_s),
                 p.mu.n,
@@ -302,6 +310,8 @@ fn markdown(
                 p.mu.mean,
                 p.mu.ci95,
                 p.mean_run_error_of_mu,
+                p.mu_less_first_law
+                    .map_or(String::new(), |d| format!("{:+.3} +- {:.3}", d.mean, d.ci95)),
                 p.contact_mu.mean,
                 p.contact_mu.ci95,
                 p.solid_fraction.mean,
