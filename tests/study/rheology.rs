@@ -298,7 +298,20 @@ fn set_and_seeds_reach_every_emitted_run() {
         e.contains("shear_cell.toml with --set contact.youngs=0.1:") && e.contains("unknown field"),
         "{e}"
     );
+    // Keys floe rheology sets itself would be overridden: refused.
+    a.settings = vec![floe_scenario::settings::parse_setting("duration_s=10.0").unwrap()];
+    let e = rheology(&a, &Quiet).unwrap_err().to_string();
+    assert!(
+        e.contains("--set duration_s: floe rheology sets this key itself"),
+        "{e}"
+    );
     a.settings.clear();
+    a.seeds = vec![u64::MAX];
+    let e = rheology(&a, &Quiet).unwrap_err().to_string();
+    assert!(
+        e.contains("--seeds 18446744073709551615: seeds from 0 to"),
+        "{e}"
+    );
     a.seeds = vec![3, 3];
     let e = rheology(&a, &Quiet).unwrap_err().to_string();
     assert!(e.contains("--seeds: a seed is given twice"), "{e}");

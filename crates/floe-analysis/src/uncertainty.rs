@@ -20,8 +20,8 @@ pub struct MeanError {
     /// Samples per block at which the error was read (1: none blocked).
     pub block_samples: usize,
     /// Whether the blocked errors reached a plateau: the error at the
-    /// chosen level is within its own statistical uncertainty of the next
-    /// level's. `false`: the series is too short for its correlation time,
+    /// chosen level exceeds the previous (shorter-block) level's by no more
+    /// than its own statistical uncertainty. `false`: the series is too short for its correlation time,
     /// and the error is a lower bound.
     pub converged: bool,
 }
@@ -88,6 +88,7 @@ pub fn blocked_mean(values: &[f64]) -> MeanError {
 /// `R = <num> / <den>`, which carries the correlation of numerator and
 /// denominator. `num` and `den` have the same length.
 pub fn blocked_ratio(num: &[f64], den: &[f64]) -> MeanError {
+    debug_assert_eq!(num.len(), den.len());
     let n = num.len().min(den.len()) as f64;
     let mn = num.iter().sum::<f64>() / n;
     let md = den.iter().sum::<f64>() / n;

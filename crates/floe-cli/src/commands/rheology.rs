@@ -48,7 +48,8 @@ pub struct Args {
     /// Fraction of each run left out of the means (start-up).
     #[arg(long, default_value_t = 1.0 / 3.0)]
     pub transient: f64,
-    /// Output directory: LAW_vSPEED.{toml,h5}, results.csv, report.md, rheology.png.
+    /// Output directory: LAW_vSPEED[_sSEED].{toml,h5}, results.csv,
+    /// over_seeds.csv (with --seeds), report.md, rheology.png.
     #[arg(long, short)]
     pub output: PathBuf,
     /// Amontons' mu.
@@ -62,7 +63,7 @@ pub struct Args {
     /// diffuse across the layer from the moving wall first) or `rest`.
     #[arg(long, value_parser = ["linear", "rest"], default_value = "linear")]
     pub initial_profile: String,
-    /// Only write the runs' scenario files (LAW_vSPEED.toml), for a job array.
+    /// Only write the runs' scenario files (LAW_vSPEED[_sSEED].toml), for a job array.
     #[arg(long)]
     pub emit: bool,
     /// Only measure the runs already in the output directory (same flags as the run).

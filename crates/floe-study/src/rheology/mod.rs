@@ -200,7 +200,11 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
         }
     }
     let report_path = args.out_dir.join("report.md");
-    let mut targets = vec![report_path.clone(), args.out_dir.join("results.csv")];
+    let mut targets = vec![
+        report_path.clone(),
+        args.out_dir.join("results.csv"),
+        args.out_dir.join("over_seeds.csv"),
+    ];
     targets.extend(jobs.iter().flat_map(|(t, h)| [t.clone(), h.clone()]));
     refuse_overwriting_input(
         &args.scenario,
@@ -249,6 +253,16 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
         )));
     }
     measure_and_report(args, &jobs, &plan, &report_path)
+}
+
+/// Whether `floe rheology` sets the dotted `key` of each run itself, so
+/// that a `--set` of it would be overridden.
+fn set_by_rheology(key: &str, args: &RheologyArgs) -> bool {
+    key == "duration_s"
+        || key.starts_with("output.")
+        || (key.starts_with("wall[") && key.ends_with(".velocity_m_per_s"))
+        || (key == "seed" && !args.seeds.is_empty())
+        || (key == "ice.initial_shear_rate_per_s" && args.linear_start)
 }
 
 /// `text` with the `--set` keys applied. A key the scenario does not take
@@ -302,7 +316,7 @@ fn measure_and_report(
     }
     // Each law's fit goes through its means over seeds (the runs
     // themselves without --seeds).
-    let points = over_seeds(&runs);
+    let points = over_seeds(&runs, args.laws[0].name());
     let mut fits = Vec::new();
     for law in &args.laws {
         let (i, mu): (Vec<f64>, Vec<f64>) = points
@@ -350,6 +364,22 @@ fn check_args(args: &RheologyArgs) -> Result<(), Error> {
     if let Some(s) = args.settings.iter().find(|s| s.values.len() != 1) {
         return Err(Error::Usage(format!(
             "--set {}: one value per key here (floe sweep takes several)",
+            s.dotted()
+        )));
+    }
+    if let Some(&s) = args.seeds.iter().find(|&&s| s > i64::MAX as u64) {
+        return Err(Error::Usage(format!(
+            "--seeds {s}: seeds from 0 to {}",
+            i64::MAX
+        )));
+    }
+    if let Some(s) = args
+        .settings
+        .iter()
+        .find(|s| set_by_rheology(&s.dotted(), args))
+    {
+        return Err(Error::Usage(format!(
+            "--set {}: floe rheology sets this key itself (--speeds, --strain, --snapshots, --seeds, --initial-profile)",
             s.dotted()
         )));
     }

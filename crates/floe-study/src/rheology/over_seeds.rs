@@ -34,8 +34,9 @@ pub struct SeedPoint {
 }
 
 /// `runs` grouped by law and speed (in the order first met), each group
-/// over its seeds; a group of one run has NaN intervals.
-pub fn over_seeds(runs: &[CellRun]) -> Vec<SeedPoint> {
+/// over its seeds, each law paired with `first_law` (the first of
+/// `--laws`) seed by seed; a group of one run has NaN intervals.
+pub fn over_seeds(runs: &[CellRun], first_law: &str) -> Vec<SeedPoint> {
     let mut keys: Vec<(&str, f64)> = Vec::new();
     for r in runs {
         if !keys.contains(&(r.law.as_str(), r.speed_m_per_s)) {
@@ -61,16 +62,15 @@ pub fn over_seeds(runs: &[CellRun]) -> Vec<SeedPoint> {
                 wall_normal_stress_bottom_top_n_per_m: [0, 1]
                     .map(|k| of(&|r| r.steady.wall_normal_stress_bottom_top_n_per_m[k].value)),
                 mean_run_error_of_mu: of(&|r| r.steady.mu.error).mean,
-                mu_less_first_law: paired_with_first_law(runs, law, v),
+                mu_less_first_law: paired_with(runs, first_law, law, v),
             }
         })
         .collect()
 }
 
-/// The seed-by-seed difference in mu between `law` and the first law of
-/// `runs` at the speed `v`, over the seeds both have.
-fn paired_with_first_law(runs: &[CellRun], law: &str, v: f64) -> Option<SeedMean> {
-    let first = runs.first()?.law.as_str();
+/// The seed-by-seed difference in mu between `law` and `first` at the
+/// speed `v`, over the seeds both have measured.
+fn paired_with(runs: &[CellRun], first: &str, law: &str, v: f64) -> Option<SeedMean> {
     if first == law {
         return None;
     }

@@ -311,7 +311,9 @@ fn markdown(
                 p.mu.ci95,
                 p.mean_run_error_of_mu,
                 p.mu_less_first_law
-                    .map_or(String::new(), |d| format!("{:+.3} +- {:.3}", d.mean, d.ci95)),
+                    .map_or(String::new(), |d| {
+                        format!("{:+.3} +- {:.3} ({} pairs)", d.mean, d.ci95, d.n)
+                    }),
                 p.contact_mu.mean,
                 p.contact_mu.ci95,
                 p.solid_fraction.mean,
