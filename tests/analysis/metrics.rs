@@ -364,25 +364,28 @@ fn a_floe_squeezed_and_sheared_between_two_walls() {
     let pair = [[0, 1], [1, 2]];
     let point = [[1000.0, 0.0], [950.0 + length, 400.0]];
     let normal = [[0.0, 1.0], [0.0, 1.0]];
-    let normal_force = [3e6, 3e6];
     let tangential_force = [1e6, 1e6];
-    let s = cell_sample(&CellSnapshot {
-        period_x_m: length,
-        position: &position,
-        velocity: &velocity,
-        area_m2: &area,
-        mass_kg: &mass,
-        prescribed: &prescribed,
-        vertices: &vertices,
-        contacts: ContactForces {
-            pair: &pair,
-            point: &point,
-            normal: &normal,
-            normal_force_n: &normal_force,
-            tangential_force_n: &tangential_force,
-        },
-    })
-    .unwrap();
+    // The snapshot with the contacts' normal forces `normal_force`.
+    let sample = |normal_force: &[f64]| {
+        cell_sample(&CellSnapshot {
+            period_x_m: length,
+            position: &position,
+            velocity: &velocity,
+            area_m2: &area,
+            mass_kg: &mass,
+            prescribed: &prescribed,
+            vertices: &vertices,
+            contacts: ContactForces {
+                pair: &pair,
+                point: &point,
+                normal: &normal,
+                normal_force_n: normal_force,
+                tangential_force_n: &tangential_force,
+            },
+        })
+        .unwrap()
+    };
+    let s = sample(&[3e6, 3e6]);
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
     assert!(close(s.height_m, 400.0), "{s:?}");
     assert!(close(s.wall_normal_stress_n_per_m, 1500.0), "{s:?}");
@@ -409,24 +412,7 @@ fn a_floe_squeezed_and_sheared_between_two_walls() {
     // The bottom wall pushing harder (4 MN: the floe accelerating upwards,
     // as a dilating layer's middle does): each wall's own stress, and their
     // mean on the walls.
-    let normal_force = [4e6, 3e6];
-    let s = cell_sample(&CellSnapshot {
-        period_x_m: length,
-        position: &position,
-        velocity: &velocity,
-        area_m2: &area,
-        mass_kg: &mass,
-        prescribed: &prescribed,
-        vertices: &vertices,
-        contacts: ContactForces {
-            pair: &pair,
-            point: &point,
-            normal: &normal,
-            normal_force_n: &normal_force,
-            tangential_force_n: &tangential_force,
-        },
-    })
-    .unwrap();
+    let s = sample(&[4e6, 3e6]);
     let [bottom, top] = s.wall_normal_stress_bottom_top_n_per_m;
     assert!(close(bottom, 2000.0) && close(top, 1500.0), "{s:?}");
     assert!(close(s.wall_normal_stress_n_per_m, 1750.0), "{s:?}");

@@ -44,7 +44,17 @@ fn args(out: &Path, laws: Vec<LawChoice>, speeds: Vec<f64>) -> RheologyArgs {
 
 /// `results.csv` as rows of (column -> value).
 fn results(dir: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(dir.join("results.csv")).unwrap();
+    csv_rows(&dir.join("results.csv"))
+}
+
+/// `over_seeds.csv` as rows of (column -> value).
+fn seed_rows(dir: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    csv_rows(&dir.join("over_seeds.csv"))
+}
+
+/// A CSV file as rows of (column -> value).
+fn csv_rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let mut r = csv::Reader::from_path(path).unwrap();
     let header: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
     r.records()
         .map(|rec| {
@@ -162,21 +172,6 @@ fn a_scenario_that_is_not_a_shear_cell_is_refused_before_anything_runs() {
         0,
         "nothing written"
     );
-}
-
-/// `over_seeds.csv` as rows of (column -> value).
-fn seed_rows(dir: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(dir.join("over_seeds.csv")).unwrap();
-    let header: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
-    r.records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(str::to_string))
-                .collect()
-        })
-        .collect()
 }
 
 #[test]

@@ -54,8 +54,7 @@ pub fn blocked_mean(values: &[f64]) -> MeanError {
     let mut size = 1;
     while blocks.len() >= 2 {
         let m = blocks.len();
-        let bm = blocks.iter().sum::<f64>() / m as f64;
-        let var = blocks.iter().map(|b| (b - bm).powi(2)).sum::<f64>() / (m - 1) as f64;
+        let (_, var) = mean_and_variance(&blocks);
         levels.push((size, (var / m as f64).sqrt(), m));
         blocks = blocks
             .chunks_exact(2)
@@ -125,13 +124,21 @@ pub fn seed_mean(values: &[f64]) -> SeedMean {
             n,
         };
     }
-    let spread = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt();
+    let spread = mean_and_variance(values).1.sqrt();
     SeedMean {
         mean,
         ci95: t975(n - 1) * spread / (n as f64).sqrt(),
         spread,
         n,
     }
+}
+
+/// The mean of at least two `values` and their unbiased sample variance.
+fn mean_and_variance(values: &[f64]) -> (f64, f64) {
+    let n = values.len();
+    let mean = values.iter().sum::<f64>() / n as f64;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+    (mean, var)
 }
 
 /// Student's t quantile at 0.975 for `dof` degrees of freedom (a table for

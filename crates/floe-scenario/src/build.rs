@@ -9,6 +9,7 @@
 use std::ops::Not;
 
 use floe_dem::floes::{Floe, Floes};
+use floe_dem::geometry::shape::area_and_centroid;
 use floe_dem::geometry::FloeShape;
 use floe_dem::pipeline::integrator::{damping_step_factor, STABILITY_SAFETY};
 use floe_dem::tessellation::{Rect, Tessellation};
@@ -145,11 +146,7 @@ fn generate(
 
 /// The height of a polygon's area centroid above the bottom of `region`.
 fn centroid_height(polygon: &[Vec2], region: Rect) -> f64 {
-    let one = Tessellation {
-        polygons: vec![polygon.to_vec()],
-        thickness_m: vec![1.0],
-    };
-    one.centroid_m(0).y - region.min.y
+    area_and_centroid(polygon).1.y - region.min.y
 }
 
 /// Builds the floes (free, prescribed, walls) and checks their layout.

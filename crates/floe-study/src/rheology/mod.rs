@@ -135,6 +135,11 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
     let height = domain.size_m.y;
     let mut jobs = Vec::new();
     let mut plan = Vec::new();
+    let seeds: Vec<Option<u64>> = if args.seeds.is_empty() {
+        vec![None]
+    } else {
+        args.seeds.iter().copied().map(Some).collect()
+    };
     for &law in &args.laws {
         let (law_text, _) = variant(
             &text,
@@ -144,11 +149,6 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
             &reference_text,
             args.matching,
         )?;
-        let seeds: Vec<Option<u64>> = if args.seeds.is_empty() {
-            vec![None]
-        } else {
-            args.seeds.iter().copied().map(Some).collect()
-        };
         for (&v, seed) in args
             .speeds_m_per_s
             .iter()

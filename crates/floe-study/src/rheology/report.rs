@@ -135,21 +135,29 @@ fn draw(
             Line::markers(law.clone(), point(&|r| r.steady.solid_fraction.value)).coloured(k),
         );
         if let Some(fit) = fit {
-            let (lo, hi) = mine
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), r| {
-                    let x = r.steady.inertial_number.log10();
-                    (a.min(x), b.max(x))
-                });
-            let curve = (0..=100)
-                .map(|k| {
-                    let x = lo + (hi - lo) * k as f64 / 100.0;
-                    (x, fit.mu(10f64.powf(x)))
-                })
-                .collect();
+            let curve = fit_curve(fit, mine.iter().map(|r| r.steady.inertial_number));
             mu_lines.push(Line::new(format!("{law} fit"), curve).coloured(k));
         }
     }
+    mu_and_phi_panels(path, mu_lines, phi_lines)
+}
+
+/// `fit` drawn over the span of the inertial numbers `i`, against log10 I.
+fn fit_curve(fit: &MuOfI, i: impl Iterator<Item = f64>) -> Vec<(f64, f64)> {
+    let (lo, hi) = i.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), i| {
+        let x = i.log10();
+        (a.min(x), b.max(x))
+    });
+    (0..=100)
+        .map(|k| {
+            let x = lo + (hi - lo) * k as f64 / 100.0;
+            (x, fit.mu(10f64.powf(x)))
+        })
+        .collect()
+}
+
+/// The report's figure: mu and the solid fraction against log10 I.
+fn mu_and_phi_panels(path: &Path, mu_lines: Vec<Line>, phi_lines: Vec<Line>) -> Result<(), Error> {
     panels(
         path,
         &[
@@ -225,42 +233,11 @@ fn draw_over_seeds(
         phi_lines.push(Line::new(format!("{law}: mean over seeds, 95 % CI"), centres).coloured(k));
         phi_lines.extend(bars);
         if let Some(fit) = fit {
-            let (lo, hi) = mine
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-                    let xi = x(p.inertial_number.mean);
-                    (a.min(xi), b.max(xi))
-                });
-            let curve = (0..=100)
-                .map(|j| {
-                    let xi = lo + (hi - lo) * j as f64 / 100.0;
-                    (xi, fit.mu(10f64.powf(xi)))
-                })
-                .collect();
+            let curve = fit_curve(fit, mine.iter().map(|p| p.inertial_number.mean));
             mu_lines.push(Line::new(format!("{law}: fit"), curve).coloured(k));
         }
     }
-    panels(
-        path,
-        &[
-            (
-                Axes {
-                    title: "friction of the layer, tau/P on the walls",
-                    x: "log10 inertial number I",
-                    y: "mu",
-                },
-                mu_lines,
-            ),
-            (
-                Axes {
-                    title: "solid fraction (middle half of the layer)",
-                    x: "log10 inertial number I",
-                    y: "solid fraction",
-                },
-                phi_lines,
-            ),
-        ],
-    )
+    mu_and_phi_panels(path, mu_lines, phi_lines)
 }
 
 fn markdown(
