@@ -5,6 +5,7 @@ mod grid_overlaps;
 mod metrics;
 #[path = "../support/proptest_settings.rs"]
 mod proptest_settings;
+mod step_response;
 mod uncertainty;
 #[path = "../support/union.rs"]
 mod union_support;

@@ -6,6 +6,7 @@ mod grid_output;
 mod grid_xarray;
 mod inherited_locks;
 mod movie;
+mod pack_friction;
 mod picture_text;
 #[path = "../support/pool.rs"]
 mod pool_support;

@@ -9,7 +9,9 @@
 //! ([`rheology`]), whether a driven pack has jammed ([`jam`]), the ice area through a
 //! gate across a strait ([`gate_flux`]), means
 //! over time of series sampled unevenly ([`time_mean`]), and the errors of
-//! means of correlated series and over seeds ([`uncertainty`]). No I/O and no engine types, so each
+//! means of correlated series and over seeds ([`uncertainty`]), and a
+//! friction series' answer to velocity steps and holds ([`step_response`]).
+//! No I/O and no engine types, so each
 //! metric can be checked on a constructed case with a known answer.
 #![deny(missing_docs)]
 
@@ -23,6 +25,7 @@ mod polygon_overlaps;
 pub mod profile;
 pub mod rheology;
 pub mod slip_events;
+pub mod step_response;
 pub mod stress;
 pub mod time_mean;
 pub mod uncertainty;

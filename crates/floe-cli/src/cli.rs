@@ -3,7 +3,7 @@
 
 use clap::{Parser, Subcommand};
 
-use crate::commands::{compare, grid, info, render, rheology, run, slider, sweep};
+use crate::commands::{compare, grid, info, pack_friction, render, rheology, run, slider, sweep};
 use crate::CliError;
 
 /// floe: sea-ice floes with rate-and-state friction.
@@ -33,6 +33,8 @@ pub enum Command {
     #[command(allow_negative_numbers = true)]
     Rheology(rheology::Args),
     #[command(allow_negative_numbers = true)]
+    PackFriction(pack_friction::Args),
+    #[command(allow_negative_numbers = true)]
     Grid(grid::Args),
     #[command(allow_negative_numbers = true)]
     Render(render::Args),
@@ -50,6 +52,7 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
         Command::Compare(args) => args.run(),
         Command::Sweep(args) => args.run(),
         Command::Rheology(args) => args.run(),
+        Command::PackFriction(args) => args.run(),
         Command::Grid(args) => args.run(),
         Command::Render(args) => args.run(),
     }

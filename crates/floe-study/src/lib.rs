@@ -12,6 +12,7 @@ pub mod cadence;
 pub mod compare;
 pub mod double_shear_protocol;
 pub mod grid_output;
+pub mod pack_friction;
 pub mod partial_file;
 pub mod plot;
 pub mod render;

@@ -6,6 +6,7 @@ pub mod compare;
 pub mod grid;
 pub mod info;
 pub mod options;
+pub mod pack_friction;
 pub mod render;
 pub mod rheology;
 pub mod run;

@@ -108,27 +108,9 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
     check_args(args)?;
     let text = floe_run::run_file::read_anchored(&args.scenario)?;
     let origin = args.scenario.as_path();
-    let text = with_user_settings(&text, args)?;
-    let scenario = Scenario::from_text_with(&text, origin, &args.registry)?;
+    let text = with_user_settings(&text, origin, &args.settings, &args.registry)?;
+    let (scenario, top) = checked_cell(&text, origin, &args.registry)?;
     let domain = scenario.domain();
-    let not_a_cell = |why: &str| {
-        Error::Usage(format!(
-            "{}: not a shear cell ({why}); see scenarios/shear_cell.toml",
-            origin.display()
-        ))
-    };
-    if domain.periodic != [true, false] {
-        return Err(not_a_cell("the domain must be periodic along x only"));
-    }
-    let top = find_table(&text, origin, "wall", "side", "top")?
-        .ok_or_else(|| not_a_cell("it has no [[wall]] with side = \"top\""))?;
-    find_table(&text, origin, "wall", "side", "bottom")?
-        .ok_or_else(|| not_a_cell("it has no [[wall]] with side = \"bottom\""))?;
-    if scenario.build()?.world.stress_controls().is_empty() {
-        return Err(not_a_cell(
-            "no wall holds a normal stress (normal_stress_n_per_m)",
-        ));
-    }
     let (reference, reference_text) = reference_of(&text, origin, &args.registry)?;
 
     // Every variant is made and built before anything is written.
@@ -268,21 +250,54 @@ fn set_by_rheology(key: &str, args: &RheologyArgs) -> bool {
 /// `text` with the `--set` keys applied. A key the scenario does not take
 /// is blamed on the flag: the message's file names the settings, as
 /// `floe sweep`'s does.
-fn with_user_settings(text: &str, args: &RheologyArgs) -> Result<String, Error> {
-    if args.settings.is_empty() {
+pub(crate) fn with_user_settings(
+    text: &str,
+    origin: &Path,
+    settings: &[Setting],
+    registry: &LawRegistry,
+) -> Result<String, Error> {
+    if settings.is_empty() {
         return Ok(text.to_string());
     }
-    let origin = args.scenario.as_path();
-    floe_scenario::settings::check_distinct(&args.settings)?;
-    let set_text = apply(text, origin, &args.settings, &vec![0; args.settings.len()])?;
-    let given: Vec<String> = args
-        .settings
+    floe_scenario::settings::check_distinct(settings)?;
+    let set_text = apply(text, origin, settings, &vec![0; settings.len()])?;
+    let given: Vec<String> = settings
         .iter()
         .map(|s| format!("--set {}={}", s.dotted(), s.values[0]))
         .collect();
     let with = PathBuf::from(format!("{} with {}", origin.display(), given.join(" ")));
-    Scenario::from_text_with(&set_text, &with, &args.registry)?;
+    Scenario::from_text_with(&set_text, &with, registry)?;
     Ok(set_text)
+}
+
+/// The scenario of `text` if it is a shear cell (periodic along x only, a
+/// bottom wall and a top wall that holds a normal stress), with the index of
+/// its top `[[wall]]` table.
+pub(crate) fn checked_cell(
+    text: &str,
+    origin: &Path,
+    registry: &LawRegistry,
+) -> Result<(Scenario, usize), Error> {
+    let scenario = Scenario::from_text_with(text, origin, registry)?;
+    let not_a_cell = |why: &str| {
+        Error::Usage(format!(
+            "{}: not a shear cell ({why}); see scenarios/shear_cell.toml",
+            origin.display()
+        ))
+    };
+    if scenario.domain().periodic != [true, false] {
+        return Err(not_a_cell("the domain must be periodic along x only"));
+    }
+    let top = find_table(text, origin, "wall", "side", "top")?
+        .ok_or_else(|| not_a_cell("it has no [[wall]] with side = \"top\""))?;
+    find_table(text, origin, "wall", "side", "bottom")?
+        .ok_or_else(|| not_a_cell("it has no [[wall]] with side = \"bottom\""))?;
+    if scenario.build()?.world.stress_controls().is_empty() {
+        return Err(not_a_cell(
+            "no wall holds a normal stress (normal_stress_n_per_m)",
+        ));
+    }
+    Ok((scenario, top))
 }
 
 /// Measures each run of `jobs`, fits each law and writes the report.
