@@ -10,6 +10,7 @@ mod contact_symmetry;
 mod counting_allocator;
 mod floe_edits;
 mod forcing;
+mod fracture_criteria;
 mod load_point;
 mod physics;
 mod power_law_floes;

@@ -22,6 +22,7 @@ pub mod error;
 pub mod exact_sum;
 pub mod floes;
 pub mod forcing;
+pub mod fracture;
 pub mod geometry;
 pub mod load_point;
 pub mod motion_schedule;
