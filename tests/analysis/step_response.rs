@@ -135,3 +135,21 @@ fn bad_series_are_refused_not_read() {
     assert!(velocity_step(&[0.5], &slip, &mu, 0.5, 0.0).is_err());
     assert!(hold_healing(&[0.5], &[]).is_err());
 }
+
+#[test]
+fn a_series_that_does_not_relax_has_no_slip_distance() {
+    let slip: Vec<f64> = (0..400).map(f64::from).collect();
+    // Flat after the step: nothing relaxes.
+    let flat = vec![0.52; 400];
+    let r = velocity_step(&[0.5], &slip, &flat, 0.5, 1.0).unwrap();
+    assert!(r.decay_slip_m.is_nan() && (r.steady_per_ln - 0.02).abs() < 1e-12);
+    // A rise to the new level (no overshoot to relax from) and a slow
+    // drift that the window cannot resolve: no length either.
+    let drift: Vec<f64> = slip.iter().map(|s| 0.5 + 1e-5 * s).collect();
+    let r = velocity_step(&[0.5], &slip, &drift, 0.5, 1.0).unwrap();
+    assert!(r.decay_slip_m.is_nan(), "{}", r.decay_slip_m);
+    // Too short a window: no transient part before the steady one.
+    assert!(velocity_step(&[0.5], &[10.0, 11.0, 12.0, 13.0], &[0.5; 4], 0.99, 1.0).is_err());
+    assert!(velocity_step(&[f64::NAN], &slip, &flat, 0.5, 1.0).is_err());
+    assert!(hold_healing(&[0.5], &[0.4, f64::NAN]).is_err());
+}

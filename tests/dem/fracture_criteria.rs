@@ -130,3 +130,42 @@ fn hibler_is_the_ellipse_subzero_draws_and_breaks_at_two_fifths_of_p() {
         assert!(!e.breaks((0.0, 0.0), p) && e.breaks((1e-6 * p, 0.0), p));
     }
 }
+
+#[test]
+fn parameters_that_put_the_unstressed_floe_outside_are_refused() {
+    assert!(MohrCoulomb::default().check().is_ok());
+    assert!(HiblerEllipse::default().check().is_ok());
+    let cone = |q, sigma_c_pa, sigma_11_pa| MohrCoulomb {
+        q,
+        sigma_c_pa,
+        sigma_11_pa,
+    };
+    // No internal friction (q = 1) divides by zero; q < 1 flips the cone.
+    assert!(cone(1.0, 2.5e5, -3.375e4)
+        .check()
+        .unwrap_err()
+        .contains("q = 1"));
+    assert!(cone(0.5, 2.5e5, -3.375e4).check().is_err());
+    assert!(cone(5.2, 0.0, -3.375e4)
+        .check()
+        .unwrap_err()
+        .contains("sigma_c"));
+    // A cap beyond the apex (sigma_c / (1 - q) = -59524 Pa) would leave
+    // the unstressed floe outside: refused, and the check is what the
+    // inequality says.
+    let beyond = cone(5.2, 2.5e5, -7.0e4);
+    assert!(beyond.check().unwrap_err().contains("sigma_11"));
+    assert!(beyond.breaks((0.0, 0.0)));
+    assert!(HiblerEllipse {
+        p_star_pa_per_m: 0.0,
+        c: 20.0
+    }
+    .check()
+    .is_err());
+    assert!(HiblerEllipse {
+        p_star_pa_per_m: 2.25e5,
+        c: -1.0
+    }
+    .check()
+    .is_err());
+}

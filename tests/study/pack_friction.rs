@@ -212,6 +212,40 @@ fn the_reduced_study_reads_each_event_from_the_runs_own_stresses() {
             );
         }
     }
+    // A step's mean row: before over the last half of the segment before,
+    // the new steady friction over the last half of the new one.
+    let mean_of = |law: &str, from: f64, to: f64| -> f64 {
+        let v: Vec<f64> = series
+            .iter()
+            .filter(|r| (from..=to).contains(&num(r, "t_s")))
+            .map(|r| num(r, &format!("{law}_mu")))
+            .collect();
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    // The reduced schedule's steps: (at, length of the segment before, of the one after).
+    let steps = [
+        (1600.0, 1600.0, 270.0),
+        (1870.0, 270.0, 800.0),
+        (2670.0, 800.0, 1600.0),
+        (4270.0, 1600.0, 800.0),
+    ];
+    for e in events
+        .iter()
+        .filter(|e| e["seed"] == "mean" && e["kind"] == "step")
+    {
+        let law = e["law"].as_str();
+        let at = num(e, "at_s");
+        let &(_, d0, d1) = steps
+            .iter()
+            .find(|s| s.0 == at)
+            .expect("a step of the schedule");
+        let before = mean_of(law, at - d0 / 2.0, at);
+        let after = mean_of(law, at + d1 / 2.0, at + d1);
+        assert!((num(e, "before") - before).abs() < 1e-12, "{e:?}");
+        assert!((num(e, "after") - after).abs() < 1e-12, "{e:?}");
+        let ln = (num(e, "to_m_per_s") / num(e, "from_m_per_s")).ln();
+        assert!((num(e, "steady_per_ln") - (after - before) / ln).abs() < 1e-12);
+    }
     let md = std::fs::read_to_string(report).unwrap();
     assert!(md.contains("## Velocity steps") && md.contains("## Holds"));
     assert!(md.contains("a = A = 0.31"), "the contact law's own values");
@@ -239,6 +273,18 @@ fn what_the_study_cannot_read_is_refused_before_anything_runs() {
         );
     std::fs::write(&ramp, text).unwrap();
     assert!(fails(&args(ramp, &out)).contains("ramp"));
+    // A hold that resumes at another speed hides a step inside the healing.
+    let other = dir.path().join("other.toml");
+    let text = std::fs::read_to_string(shipped("shear_cell_wide_steps.toml")).unwrap();
+    let hold = text.find("# hold 100 s").unwrap();
+    let resume = hold + text[hold..].find("velocity_m_per_s = [1.5, 0.0]").unwrap();
+    let text = format!(
+        "{}velocity_m_per_s = [3.0, 0.0]{}",
+        &text[..resume],
+        &text[resume + 29..]
+    );
+    std::fs::write(&other, text).unwrap();
+    assert!(fails(&args(other, &out)).contains("resumes at its speed"));
     // Keys the study sets itself, and a bad spacing.
     let mut a = args(shipped("shear_cell_wide_steps.toml"), &out);
     a.settings = vec![parse_setting("seed=4").unwrap()];

@@ -29,7 +29,9 @@ pub struct VelocityStep {
     pub steady_per_ln: f64,
     /// Slip over which friction relaxes from the extreme to the new steady
     /// state: `D` of the least-squares fit `mu = after + c exp(-(s - s_x) /
-    /// D)` from the extreme on. For a slip law on a stiff driver, `L`.
+    /// D)` from the extreme on. For a slip law on a stiff driver, `L`; NaN
+    /// where the series does not relax (flat, or no decay within ten
+    /// windows).
     pub decay_slip_m: f64,
 }
 
@@ -57,6 +59,7 @@ pub fn velocity_step(
             "no friction sample before the step",
         ));
     }
+    check_finite("friction before", before)?;
     check_after(slip_m, mu)?;
     if !(steady_fraction > 0.0 && steady_fraction < 1.0) {
         return Err(AnalysisError::InvalidParameter {
@@ -123,6 +126,8 @@ pub fn hold_healing(before: &[f64], reslide: &[f64]) -> Result<HoldHealing, Anal
             "a hold needs samples before it and after sliding resumes",
         ));
     }
+    check_finite("friction before", before)?;
+    check_finite("friction on reslide", reslide)?;
     let before = mean(before);
     let peak = reslide.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     Ok(HoldHealing {
@@ -145,13 +150,8 @@ fn check_after(slip_m: &[f64], mu: &[f64]) -> Result<(), AnalysisError> {
             "at least 4 samples after the step",
         ));
     }
-    if let Some(&v) = slip_m.iter().chain(mu).find(|v| !v.is_finite()) {
-        return Err(AnalysisError::InvalidParameter {
-            name: "slip or friction",
-            value: v,
-            reason: "must be finite",
-        });
-    }
+    check_finite("slip", slip_m)?;
+    check_finite("friction after", mu)?;
     if let Some(w) = slip_m.windows(2).find(|w| w[1] <= w[0]) {
         return Err(AnalysisError::InvalidParameter {
             name: "slip",
@@ -162,28 +162,47 @@ fn check_after(slip_m: &[f64], mu: &[f64]) -> Result<(), AnalysisError> {
     Ok(())
 }
 
+fn check_finite(name: &'static str, values: &[f64]) -> Result<(), AnalysisError> {
+    match values.iter().find(|v| !v.is_finite()) {
+        Some(&value) => Err(AnalysisError::InvalidParameter {
+            name,
+            value,
+            reason: "must be finite",
+        }),
+        None => Ok(()),
+    }
+}
+
 fn mean(values: &[f64]) -> f64 {
     values.iter().sum::<f64>() / values.len() as f64
 }
 
 /// `D` of the least-squares fit `mu - after = c exp(-(s - s_0) / D)`, `c`
 /// solved for each `D` in closed form and `ln D` by golden section between
-/// a tenth of the first spacing and ten times the window. NaN with fewer
-/// than three samples.
+/// a tenth of the first spacing and ten times the window. NaN where there
+/// is no relaxation to measure: fewer than three samples, no departure
+/// from `after`, a fitted `c` of the other sign than the first sample's
+/// departure, or a best `D` at either end of the range searched.
 fn decay_length(slip_m: &[f64], mu: &[f64], after: f64) -> f64 {
     if slip_m.len() < 3 {
         return f64::NAN;
     }
     let s0 = slip_m[0];
-    let residual = |ln_d: f64| {
-        let d = ln_d.exp();
+    if mu[0] == after {
+        return f64::NAN;
+    }
+    let amplitude = |d: f64| {
         let (mut se, mut ee) = (0.0, 0.0);
         for (&s, &m) in slip_m.iter().zip(mu) {
             let e = (-(s - s0) / d).exp();
             se += (m - after) * e;
             ee += e * e;
         }
-        let c = se / ee;
+        se / ee
+    };
+    let residual = |ln_d: f64| {
+        let d = ln_d.exp();
+        let c = amplitude(d);
         slip_m
             .iter()
             .zip(mu)
@@ -191,7 +210,8 @@ fn decay_length(slip_m: &[f64], mu: &[f64], after: f64) -> f64 {
             .sum::<f64>()
     };
     let span = slip_m[slip_m.len() - 1] - s0;
-    let (mut lo, mut hi) = ((0.1 * (slip_m[1] - s0)).ln(), (10.0 * span).ln());
+    let range = ((0.1 * (slip_m[1] - s0)).ln(), (10.0 * span).ln());
+    let (mut lo, mut hi) = range;
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut x1, mut x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
     let (mut f1, mut f2) = (residual(x1), residual(x2));
@@ -208,5 +228,11 @@ fn decay_length(slip_m: &[f64], mu: &[f64], after: f64) -> f64 {
             f2 = residual(x2);
         }
     }
-    (0.5 * (lo + hi)).exp()
+    let best = 0.5 * (lo + hi);
+    let at_an_end = (best - range.0).abs() < 1e-6 || (range.1 - best).abs() < 1e-6;
+    let d = best.exp();
+    if at_an_end || amplitude(d) * (mu[0] - after) <= 0.0 {
+        return f64::NAN;
+    }
+    d
 }

@@ -28,7 +28,9 @@ pub enum FractureCriterion {
 impl FractureCriterion {
     /// Whether principal stresses `(s1, s2)` (Pa) of a floe `thickness_m`
     /// thick in ice of concentration `concentration` lie outside the
-    /// criterion (the floe breaks). Mohr-Coulomb uses neither.
+    /// criterion (the floe breaks). Mohr-Coulomb uses neither. A
+    /// non-finite stress is not judged (`false`): the engine stops a run
+    /// whose state is not finite before this is asked.
     pub fn breaks(&self, (s1, s2): (f64, f64), thickness_m: f64, concentration: f64) -> bool {
         match self {
             Self::MohrCoulomb(m) => m.breaks((s1, s2)),
@@ -68,6 +70,27 @@ impl Default for MohrCoulomb {
 }
 
 impl MohrCoulomb {
+    /// Checks the parameters: `q > 1` (a positive internal friction),
+    /// `sigma_c > 0`, and a cap on the compressive side of the apex
+    /// (`sigma_11 > sigma_c / (1 - q)`), so that an unstressed floe is
+    /// inside. Names the first parameter that is not.
+    pub fn check(&self) -> Result<(), String> {
+        let (q, sc, s11) = (self.q, self.sigma_c_pa, self.sigma_11_pa);
+        if !(q.is_finite() && q > 1.0) {
+            return Err(format!("q = {q}: must be finite and > 1"));
+        }
+        if !(sc.is_finite() && sc > 0.0) {
+            return Err(format!("sigma_c = {sc} Pa: must be finite and > 0"));
+        }
+        let apex = sc / (1.0 - q);
+        if !(s11.is_finite() && s11 > apex) {
+            return Err(format!(
+                "sigma_11 = {s11} Pa: must be finite and > sigma_c / (1 - q) = {apex} Pa, or the unstressed floe lies outside the cone"
+            ));
+        }
+        Ok(())
+    }
+
     /// The triangle's vertices in principal-stress space (Pa): the apex,
     /// then the two ends of the cap, counter-clockwise.
     pub fn vertices(&self) -> [[f64; 2]; 3] {
@@ -119,13 +142,30 @@ impl Default for HiblerEllipse {
 }
 
 impl HiblerEllipse {
-    /// `P = p* h exp(-c (1 - C))`, Pa.
+    /// Checks the parameters: `p* > 0` and `c >= 0`, finite.
+    pub fn check(&self) -> Result<(), String> {
+        if !(self.p_star_pa_per_m.is_finite() && self.p_star_pa_per_m > 0.0) {
+            return Err(format!(
+                "p* = {}: must be finite and > 0",
+                self.p_star_pa_per_m
+            ));
+        }
+        if !(self.c.is_finite() && self.c >= 0.0) {
+            return Err(format!("c = {}: must be finite and >= 0", self.c));
+        }
+        Ok(())
+    }
+
+    /// `P = p* h exp(-c (1 - C))`, Pa. Subzero.jl takes `h` as the mean
+    /// thickness of all floes and `C = 1`; the caller chooses here (the
+    /// floe's own thickness, or the pack's mean and concentration).
     pub fn strength_pa(&self, thickness_m: f64, concentration: f64) -> f64 {
         self.p_star_pa_per_m * thickness_m * (-self.c * (1.0 - concentration)).exp()
     }
 
     /// Whether `(s1, s2)` lies strictly outside the ellipse of strength
-    /// `p` (Pa).
+    /// `p > 0` (Pa). The ellipse touches the line `s1 + s2 = 0` at the
+    /// origin: any pure shear or tension breaks the floe, as in SubZero.
     pub fn breaks(&self, (s1, s2): (f64, f64), p: f64) -> bool {
         let (x, y) = (s1 + 0.5 * p, s2 + 0.5 * p);
         // Along the diagonal and across it.

@@ -87,6 +87,21 @@ impl Schedule {
         if out[0].2 == 0.0 {
             return Err("the first segment must slide (it sets the steady state)".into());
         }
+        for k in 1..out.len() {
+            if out[k].2 == 0.0 && out[k - 1].2 == 0.0 {
+                return Err(format!(
+                    "segments {} and {k} are both holds; one hold between slides",
+                    k - 1
+                ));
+            }
+            if out[k].2 == 0.0 && k + 1 < out.len() && out[k + 1].2 != out[k - 1].2 {
+                return Err(format!(
+                    "the hold of segment {k} is followed by {} m/s after {} m/s before it; a hold resumes at its speed (a step is its own event)",
+                    out[k + 1].2,
+                    out[k - 1].2
+                ));
+            }
+        }
         let schedule = Self { segments: out };
         if schedule.events().is_empty() {
             return Err("no velocity step or hold between sliding segments".into());
@@ -165,10 +180,18 @@ pub struct FrictionSeries {
 }
 
 impl FrictionSeries {
-    /// `tau / P` at each sample.
+    /// `tau / P` at each sample (NaN where the pack carries no pressure).
     pub fn mu(&self) -> Vec<f64> {
-        self.tau.iter().zip(&self.p).map(|(t, p)| t / p).collect()
+        ratio(&self.tau, &self.p)
     }
+}
+
+/// `tau / P`, NaN where `P <= 0` (no contact carries the layer).
+fn ratio(tau: &[f64], p: &[f64]) -> Vec<f64> {
+    tau.iter()
+        .zip(p)
+        .map(|(&t, &p)| if p > 0.0 { t / p } else { f64::NAN })
+        .collect()
 }
 
 /// Reads `mean_stress` of the run file at `path` onto `times`.
@@ -264,7 +287,7 @@ pub fn measure(
         };
         let tau = sum(|s| &s.tau);
         let p = sum(|s| &s.p);
-        let mean_mu: Vec<f64> = tau.iter().zip(&p).map(|(t, p)| t / p).collect();
+        let mean_mu = ratio(&tau, &p);
         let n = law.runs.len() as f64;
         let read = |mu: &[f64]| {
             events
@@ -287,12 +310,20 @@ pub fn measure(
     Ok(out)
 }
 
-/// One event read from `mu` at `times`.
+/// One event read from `mu` at `times` (`times[i] = i x spacing`).
 pub fn measure_event(event: &Event, times: &[f64], mu: &[f64]) -> Result<Measured, AnalysisError> {
+    let every = times.get(1).map_or(1.0, |t| t - times[0]);
+    // Samples by index, so that a sample on a window's edge is in or out
+    // whatever the rounding of its time.
     let window = |(a, b): (f64, f64), open_start: bool| -> Vec<usize> {
-        (0..times.len())
-            .filter(|&i| (times[i] > a || (!open_start && times[i] == a)) && times[i] <= b)
-            .collect()
+        let (a, b) = (a / every, b / every);
+        let first = if open_start {
+            (a + 1e-6).floor() as usize + 1
+        } else {
+            (a - 1e-6).ceil() as usize
+        };
+        let last = ((b + 1e-6).floor() as usize).min(times.len() - 1);
+        (first..=last).collect()
     };
     let before: Vec<f64> = window(event.before_s, false)
         .iter()

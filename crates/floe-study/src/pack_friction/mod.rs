@@ -234,6 +234,9 @@ fn set_by_pack_friction(key: &str, args: &PackFrictionArgs) -> bool {
 }
 
 fn check_args(args: &PackFrictionArgs) -> Result<(), Error> {
+    if args.laws.is_empty() {
+        return Err(Error::Usage("--laws: give at least one law".into()));
+    }
     if args.seeds.is_empty() {
         return Err(Error::Usage("--seeds: give at least one seed".into()));
     }

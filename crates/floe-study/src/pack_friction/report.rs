@@ -125,10 +125,10 @@ fn paired(
 }
 
 fn pm(m: &SeedMean) -> String {
-    if m.n == 0 {
-        "-".into()
-    } else {
-        format!("{:.3} +- {:.3} ({})", m.mean, m.ci95, m.n)
+    match m.n {
+        0 => "-".into(),
+        1 => format!("{:.3} (1)", m.mean),
+        n => format!("{:.3} +- {:.3} ({n})", m.mean, m.ci95),
     }
 }
 
@@ -226,7 +226,9 @@ fn markdown(
                 _ => "- | - | - | - | - | -".into(),
             };
             let decay = match &law.on_mean[k] {
-                Some(Measured::Step(s)) => format!("{:.0}", s.decay_slip_m),
+                Some(Measured::Step(s)) if s.decay_slip_m.is_finite() => {
+                    format!("{:.0}", s.decay_slip_m)
+                }
                 _ => "-".into(),
             };
             let paired_a = if std::ptr::eq(law, first) {
@@ -284,7 +286,8 @@ fn markdown(
         let _ = writeln!(
             md,
             "\n{missing} event readings of single runs were left out (a window without a finite \
-             friction: the layer lost a wall); events.csv has them empty."
+             friction, where no contact carried the layer, or too few samples in it for \
+             --sample-every); events.csv has them empty."
         );
     }
     md.push_str("\n![pack friction](pack_friction.png)\n");
