@@ -170,6 +170,7 @@ fn fill(word: &str, previous: Option<&str>) -> Option<String> {
     let value = match word {
         "SCENARIO.toml" => "scenario.toml",
         "SHEAR_CELL.toml" => "cell.toml",
+        "STEPPED_CELL.toml" => "steps.toml",
         "OUT.h5" => "out.h5",
         "FIELDS.nc" => "fields.nc",
         "DIR" => "dir",

@@ -14,5 +14,6 @@ mod render_land;
 mod rheology;
 #[path = "../support/study.rs"]
 mod study_support;
+mod table;
 #[path = "../support/union.rs"]
 mod union_support;

@@ -16,6 +16,8 @@ use floe_scenario::settings::parse_setting;
 use floe_study::pack_friction::{pack_friction, EventKind, PackFrictionArgs, Schedule};
 use floe_study::rheology::Mode;
 
+use crate::table::csv_rows;
+
 fn shipped(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../scenarios")
@@ -60,20 +62,6 @@ fn reduced_cell(dir: &Path) -> PathBuf {
     let path = dir.join("steps.toml");
     std::fs::write(&path, out).unwrap();
     path
-}
-
-fn csv_rows(path: &Path) -> Vec<HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(path).unwrap();
-    let header: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
-    r.records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(str::to_string))
-                .collect()
-        })
-        .collect()
 }
 
 fn num(row: &HashMap<String, String>, key: &str) -> f64 {

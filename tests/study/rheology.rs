@@ -12,6 +12,8 @@ use floe_run::run_file::{Provenance, Quiet};
 use floe_scenario::law_variants::{LawChoice, Matching};
 use floe_study::rheology::{rheology, Mode, RheologyArgs};
 
+use crate::table::csv_rows;
+
 /// The laws `names` (comma-separated), as `--laws` names them.
 fn laws(names: &str) -> Vec<LawChoice> {
     LawChoice::parse_list(names, &LawRegistry::builtin()).unwrap()
@@ -50,21 +52,6 @@ fn results(dir: &Path) -> Vec<std::collections::HashMap<String, String>> {
 /// `over_seeds.csv` as rows of (column -> value).
 fn seed_rows(dir: &Path) -> Vec<std::collections::HashMap<String, String>> {
     csv_rows(&dir.join("over_seeds.csv"))
-}
-
-/// A CSV file as rows of (column -> value).
-fn csv_rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(path).unwrap();
-    let header: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
-    r.records()
-        .map(|rec| {
-            header
-                .iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(str::to_string))
-                .collect()
-        })
-        .collect()
 }
 
 #[test]

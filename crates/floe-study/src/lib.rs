@@ -9,6 +9,7 @@
 #![deny(missing_docs)]
 
 pub mod cadence;
+mod cell_study;
 pub mod compare;
 pub mod double_shear_protocol;
 pub mod grid_output;

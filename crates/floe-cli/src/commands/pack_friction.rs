@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use floe_friction::LawRegistry;
 use floe_scenario::settings::parse_setting;
+use floe_study::pack_friction::Mode;
 use floe_study::pack_friction::{self, PackFrictionArgs};
-use floe_study::rheology::Mode;
 
 use super::options::{parse_laws, MatchingArgs, StepLimit, Workers};
 use crate::hooks::{provenance, TerminalHooks};

@@ -18,11 +18,11 @@ use floe_scenario::law_variants::{variant, LawChoice, Matching};
 use floe_scenario::settings::{apply, wall_segments_along_x, Setting};
 use floe_scenario::Scenario;
 
+pub use crate::cell_study::Mode;
+use crate::cell_study::{checked_cell, run_jobs, with_user_settings, CellJobs, Next};
 use crate::compare::reference_of;
-use crate::rheology::{checked_cell, with_user_settings, Mode};
-use crate::side_by_side::{run_side_by_side, Batch};
+use crate::side_by_side::Batch;
 use floe_run::run_file::{thread_count, Provenance, RunHooks};
-use floe_run::same_file::refuse_overwriting_input;
 use floe_run::Error;
 
 pub use events::{Event, EventKind, FrictionSeries, LawEvents, Measured, Schedule};
@@ -136,56 +136,28 @@ pub fn pack_friction(args: &PackFrictionArgs, hooks: &dyn RunHooks) -> Result<Pa
         }
     }
     let report_path = args.out_dir.join("report.md");
-    let mut targets: Vec<PathBuf> = ["report.md", "events.csv", "series.csv", "pack_friction.png"]
-        .iter()
-        .map(|f| args.out_dir.join(f))
-        .collect();
-    targets.extend(jobs.iter().flat_map(|(t, h)| [t.clone(), h.clone()]));
-    refuse_overwriting_input(
-        &args.scenario,
-        "scenario file",
-        targets.iter().map(PathBuf::as_path),
-    )?;
-    if args.mode == Mode::Gather {
-        if let Some((_, missing)) = jobs.iter().find(|(_, h)| !h.exists()) {
-            return Err(Error::Usage(format!(
-                "{}: not there to gather (run its .toml with `floe run` first, or drop --gather)",
-                missing.display()
-            )));
-        }
-        return measure_and_report(args, (&schedule, &reference), &jobs, &plan, &report_path);
-    }
-    if !args.force {
-        if let Some(existing) = targets.iter().find(|p| p.exists()) {
-            return Err(Error::WouldOverwrite(existing.clone()));
-        }
-    }
-    std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
-    for ((file, _), (_, _, variant_text)) in jobs.iter().zip(&plan) {
-        std::fs::write(file, variant_text).map_err(|e| Error::io(file, e))?;
-    }
-    if args.mode == Mode::Emit {
-        return Ok(args.out_dir.clone());
-    }
-    let failed = run_side_by_side(
-        &jobs,
-        budget,
-        &Batch {
-            force: args.force,
-            step_limit: args.step_limit,
-            provenance: &args.provenance,
-            laws: &args.registry,
+    let texts: Vec<&str> = plan.iter().map(|p| p.2.as_str()).collect();
+    let next = run_jobs(
+        &CellJobs {
+            scenario: &args.scenario,
+            out_dir: &args.out_dir,
+            jobs: &jobs,
+            texts: &texts,
+            outputs: &["report.md", "events.csv", "series.csv", "pack_friction.png"],
+            mode: args.mode,
+            budget,
+            batch: Batch {
+                force: args.force,
+                step_limit: args.step_limit,
+                provenance: &args.provenance,
+                laws: &args.registry,
+            },
+            tag: "pack-friction",
         },
-        "pack-friction",
         hooks,
-    );
-    if !failed.is_empty() {
-        return Err(Error::Usage(format!(
-            "pack-friction: {} of {} runs failed ({}); nothing was measured",
-            failed.len(),
-            jobs.len(),
-            failed.join(", ")
-        )));
+    )?;
+    if next == Next::Emitted {
+        return Ok(args.out_dir.clone());
     }
     measure_and_report(args, (&schedule, &reference), &jobs, &plan, &report_path)
 }

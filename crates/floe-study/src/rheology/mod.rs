@@ -16,13 +16,14 @@ use floe_analysis::rheology::fit_mu_of_i;
 use floe_friction::LawRegistry;
 use floe_scenario::law_variants::{variant, LawChoice, Matching};
 
+pub use crate::cell_study::Mode;
+use crate::cell_study::{checked_cell, run_jobs, with_user_settings, CellJobs, Next};
 use crate::compare::reference_of;
-use floe_scenario::settings::{apply, find_table, Setting};
+use floe_scenario::settings::{apply, Setting};
 use floe_scenario::Scenario;
 
-use crate::side_by_side::{run_side_by_side, Batch};
+use crate::side_by_side::Batch;
 use floe_run::run_file::{thread_count, Provenance, RunHooks};
-use floe_run::same_file::refuse_overwriting_input;
 use floe_run::Error;
 use measure::{cell_samples, steady, SteadyCell};
 use over_seeds::over_seeds;
@@ -74,18 +75,6 @@ pub struct RheologyArgs {
     /// (the top wall's speed over the domain height, `[ice]
     /// initial_shear_rate_per_s`) or at rest.
     pub linear_start: bool,
-}
-
-/// What `floe rheology` does with the cells.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Mode {
-    /// Write, run and measure them.
-    Run,
-    /// Only write their scenario files (for a job array: run each with
-    /// `floe run LAW_vSPEED.toml -o LAW_vSPEED.h5`, then gather).
-    Emit,
-    /// Only measure the runs already in the directory and write the report.
-    Gather,
 }
 
 /// One run's steady state.
@@ -182,57 +171,28 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
         }
     }
     let report_path = args.out_dir.join("report.md");
-    let mut targets = vec![
-        report_path.clone(),
-        args.out_dir.join("results.csv"),
-        args.out_dir.join("over_seeds.csv"),
-    ];
-    targets.extend(jobs.iter().flat_map(|(t, h)| [t.clone(), h.clone()]));
-    refuse_overwriting_input(
-        &args.scenario,
-        "scenario file",
-        targets.iter().map(PathBuf::as_path),
-    )?;
-    if args.mode == Mode::Gather {
-        if let Some((_, missing)) = jobs.iter().find(|(_, h)| !h.exists()) {
-            return Err(Error::Usage(format!(
-                "{}: not there to gather (run its .toml with `floe run` first, or drop --gather)",
-                missing.display()
-            )));
-        }
-        return measure_and_report(args, &jobs, &plan, &report_path);
-    }
-    if !args.force {
-        if let Some(existing) = targets.iter().find(|p| p.exists()) {
-            return Err(Error::WouldOverwrite(existing.clone()));
-        }
-    }
-    std::fs::create_dir_all(&args.out_dir).map_err(|e| Error::io(&args.out_dir, e))?;
-    for ((file, _), (_, _, _, variant_text)) in jobs.iter().zip(&plan) {
-        std::fs::write(file, variant_text).map_err(|e| Error::io(file, e))?;
-    }
-    if args.mode == Mode::Emit {
-        return Ok(args.out_dir.clone());
-    }
-    let failed = run_side_by_side(
-        &jobs,
-        budget,
-        &Batch {
-            force: args.force,
-            step_limit: args.step_limit,
-            provenance: &args.provenance,
-            laws: &args.registry,
+    let texts: Vec<&str> = plan.iter().map(|p| p.3.as_str()).collect();
+    let next = run_jobs(
+        &CellJobs {
+            scenario: &args.scenario,
+            out_dir: &args.out_dir,
+            jobs: &jobs,
+            texts: &texts,
+            outputs: &["report.md", "results.csv", "over_seeds.csv"],
+            mode: args.mode,
+            budget,
+            batch: Batch {
+                force: args.force,
+                step_limit: args.step_limit,
+                provenance: &args.provenance,
+                laws: &args.registry,
+            },
+            tag: "rheology",
         },
-        "rheology",
         hooks,
-    );
-    if !failed.is_empty() {
-        return Err(Error::Usage(format!(
-            "rheology: {} of {} runs failed ({}); nothing was measured",
-            failed.len(),
-            jobs.len(),
-            failed.join(", ")
-        )));
+    )?;
+    if next == Next::Emitted {
+        return Ok(args.out_dir.clone());
     }
     measure_and_report(args, &jobs, &plan, &report_path)
 }
@@ -245,59 +205,6 @@ fn set_by_rheology(key: &str, args: &RheologyArgs) -> bool {
         || (key.starts_with("wall[") && key.ends_with(".velocity_m_per_s"))
         || (key == "seed" && !args.seeds.is_empty())
         || (key == "ice.initial_shear_rate_per_s" && args.linear_start)
-}
-
-/// `text` with the `--set` keys applied. A key the scenario does not take
-/// is blamed on the flag: the message's file names the settings, as
-/// `floe sweep`'s does.
-pub(crate) fn with_user_settings(
-    text: &str,
-    origin: &Path,
-    settings: &[Setting],
-    registry: &LawRegistry,
-) -> Result<String, Error> {
-    if settings.is_empty() {
-        return Ok(text.to_string());
-    }
-    floe_scenario::settings::check_distinct(settings)?;
-    let set_text = apply(text, origin, settings, &vec![0; settings.len()])?;
-    let given: Vec<String> = settings
-        .iter()
-        .map(|s| format!("--set {}={}", s.dotted(), s.values[0]))
-        .collect();
-    let with = PathBuf::from(format!("{} with {}", origin.display(), given.join(" ")));
-    Scenario::from_text_with(&set_text, &with, registry)?;
-    Ok(set_text)
-}
-
-/// The scenario of `text` if it is a shear cell (periodic along x only, a
-/// bottom wall and a top wall that holds a normal stress), with the index of
-/// its top `[[wall]]` table.
-pub(crate) fn checked_cell(
-    text: &str,
-    origin: &Path,
-    registry: &LawRegistry,
-) -> Result<(Scenario, usize), Error> {
-    let scenario = Scenario::from_text_with(text, origin, registry)?;
-    let not_a_cell = |why: &str| {
-        Error::Usage(format!(
-            "{}: not a shear cell ({why}); see scenarios/shear_cell.toml",
-            origin.display()
-        ))
-    };
-    if scenario.domain().periodic != [true, false] {
-        return Err(not_a_cell("the domain must be periodic along x only"));
-    }
-    let top = find_table(text, origin, "wall", "side", "top")?
-        .ok_or_else(|| not_a_cell("it has no [[wall]] with side = \"top\""))?;
-    find_table(text, origin, "wall", "side", "bottom")?
-        .ok_or_else(|| not_a_cell("it has no [[wall]] with side = \"bottom\""))?;
-    if scenario.build()?.world.stress_controls().is_empty() {
-        return Err(not_a_cell(
-            "no wall holds a normal stress (normal_stress_n_per_m)",
-        ));
-    }
-    Ok((scenario, top))
 }
 
 /// Measures each run of `jobs`, fits each law and writes the report.
