@@ -72,13 +72,9 @@ fn num(row: &HashMap<String, String>, key: &str) -> f64 {
 
 #[test]
 fn the_shipped_schedule_has_four_steps_and_three_holds_where_it_says() {
-    let text = std::fs::read_to_string(shipped("shear_cell_wide_steps.toml")).unwrap();
-    let origin = shipped("shear_cell_wide_steps.toml");
-    let top = floe_scenario::settings::find_table(&text, &origin, "wall", "side", "top")
-        .unwrap()
-        .unwrap();
-    let segments = floe_scenario::settings::wall_segments_along_x(&text, &origin, top).unwrap();
-    let schedule = Schedule::new(&segments).unwrap();
+    let scenario = floe_scenario::Scenario::load(&shipped("shear_cell_wide_steps.toml")).unwrap();
+    let segments = scenario.wall_schedule("top").unwrap().segments();
+    let schedule = Schedule::new(segments).unwrap();
     let kinds: Vec<(f64, EventKind)> = schedule.events().iter().map(|e| (e.at_s, e.kind)).collect();
     let step = |from, to| EventKind::Step { from, to };
     let hold = |hold_s| EventKind::Hold { hold_s, speed: 1.5 };
@@ -96,7 +92,8 @@ fn the_shipped_schedule_has_four_steps_and_three_holds_where_it_says() {
     );
     assert_eq!(schedule.duration_s(), 85800.0);
     // The wall's travel in each sliding segment: 8 to 24 km.
-    for (d, v, _) in segments.iter().filter(|s| s.1 > 0.0) {
+    for s in segments.iter().filter(|s| s.velocity_start.x > 0.0) {
+        let (d, v) = (s.duration_s, s.velocity_start.x);
         assert!((8000.0..=24000.0).contains(&(d * v)), "{d} s at {v} m/s");
     }
 }

@@ -7,6 +7,7 @@ use std::path::Path;
 use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
 use floe_dem::load_point::LoadPoint;
+use floe_dem::motion_schedule::MotionSchedule;
 use floe_dem::periodicity::Periodicity;
 use floe_dem::stress_control::StressControl;
 use floe_dem::world::World;
@@ -154,6 +155,17 @@ impl Scenario {
     /// The output cadence.
     pub fn output(&self) -> &OutputCadence {
         &self.resolved.output
+    }
+
+    /// The `[[wall.segment]]` schedule of the wall on `side` (`"left"`,
+    /// `"right"`, `"bottom"` or `"top"`), checked; `None` without such a
+    /// wall or without segments.
+    pub fn wall_schedule(&self, side: &str) -> Option<&MotionSchedule> {
+        self.resolved
+            .walls
+            .iter()
+            .find(|w| w.side.name() == side)
+            .and_then(|w| w.schedule.as_ref())
     }
 
     /// For a double-shear scenario, the normal load per face (N) and the

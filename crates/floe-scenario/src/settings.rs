@@ -196,51 +196,6 @@ pub fn find_table(
         }))
 }
 
-/// One `[[wall.segment]]` of a schedule, along x: `(duration_s, velocity
-/// at its start, velocity at its end)`, m/s.
-pub type SegmentAlongX = (f64, f64, f64);
-
-/// The along-x schedule of the `k`-th `[[wall]]` of `text` (empty when it
-/// has no `[[wall.segment]]`), read from a scenario that has been checked
-/// (`Scenario::from_text`): its values are valid numbers.
-pub fn wall_segments_along_x(
-    text: &str,
-    origin: &Path,
-    k: usize,
-) -> Result<Vec<SegmentAlongX>, ScenarioError> {
-    let doc = SourceFile {
-        path: origin.to_path_buf(),
-        text: text.to_string(),
-    }
-    .parse_document()?;
-    let Some(segments) = doc
-        .get("wall")
-        .and_then(Item::as_array_of_tables)
-        .and_then(|walls| walls.get(k))
-        .and_then(|wall| wall.get("segment"))
-        .and_then(Item::as_array_of_tables)
-    else {
-        return Ok(Vec::new());
-    };
-    let number = |item: Option<&Item>| -> f64 {
-        item.and_then(|i| i.as_float().or_else(|| i.as_integer().map(|n| n as f64)))
-            .unwrap_or(0.0)
-    };
-    let along_x = |item: Option<&Item>| -> Option<f64> {
-        item.and_then(Item::as_array)
-            .and_then(|a| a.get(0))
-            .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|n| n as f64)))
-    };
-    Ok(segments
-        .iter()
-        .map(|t| {
-            let start = along_x(t.get("velocity_m_per_s")).unwrap_or(0.0);
-            let end = along_x(t.get("end_velocity_m_per_s")).unwrap_or(start);
-            (number(t.get("duration_s")), start, end)
-        })
-        .collect())
-}
-
 /// `name[k]` as `(name, k)` (k counts from 0, as error messages do).
 fn indexed(part: &str) -> Option<(&str, usize)> {
     let (name, rest) = part.split_once('[')?;

@@ -28,6 +28,63 @@ pub enum Mode {
     Gather,
 }
 
+impl Mode {
+    /// The mode of a command's `--emit` and `--gather` flags.
+    pub fn from_flags(emit: bool, gather: bool) -> Self {
+        match (emit, gather) {
+            (true, _) => Self::Emit,
+            (_, true) => Self::Gather,
+            _ => Self::Run,
+        }
+    }
+}
+
+/// The setting of the dotted `key` to one `value` (TOML text) that a study
+/// makes in each of its runs.
+pub(crate) fn setting(key: &str, value: String) -> Setting {
+    Setting {
+        key: key.split('.').map(str::to_string).collect(),
+        values: vec![value],
+    }
+}
+
+/// Checks a study's `--set` options: one value each, and none of the keys
+/// the study sets itself (`sets_itself`; `why` names the flags that set
+/// them).
+pub(crate) fn check_settings(
+    settings: &[Setting],
+    sets_itself: impl Fn(&str) -> bool,
+    why: &str,
+) -> Result<(), Error> {
+    if let Some(s) = settings.iter().find(|s| s.values.len() != 1) {
+        return Err(Error::Usage(format!(
+            "--set {}: one value per key here (floe sweep takes several)",
+            s.dotted()
+        )));
+    }
+    if let Some(s) = settings.iter().find(|s| sets_itself(&s.dotted())) {
+        return Err(Error::Usage(format!("--set {}: {why}", s.dotted())));
+    }
+    Ok(())
+}
+
+/// Checks a study's `--seeds`: each a scenario `seed` (0 to `i64::MAX`),
+/// none twice.
+pub(crate) fn check_seeds(seeds: &[u64]) -> Result<(), Error> {
+    if let Some(&s) = seeds.iter().find(|&&s| s > i64::MAX as u64) {
+        return Err(Error::Usage(format!(
+            "--seeds {s}: seeds from 0 to {}",
+            i64::MAX
+        )));
+    }
+    let mut sorted = seeds.to_vec();
+    sorted.sort_unstable();
+    if sorted.windows(2).any(|w| w[0] == w[1]) {
+        return Err(Error::Usage("--seeds: a seed is given twice".into()));
+    }
+    Ok(())
+}
+
 /// `text` with the `--set` keys applied. A key the scenario does not take
 /// is blamed on the flag: the message's file names the settings, as
 /// `floe sweep`'s does.

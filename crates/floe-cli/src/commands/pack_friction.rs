@@ -68,11 +68,7 @@ pub struct Args {
 impl Args {
     /// Runs, emits or gathers the cells; returns what was written.
     pub fn run(self) -> Result<String, CliError> {
-        let mode = match (self.emit, self.gather) {
-            (true, _) => Mode::Emit,
-            (_, true) => Mode::Gather,
-            _ => Mode::Run,
-        };
+        let mode = Mode::from_flags(self.emit, self.gather);
         let settings = self
             .set
             .iter()

@@ -77,11 +77,7 @@ pub struct Args {
 impl Args {
     /// Runs, emits or gathers the shear runs; returns what was written.
     pub fn run(self) -> Result<String, CliError> {
-        let mode = match (self.emit, self.gather) {
-            (true, _) => rheology::Mode::Emit,
-            (_, true) => rheology::Mode::Gather,
-            _ => rheology::Mode::Run,
-        };
+        let mode = rheology::Mode::from_flags(self.emit, self.gather);
         let settings = self
             .set
             .iter()

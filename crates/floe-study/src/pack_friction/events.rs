@@ -6,6 +6,7 @@ use std::path::Path;
 
 use floe_analysis::step_response::{hold_healing, velocity_step, HoldHealing, VelocityStep};
 use floe_analysis::AnalysisError;
+use floe_dem::motion_schedule::MotionSegment;
 use floe_io::RunFile;
 use floe_run::Error;
 
@@ -60,9 +61,10 @@ pub struct Event {
 }
 
 impl Schedule {
-    /// Checks `(duration_s, start speed, end speed)` segments: no ramps,
-    /// speeds >= 0, a first segment that slides and at least one event.
-    pub fn new(segments: &[(f64, f64, f64)]) -> Result<Self, String> {
+    /// Reads a wall's `[[wall.segment]]` schedule along x and checks it:
+    /// no ramps, speeds >= 0, a first segment that slides and at least one
+    /// event.
+    pub fn new(segments: &[MotionSegment]) -> Result<Self, String> {
         if segments.len() < 2 {
             return Err(
                 "it needs [[wall.segment]] tables: at least a slide and a step or hold".into(),
@@ -70,7 +72,8 @@ impl Schedule {
         }
         let mut t = 0.0;
         let mut out = Vec::new();
-        for (k, &(d, v0, v1)) in segments.iter().enumerate() {
+        for (k, seg) in segments.iter().enumerate() {
+            let (d, v0, v1) = (seg.duration_s, seg.velocity_start.x, seg.velocity_end.x);
             if v0 != v1 {
                 return Err(format!(
                     "segment {k} is a ramp ({v0} to {v1} m/s); steps and holds only"
@@ -325,15 +328,12 @@ pub fn measure_event(event: &Event, times: &[f64], mu: &[f64]) -> Result<Measure
         let last = ((b + 1e-6).floor() as usize).min(times.len() - 1);
         (first..=last).collect()
     };
+    // velocity_step and hold_healing refuse a window with a friction that
+    // is not finite (no contact carried the layer).
     let before: Vec<f64> = window(event.before_s, false)
         .iter()
         .map(|&i| mu[i])
         .collect();
-    if before.iter().any(|m| !m.is_finite()) {
-        return Err(AnalysisError::NotEnoughData(
-            "friction not finite before the event",
-        ));
-    }
     let after = window(event.after_s, true);
     match event.kind {
         EventKind::Step { from, to } => {
@@ -347,11 +347,6 @@ pub fn measure_event(event: &Event, times: &[f64], mu: &[f64]) -> Result<Measure
         }
         EventKind::Hold { .. } => {
             let reslide: Vec<f64> = after.iter().map(|&i| mu[i]).collect();
-            if reslide.iter().any(|m| !m.is_finite()) {
-                return Err(AnalysisError::NotEnoughData(
-                    "friction not finite on reslide",
-                ));
-            }
             hold_healing(&before, &reslide).map(Measured::Hold)
         }
     }

@@ -15,11 +15,14 @@ use std::path::{Path, PathBuf};
 
 use floe_friction::LawRegistry;
 use floe_scenario::law_variants::{variant, LawChoice, Matching};
-use floe_scenario::settings::{apply, wall_segments_along_x, Setting};
+use floe_scenario::settings::{apply, Setting};
 use floe_scenario::Scenario;
 
 pub use crate::cell_study::Mode;
-use crate::cell_study::{checked_cell, run_jobs, with_user_settings, CellJobs, Next};
+use crate::cell_study::{
+    check_seeds, check_settings, checked_cell, run_jobs, setting, with_user_settings, CellJobs,
+    Next,
+};
 use crate::compare::reference_of;
 use crate::side_by_side::Batch;
 use floe_run::run_file::{thread_count, Provenance, RunHooks};
@@ -79,8 +82,11 @@ pub fn pack_friction(args: &PackFrictionArgs, hooks: &dyn RunHooks) -> Result<Pa
     let origin = args.scenario.as_path();
     let text = floe_run::run_file::read_anchored(origin)?;
     let text = with_user_settings(&text, origin, &args.settings, &args.registry)?;
-    let (scenario, top) = checked_cell(&text, origin, &args.registry)?;
-    let schedule = Schedule::new(&wall_segments_along_x(&text, origin, top)?).map_err(|why| {
+    let (scenario, _) = checked_cell(&text, origin, &args.registry)?;
+    let segments = scenario
+        .wall_schedule("top")
+        .map_or(&[][..], |s| s.segments());
+    let schedule = Schedule::new(segments).map_err(|why| {
         Error::Usage(format!(
             "{}: the top wall's schedule: {why} (see scenarios/shear_cell_wide_steps.toml)",
             origin.display()
@@ -102,25 +108,21 @@ pub fn pack_friction(args: &PackFrictionArgs, hooks: &dyn RunHooks) -> Result<Pa
             args.matching,
         )?;
         for &seed in &args.seeds {
-            let set = |key: &str, value: String| Setting {
-                key: key.split('.').map(str::to_string).collect(),
-                values: vec![value],
-            };
             let mut settings = vec![
-                set("seed", seed.to_string()),
-                set("duration_s", format!("{duration:?}")),
-                set(
+                setting("seed", seed.to_string()),
+                setting("duration_s", format!("{duration:?}")),
+                setting(
                     "output.observables_every_s",
                     format!("{:?}", args.sample_every_s),
                 ),
-                set("output.snapshot_every_s", format!("{:?}", duration / 20.0)),
-                set(
+                setting("output.snapshot_every_s", format!("{:?}", duration / 20.0)),
+                setting(
                     "output.checkpoint_every_s",
                     format!("{:?}", duration / 10.0),
                 ),
             ];
             if args.linear_start {
-                settings.push(set(
+                settings.push(setting(
                     "ice.initial_shear_rate_per_s",
                     format!("{:?}", schedule.first_speed_m_per_s() / height),
                 ));
@@ -212,33 +214,12 @@ fn check_args(args: &PackFrictionArgs) -> Result<(), Error> {
     if args.seeds.is_empty() {
         return Err(Error::Usage("--seeds: give at least one seed".into()));
     }
-    if let Some(&s) = args.seeds.iter().find(|&&s| s > i64::MAX as u64) {
-        return Err(Error::Usage(format!(
-            "--seeds {s}: seeds from 0 to {}",
-            i64::MAX
-        )));
-    }
-    let mut seeds = args.seeds.clone();
-    seeds.sort_unstable();
-    if seeds.windows(2).any(|w| w[0] == w[1]) {
-        return Err(Error::Usage("--seeds: a seed is given twice".into()));
-    }
-    if let Some(s) = args.settings.iter().find(|s| s.values.len() != 1) {
-        return Err(Error::Usage(format!(
-            "--set {}: one value per key here (floe sweep takes several)",
-            s.dotted()
-        )));
-    }
-    if let Some(s) = args
-        .settings
-        .iter()
-        .find(|s| set_by_pack_friction(&s.dotted(), args))
-    {
-        return Err(Error::Usage(format!(
-            "--set {}: floe pack-friction sets this key itself (--seeds, --sample-every, --initial-profile; the schedule is the top wall's [[wall.segment]] tables)",
-            s.dotted()
-        )));
-    }
+    check_seeds(&args.seeds)?;
+    check_settings(
+        &args.settings,
+        |key| set_by_pack_friction(key, args),
+        "floe pack-friction sets this key itself (--seeds, --sample-every, --initial-profile; the schedule is the top wall's [[wall.segment]] tables)",
+    )?;
     if !(args.sample_every_s.is_finite() && args.sample_every_s > 0.0) {
         return Err(Error::Usage(format!(
             "--sample-every {}: a spacing in seconds > 0",

@@ -173,8 +173,9 @@ fn markdown(
         seeds.join(", "),
         parameter(args.sample_every_s),
     );
+    let events = schedule.events();
     md.push_str("Schedule:\n\n| event | at (s) | what |\n|---|---|---|\n");
-    for (k, e) in schedule.events().iter().enumerate() {
+    for (k, e) in events.iter().enumerate() {
         let what = match e.kind {
             EventKind::Step { from, to } => {
                 format!("step {} -> {} m/s", parameter(from), parameter(to))
@@ -201,7 +202,6 @@ fn markdown(
             sig(r.params.critical_slip_m)
         );
     }
-    let events = schedule.events();
     let first = &laws[0];
     md.push_str(
         "\n## Velocity steps\n\n\

@@ -17,7 +17,10 @@ use floe_friction::LawRegistry;
 use floe_scenario::law_variants::{variant, LawChoice, Matching};
 
 pub use crate::cell_study::Mode;
-use crate::cell_study::{checked_cell, run_jobs, with_user_settings, CellJobs, Next};
+use crate::cell_study::{
+    check_seeds, check_settings, checked_cell, run_jobs, setting, with_user_settings, CellJobs,
+    Next,
+};
 use crate::compare::reference_of;
 use floe_scenario::settings::{apply, Setting};
 use floe_scenario::Scenario;
@@ -126,39 +129,35 @@ pub fn rheology(args: &RheologyArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Er
             .flat_map(|v| seeds.iter().map(move |s| (v, *s)))
         {
             let duration = args.strain * height / v;
-            let set = |key: &str, value: String| Setting {
-                key: key.split('.').map(str::to_string).collect(),
-                values: vec![value],
-            };
             let settings = [
-                set(
+                setting(
                     &format!("wall[{top}].velocity_m_per_s"),
                     format!("[{v:?}, 0.0]"),
                 ),
-                set("duration_s", format!("{duration:?}")),
-                set(
+                setting("duration_s", format!("{duration:?}")),
+                setting(
                     "output.snapshot_every_s",
                     format!("{:?}", duration / args.snapshots as f64),
                 ),
-                set(
+                setting(
                     "output.observables_every_s",
                     format!("{:?}", duration / 500.0),
                 ),
-                set(
+                setting(
                     "output.checkpoint_every_s",
                     format!("{:?}", duration / 10.0),
                 ),
             ];
             let mut settings = settings.to_vec();
             if args.linear_start {
-                settings.push(set(
+                settings.push(setting(
                     "ice.initial_shear_rate_per_s",
                     format!("{:?}", v / height),
                 ));
             }
             let mut name = format!("{}_v{v}", law.name());
             if let Some(seed) = seed {
-                settings.push(set("seed", seed.to_string()));
+                settings.push(setting("seed", seed.to_string()));
                 name.push_str(&format!("_s{seed}"));
             }
             let variant_text = apply(&law_text, origin, &settings, &vec![0; settings.len()])?;
@@ -283,33 +282,12 @@ fn check_args(args: &RheologyArgs) -> Result<(), Error> {
     if sorted.windows(2).any(|w| w[0] == w[1]) {
         return Err(Error::Usage("--speeds: a speed is given twice".into()));
     }
-    if let Some(s) = args.settings.iter().find(|s| s.values.len() != 1) {
-        return Err(Error::Usage(format!(
-            "--set {}: one value per key here (floe sweep takes several)",
-            s.dotted()
-        )));
-    }
-    if let Some(&s) = args.seeds.iter().find(|&&s| s > i64::MAX as u64) {
-        return Err(Error::Usage(format!(
-            "--seeds {s}: seeds from 0 to {}",
-            i64::MAX
-        )));
-    }
-    if let Some(s) = args
-        .settings
-        .iter()
-        .find(|s| set_by_rheology(&s.dotted(), args))
-    {
-        return Err(Error::Usage(format!(
-            "--set {}: floe rheology sets this key itself (--speeds, --strain, --snapshots, --seeds, --initial-profile)",
-            s.dotted()
-        )));
-    }
-    let mut seeds = args.seeds.clone();
-    seeds.sort_unstable();
-    if seeds.windows(2).any(|w| w[0] == w[1]) {
-        return Err(Error::Usage("--seeds: a seed is given twice".into()));
-    }
+    check_settings(
+        &args.settings,
+        |key| set_by_rheology(key, args),
+        "floe rheology sets this key itself (--speeds, --strain, --snapshots, --seeds, --initial-profile)",
+    )?;
+    check_seeds(&args.seeds)?;
     if !(args.strain.is_finite() && args.strain > 0.0 && args.strain <= 1e3) {
         return usage("--strain", args.strain, "a shear strain in (0, 1000]");
     }
