@@ -134,6 +134,50 @@ fn pausing_and_resuming_on_another_thread_count_is_bitwise_the_uninterrupted_run
 }
 
 #[test]
+fn a_run_with_floe_stress_writes_it_with_every_snapshot_and_resumes_bitwise() {
+    let stressed = format!("{SMALL}\n[floe_stress]\ntime_scale_s = 20.0\n");
+    let case = Case::new(&stressed);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    let out = case.resume("parts.h5", &["--threads", "2"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+    let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
+    let n = f.snapshot_count().unwrap();
+    let floes = f.static_floes().unwrap();
+    let first = f
+        .floe_stress(0)
+        .unwrap()
+        .expect("the file holds floe stress");
+    assert_eq!(first.len(), floes.len());
+    assert!(
+        first.iter().all(|s| *s == [0.0; 3]),
+        "the average starts at zero"
+    );
+    let last = f.floe_stress(n - 1).unwrap().unwrap();
+    let compressed = (0..last.len())
+        .filter(|&i| !floes.prescribed[i] && last[i][0] + last[i][2] < 0.0)
+        .count();
+    assert!(
+        compressed > 10,
+        "the sheared pack is compressed ({compressed} floes)"
+    );
+    assert!((0..last.len()).all(|i| !floes.prescribed[i] || last[i] == [0.0; 3]));
+    // The last snapshot and the final checkpoint hold the same stresses.
+    let state = f.checkpoint_state(|| None).unwrap().unwrap();
+    assert_eq!(state.steps, f.snapshot(n - 1).unwrap().step);
+    assert!(state.floe_stress == last);
+    // Without the table, no stress in the file.
+    let plain = Case::new(SMALL);
+    plain.run_ok("plain.h5", &["--max-steps", "20"]);
+    let plain = RunFile::open(Path::new(&plain.path("plain.h5"))).unwrap();
+    assert!(!plain.has_floe_stress() && plain.floe_stress(0).unwrap().is_none());
+}
+
+#[test]
 fn a_run_paused_in_the_middle_of_a_wall_schedule_resumes_bitwise() {
     // The top wall slides, slows over a ramp, holds and reverses; the pauses
     // at steps 137 (t = 68.5 s, in the ramp) and 238 (119 s, in the hold)

@@ -151,6 +151,11 @@ pub fn assert_same_run(a: &Path, b: &Path) {
             bits(&sb.angular_velocity),
             "spins {k}"
         );
+        let (ta, tb) = (fa.floe_stress(k).unwrap(), fb.floe_stress(k).unwrap());
+        let stress_bits = |t: Option<Vec<[f64; 3]>>| {
+            t.map(|t| t.iter().flatten().map(|x| x.to_bits()).collect::<Vec<_>>())
+        };
+        assert_eq!(stress_bits(ta), stress_bits(tb), "floe stress {k}");
         let (ca, cb) = (fa.contacts(k).unwrap(), fb.contacts(k).unwrap());
         assert_eq!(ca.pair, cb.pair, "contact pairs {k}");
         assert_eq!(bits(&ca.theta), bits(&cb.theta), "theta {k}");

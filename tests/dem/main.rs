@@ -9,6 +9,7 @@ mod contact_symmetry;
 #[path = "../support/counting_allocator.rs"]
 mod counting_allocator;
 mod floe_edits;
+mod floe_stress;
 mod forcing;
 mod fracture_criteria;
 mod load_point;

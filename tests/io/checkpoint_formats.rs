@@ -7,6 +7,7 @@ use floe_dem::energy_ledger::EnergyLedger;
 use floe_dem::floes::{FloeColumns, Floes, Motion};
 use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::{MotionSchedule, MotionSegment, ScheduledMotion};
+use floe_dem::pipeline::floe_stress::StressFilter;
 use floe_dem::state::WorldState;
 use floe_dem::stress_control::{ControlLaw, ServoWall, StressControl};
 use floe_dem::Vec2;
@@ -171,6 +172,8 @@ pub fn rich_state() -> WorldState {
             LoadPoint::new(9, 2e6, Vec2::new(0.25, 99.5 - 1.0 / 3.0), schedule).unwrap(),
         ],
         stress_controls: vec![wall],
+        stress_filter: None,
+        floe_stress: Vec::new(),
     };
     state.validate().unwrap();
     assert!(state
@@ -224,6 +227,8 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         schedules,
         load_points,
         stress_controls,
+        stress_filter,
+        floe_stress,
     } = expected;
     macro_rules! same {
         ($($field:ident),*) => {$(
@@ -245,7 +250,9 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         external_torque,
         schedules,
         load_points,
-        stress_controls
+        stress_controls,
+        stress_filter,
+        floe_stress
     );
 }
 
@@ -315,7 +322,7 @@ fn versions_3_to_6_read_without_what_they_lack() {
     }
 }
 
-/// The current format (7) reads back to the state, the servo's state
+/// Format 7 reads back to the state, the servo's state
 /// and a proportional wall's tag included.
 #[test]
 fn version_7_reads_back_to_the_state() {
@@ -339,6 +346,47 @@ fn version_7_reads_back_to_the_state() {
     }
     let (back, _) = decode(&fixture("format_v7_no_slots.bin"), || None, Some(0)).unwrap();
     assert_same(&back, &no_slots, "version 7, no slots");
+}
+
+/// `rich_state` with floe stress: a 30 s filter, each free floe's stress
+/// distinct, the walls' zero.
+pub fn stressed_state() -> WorldState {
+    let mut state = rich_state();
+    state.stress_filter = Some(StressFilter::new(30.0).unwrap());
+    state.floe_stress = vec![
+        [-1.25e5, 3.5e3, -2.0e4 / 3.0],
+        [0.0; 3],
+        [7.5e2, -1.0e5, -4.0e5],
+        [0.0; 3],
+    ];
+    state
+}
+
+/// Version 8 is version 7 with the floe stress after everything else: the
+/// time scale and a length-prefixed list of three `f64` per floe. It reads
+/// back to the state; the encoder writes its frozen bytes exactly, and
+/// still writes version 7 for a state without floe stress.
+#[test]
+fn version_8_is_version_7_with_floe_stress() {
+    use floe_io::checkpoint::{decode, encode, HEADER_LEN};
+    let (v7, v8) = (fixture("format_v7.bin"), fixture("format_v8.bin"));
+    let stressed = stressed_state();
+    let n = stressed.floes.len();
+    assert_eq!(v8.len(), v7.len() + 8 + 8 + 24 * n);
+    assert_eq!(&v8[8..12], &8u32.to_le_bytes());
+    assert_eq!(
+        &v8[HEADER_LEN..v7.len()],
+        &v7[HEADER_LEN..],
+        "the payload of 7 first"
+    );
+    let (back, back_counts) = decode(&v8, || None, Some(3)).unwrap();
+    assert_same(&back, &stressed, "version 8");
+    assert_eq!(back_counts, counts());
+    assert!(encode(&stressed, &counts(), 3) == v8);
+    let mut wrong = stressed.clone();
+    wrong.floe_stress.pop();
+    let e = decode(&encode(&wrong, &counts(), 3), || None, Some(3)).expect_err("3 of 4");
+    assert!(e.contains("floe_stress has 3 entries for 4 floes"), "{e}");
 }
 
 /// The encoder writes the frozen bytes of the current format exactly.

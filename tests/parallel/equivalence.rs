@@ -6,6 +6,7 @@
 //! across the periodic seam, against walls, with contact memory, wind and
 //! ocean drag.
 
+use floe_dem::pipeline::floe_stress::StressFilter;
 use std::sync::atomic::AtomicBool;
 
 use floe_dem::contact_model::ContactModel;
@@ -98,7 +99,10 @@ fn sheared_layer(seed: u64) -> World<Forcing> {
     };
     let periodicity = periodic_in_x(length);
     let dt = 0.5 * floe_dem::world::stable_time_step(&floes, &model).0;
-    World::new(floes, model, forcing, periodicity, dt).unwrap()
+    let mut world = World::new(floes, model, forcing, periodicity, dt).unwrap();
+    // Floe stress travels with migrating floes and is gathered with them.
+    world.set_stress_filter(Some(StressFilter::new(30.0).unwrap()));
+    world
 }
 
 /// The state's every bit, as text (`{:?}` prints each `f64` so that it
@@ -210,6 +214,8 @@ fn the_layer_moves_across_the_seam_and_keeps_contact_memory() {
             .any(|i| f.is_free(i) && (f.position[i].x - x0[i]).abs() > 0.5 * NX as f64 * S);
     }
     assert!(wrapped, "a floe crossed the periodic seam");
+    let stressed = w.floe_stress().iter().filter(|s| s[0] != 0.0).count();
+    assert!(stressed > NX * NY / 2, "floes carry stress ({stressed})");
     assert!(remembered > 0, "contacts broke and were remembered");
     assert!(w.energy().friction_dissipation_j > 0.0 && w.energy().forcing_work_j != 0.0);
 }

@@ -1425,3 +1425,40 @@ fn size_distributions_are_checked_where_they_are_written() {
     );
     assert!(s.report.iter().any(|l| l.contains("fitted exponent")));
 }
+
+#[test]
+fn floe_stress_takes_a_positive_time_scale_and_nothing_else() {
+    let t = format!("{BASE}\n[floe_stress]\ntime_scale_s = 0.0\n");
+    check(
+        &t,
+        "time_scale_s = 0.0",
+        15,
+        "floe_stress.time_scale_s",
+        &["> 0", "got 0"],
+    );
+    let t = format!("{BASE}\n[floe_stress]\ntime_scale_s = -30.0\n");
+    check(&t, "-30.0", 0, "floe_stress.time_scale_s", &["> 0"]);
+    let t = format!("{BASE}\n[floe_stress]\ntimescale_s = 30.0\n");
+    check(&t, "timescale_s", 0, "timescale_s", &["unknown field"]);
+    // The table alone: the anchors' averaging, 44.8 s.
+    let t = format!("{BASE}\n[floe_stress]\n");
+    let setup = Scenario::from_text(&t, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    let filter = setup.world.stress_filter().expect("floe stress on");
+    assert!((filter.time_scale_s + 10.0 / 0.8f64.ln()).abs() < 1e-12);
+    assert!(
+        setup
+            .report
+            .iter()
+            .any(|l| l.contains("averaged over 44.81 s")),
+        "{:?}",
+        setup.report
+    );
+    let plain = Scenario::from_text(BASE, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert!(plain.world.stress_filter().is_none() && plain.world.floe_stress().is_empty());
+}

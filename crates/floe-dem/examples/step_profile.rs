@@ -1,6 +1,7 @@
 //! Where a DEM step's time goes (docs/performance.md):
-//! `cargo run --release -p floe-dem --example step_profile -- 10000 [amontons|rate-state] [threads] [steps]`
-//! prints the time per step and a fingerprint of the final state;
+//! `cargo run --release -p floe-dem --example step_profile -- 10000 [amontons|rate-state] [threads] [steps] [stress]`
+//! prints the time per step and a fingerprint of the final state (`stress`:
+//! with floe stress on, the default average);
 //! `... --example step_profile -- full [threads]` only the fingerprint of a
 //! run with walls, forcing and contact memory (see `full_scenario`).
 use floe_fixtures::channel as channel_pack;
@@ -21,6 +22,9 @@ fn main() {
         };
         eprintln!("rayon threads in use: {}", rayon::current_num_threads());
         let mut w = channel_pack::sheared_channel_with(n, model);
+        if std::env::args().nth(5).as_deref() == Some("stress") {
+            w.set_stress_filter(Some(Default::default()));
+        }
         let r0 = w.broad_phase().rebuilds;
         let t = std::time::Instant::now();
         let steps: usize = arg(4, 20);

@@ -17,6 +17,7 @@ use crate::floes::Floes;
 use crate::load_point::LoadPoint;
 use crate::motion_schedule::ScheduledMotion;
 use crate::pipeline::boundary_motion::{wall_stress, with_normal_speed};
+use crate::pipeline::floe_stress::{FloeStress, StressFilter};
 use crate::pipeline::integrator::half_kicked;
 use crate::stress_control::StressControl;
 use crate::Vec2;
@@ -56,6 +57,12 @@ pub struct WorldState {
     pub load_points: Vec<LoadPoint>,
     /// Walls holding a normal stress (each piece in at most one).
     pub stress_controls: Vec<StressControl>,
+    /// The floe stress's time average, when the world computes floe
+    /// stress ([`World::set_stress_filter`](crate::world::World::set_stress_filter)).
+    pub stress_filter: Option<StressFilter>,
+    /// Each floe's time-averaged stress (`[xx, xy, yy]`, Pa, zero for
+    /// prescribed floes) when `stress_filter` is set; empty otherwise.
+    pub floe_stress: Vec<FloeStress>,
 }
 
 impl WorldState {
@@ -77,6 +84,8 @@ impl WorldState {
             schedules: Vec::new(),
             load_points: Vec::new(),
             stress_controls: Vec::new(),
+            stress_filter: None,
+            floe_stress: Vec::new(),
         }
     }
 
@@ -94,6 +103,21 @@ impl WorldState {
         ] {
             if len != n {
                 return bad(format!("{name} has {len} entries for {n} floes"));
+            }
+        }
+        let stresses = if self.stress_filter.is_some() { n } else { 0 };
+        if self.floe_stress.len() != stresses {
+            return bad(format!(
+                "floe_stress has {} entries for {n} floes (one per floe with a stress filter, none without)",
+                self.floe_stress.len()
+            ));
+        }
+        if let Some(filter) = self.stress_filter {
+            if StressFilter::new(filter.time_scale_s).is_err() {
+                return bad(format!(
+                    "the stress filter's time scale {} s is not > 0",
+                    filter.time_scale_s
+                ));
             }
         }
         if !sorted_pairs(self.contacts.iter().map(|c| (c.a, c.b)), n) {

@@ -35,6 +35,7 @@ fn main() {
         OutputOptions {
             deflate_level: 0,
             shuffle: false,
+            ..OutputOptions::default()
         },
     ] {
         let (mut world, domain) = channel(1000);

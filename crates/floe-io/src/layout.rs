@@ -24,6 +24,12 @@ pub const FLOE_ELEMENTS: [(&str, &str, usize); 4] = [
     ("angle", "rad", 1),
     ("angular_velocity", "rad s-1", 1),
 ];
+/// The floes' time-averaged stress, inside [`FLOES`], `[xx, xy, yy]` per
+/// floe (Pa, tension positive, zero for prescribed floes): written only by
+/// runs that compute floe stress (`[floe_stress]` in the scenario).
+pub const FLOE_STRESS: (&str, &str, usize) = ("stress", "Pa", 3);
+/// Attribute of [`FLOE_STRESS`]'s `value`: the order of its components.
+pub const STRESS_COMPONENTS: &str = "xx xy yy";
 /// Contact lists, one per snapshot.
 pub const CONTACTS: &str = "contacts";
 /// Assembly-wide time series.

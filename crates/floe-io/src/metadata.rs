@@ -58,6 +58,9 @@ pub struct OutputOptions {
     pub deflate_level: u8,
     /// Byte-shuffle before deflating (better ratios on floats). Default true.
     pub shuffle: bool,
+    /// Write each floe's time-averaged stress with every snapshot
+    /// (`/particles/floes/stress`); the world must compute it. Default false.
+    pub floe_stress: bool,
 }
 
 impl Default for OutputOptions {
@@ -65,6 +68,7 @@ impl Default for OutputOptions {
         Self {
             deflate_level: 4,
             shuffle: true,
+            floe_stress: false,
         }
     }
 }

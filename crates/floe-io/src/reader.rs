@@ -336,7 +336,8 @@ impl RunFile {
     /// Complete snapshots in the file.
     pub fn snapshot_count(&self) -> Result<usize, IoError> {
         let mut n = usize::MAX;
-        for (name, _, _) in layout::FLOE_ELEMENTS {
+        let stress = self.has_floe_stress().then_some(layout::FLOE_STRESS);
+        for (name, _, _) in layout::FLOE_ELEMENTS.into_iter().chain(stress) {
             for part in ["step", "time", "value"] {
                 n = n.min(rows(&self.ds(&format!("{}/{name}/{part}", layout::FLOES))?));
             }
@@ -379,6 +380,28 @@ impl RunFile {
             angle: value("angle")?,
             angular_velocity: value("angular_velocity")?,
         })
+    }
+
+    /// Whether the run wrote each floe's stress with its snapshots (a run
+    /// with `[floe_stress]`).
+    pub fn has_floe_stress(&self) -> bool {
+        self.file
+            .link_exists(&format!("{}/{}", layout::FLOES, layout::FLOE_STRESS.0))
+    }
+
+    /// Each floe's time-averaged stress at snapshot `k` (`[xx, xy, yy]`,
+    /// Pa, tension positive), in the file's floe order; `None` if the run
+    /// did not compute floe stress.
+    pub fn floe_stress(&self, k: usize) -> Result<Option<Vec<[f64; 3]>>, IoError> {
+        if !self.has_floe_stress() {
+            return Ok(None);
+        }
+        self.check_snapshot(k)?;
+        let name = format!("{}/{}/value", layout::FLOES, layout::FLOE_STRESS.0);
+        let flat = self.read_range::<f64>(&name, k..k + 1)?;
+        Ok(Some(
+            flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+        ))
     }
 
     /// The contacts of snapshot `k`.

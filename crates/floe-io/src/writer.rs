@@ -315,7 +315,8 @@ impl RunWriter {
         // floes), compressed; each chunk is written once.
         let floe_chunk = n.min(layout::MAX_FLOE_CHUNK);
         let mut elements = Vec::new();
-        for (name, unit, width) in layout::FLOE_ELEMENTS {
+        let stress = opts.floe_stress.then_some(layout::FLOE_STRESS);
+        for (name, unit, width) in layout::FLOE_ELEMENTS.into_iter().chain(stress) {
             let inner: Vec<usize> = if width == 1 { vec![n] } else { vec![n, width] };
             let chunk_inner: Vec<usize> = if width == 1 {
                 vec![floe_chunk]
@@ -328,10 +329,15 @@ impl RunWriter {
                 deflate: opts.deflate_level,
                 shuffle: opts.shuffle,
             };
-            elements.push(
-                Element::create(&particles, name, unit, &inner, &storage)
-                    .at(path, at(&format!("/particles/floes/{name}")))?,
-            );
+            let element = Element::create(&particles, name, unit, &inner, &storage)
+                .and_then(|e| {
+                    if name == layout::FLOE_STRESS.0 {
+                        h5::write_str(e.value.dataset(), "components", layout::STRESS_COMPONENTS)?;
+                    }
+                    Ok(e)
+                })
+                .at(path, at(&format!("/particles/floes/{name}")))?;
+            elements.push(element);
         }
         // Contacts: compressed, each snapshot starts a chunk (padded with
         // fill values) so that each compressed chunk is written once.
@@ -449,8 +455,8 @@ impl RunWriter {
     }
 
     /// Appends a snapshot of the owned floes (position, velocity, angle,
-    /// angular velocity) and of the contacts between them, at the world's
-    /// step and time, and flushes.
+    /// angular velocity, and stress if the file holds it) and of the
+    /// contacts between them, at the world's step and time, and flushes.
     pub fn write_snapshot<F: ExternalForces>(&mut self, world: &World<F>) -> Result<(), IoError> {
         let f = world.floes();
         let n = f.len();
@@ -469,16 +475,25 @@ impl RunWriter {
         let rows = (world.contacts().len() + self.contacts.chunk_rows) as u64;
         self.claim(n as u64 * 64 + rows * 96 + (256 << 10))?;
         let xy = |v: &[floe_dem::Vec2]| -> Vec<f64> { v.iter().flat_map(|p| [p.x, p.y]).collect() };
-        let values = [
+        let mut values = vec![
             xy(&f.position[..n]),
             xy(&f.velocity[..n]),
             f.angle[..n].to_vec(),
             f.angular_velocity[..n].to_vec(),
         ];
-        for ((name, _, _), (el, v)) in layout::FLOE_ELEMENTS
-            .iter()
-            .zip(self.elements.iter_mut().zip(&values))
-        {
+        let mut names = layout::FLOE_ELEMENTS.map(|(name, _, _)| name).to_vec();
+        if self.elements.len() > names.len() {
+            let stress = world.floe_stress();
+            if stress.len() != n {
+                return Err(invalid(
+                    &self.path,
+                    "the file holds floe stress but the world does not compute it",
+                ));
+            }
+            values.push(stress.iter().flatten().copied().collect());
+            names.push(layout::FLOE_STRESS.0);
+        }
+        for (name, (el, v)) in names.iter().zip(self.elements.iter_mut().zip(&values)) {
             el.append(step, time, v).at(&self.path, || {
                 format!("appending to /particles/floes/{name}")
             })?;
@@ -682,6 +697,21 @@ impl RunWriter {
         let mut elements = Vec::new();
         for (name, _, _) in layout::FLOE_ELEMENTS {
             elements.push(Element::open(&particles, name).at(path, what)?);
+        }
+        let (stress, stress_in_file) = (
+            layout::FLOE_STRESS.0,
+            particles.link_exists(layout::FLOE_STRESS.0),
+        );
+        match (state.stress_filter.is_some(), stress_in_file) {
+            (true, true) => elements.push(Element::open(&particles, stress).at(path, what)?),
+            (false, false) => {}
+            (on, _) => {
+                return Err(corrupt(format!(
+                    "it {} floe stress but the file {} /particles/floes/{stress}",
+                    if on { "holds" } else { "holds no" },
+                    if on { "has no" } else { "has" },
+                )))
+            }
         }
         let cg = file.group(layout::CONTACTS).at(path, what)?;
         let mut contacts = (|| -> hdf5::Result<ContactTables> {

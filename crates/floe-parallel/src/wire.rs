@@ -10,7 +10,8 @@ use serde::{de::DeserializeOwned, Deserialize, Serialize};
 
 use crate::error::ParallelError;
 
-/// A floe on its way to a process, with the forces of the last evaluation.
+/// A floe on its way to a process, with the forces of the last evaluation
+/// and its stress.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub(crate) struct Migrant {
     pub(crate) floe: Floe,
@@ -18,6 +19,8 @@ pub(crate) struct Migrant {
     pub(crate) torque: f64,
     pub(crate) external_force: Vec2,
     pub(crate) external_torque: f64,
+    /// Its time-averaged stress (`[xx, xy, yy]`, Pa), when floe stress is on.
+    pub(crate) stress: Option<[f64; 3]>,
     /// The process that owns it from now on.
     pub(crate) owner: u32,
     /// Every process that holds it (owner and ghosts); sent to the owner.

@@ -267,7 +267,10 @@ pub(crate) fn create_writer(
         &args.output,
         &metadata,
         setup.world.floes(),
-        &OutputOptions::default(),
+        &OutputOptions {
+            floe_stress: setup.world.stress_filter().is_some(),
+            ..OutputOptions::default()
+        },
     )?;
     if !setup.land_floe_ids.is_empty() {
         writer.mark_land(&setup.land_floe_ids)?;

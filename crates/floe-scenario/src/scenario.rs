@@ -268,6 +268,13 @@ impl Scenario {
         for (id, schedule) in built.schedules {
             world.set_schedule(id, schedule)?;
         }
+        if let Some(filter) = r.floe_stress {
+            world.set_stress_filter(Some(filter));
+            report.push(format!(
+                "  floe stress: each floe's, from its contacts, averaged over {} s",
+                sig(filter.time_scale_s)
+            ));
+        }
         if !built.stress_walls.is_empty() {
             // The same for every wall (the mean free floe's): found once.
             let tuning = (MeanFloe::of(&world), stress_gain_limit(&world, dt_s));

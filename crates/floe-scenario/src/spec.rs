@@ -51,6 +51,15 @@ pub(crate) struct RawScenario {
     pub map: Option<Spanned<RawMap>>,
     pub land: Option<Vec<Spanned<RawLand>>>,
     pub output: Option<RawOutput>,
+    /// `[floe_stress]`: each floe's stress from its contacts, averaged.
+    pub floe_stress: Option<Spanned<RawFloeStress>>,
+}
+
+/// `[floe_stress]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawFloeStress {
+    pub time_scale_s: Num,
 }
 
 /// `[map]`: the model plane of everything given in longitude and latitude.

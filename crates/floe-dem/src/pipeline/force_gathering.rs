@@ -85,6 +85,29 @@ impl ForceGathering {
         );
         self.index_current = true;
     }
+
+    /// Floe `i`'s contacts as `b`, then as `a`, each in contact order,
+    /// from the index of the last gathering (which must describe
+    /// `contacts`).
+    pub(crate) fn contacts_of<'c>(
+        &'c self,
+        i: usize,
+        contacts: &'c [ContactRecord],
+    ) -> (
+        impl Iterator<Item = &'c ContactRecord> + 'c,
+        &'c [ContactRecord],
+    ) {
+        debug_assert!(
+            self.index_current,
+            "the index describes another contact list"
+        );
+        let as_b = self.adjacency
+            [self.adjacency_start[i] as usize..self.adjacency_start[i + 1] as usize]
+            .iter()
+            .map(move |&k| &contacts[k as usize]);
+        let as_a = &contacts[self.a_start[i] as usize..self.a_start[i + 1] as usize];
+        (as_b, as_a)
+    }
 }
 
 /// Each floe's forces: its external force, then its contacts as `b`, then

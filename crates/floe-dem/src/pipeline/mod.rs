@@ -8,6 +8,7 @@
 //! | narrow phase | [`narrow_phase`] | candidate pairs, floes | contact list: overlaps, normal forces; contacts formed, continued, ended; contact memory; the contacts' power sums |
 //! | friction | [`friction`] | each contact's load | its tangential spring and friction state (the one call of the law) |
 //! | force gathering | [`force_gathering`] | contacts, forcing | per-floe force and torque |
+//! | floe stress (when on) | [`floe_stress`] | contacts, per-floe contact index | each free floe's time-averaged stress |
 //! | kick | [`integrator`] | forces and their rates with velocity | velocities; external forces at the new velocities |
 //! | energy accounting | [`energy_accounting`] | the contacts' power sums, forces, velocities | the energy ledger |
 //!
@@ -27,6 +28,7 @@ pub mod broad_phase;
 pub(crate) mod contact_memory;
 pub(crate) mod contact_merge;
 pub mod energy_accounting;
+pub mod floe_stress;
 pub mod force_gathering;
 pub mod friction;
 pub mod integrator;

@@ -7,6 +7,7 @@ use crate::contacts::{BrokenContact, ContactRecord};
 use crate::error::DemError;
 use crate::floes::{Floe, Floes, Motion};
 use crate::forcing::ExternalForces;
+use crate::pipeline::floe_stress::FloeStress;
 use crate::pipeline::integrator::floe_stable_step;
 use crate::Vec2;
 
@@ -94,6 +95,9 @@ pub struct DetachedFloe {
     pub contacts: Vec<([u64; 2], ContactRecord)>,
     /// Its remembered broken contacts, each with the ids of its two floes.
     pub broken: Vec<([u64; 2], BrokenContact)>,
+    /// Its time-averaged stress, if the world it left computed one (a
+    /// world that computes stress gives a floe without one zero).
+    pub stress: Option<FloeStress>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -205,6 +209,7 @@ impl<F: ExternalForces> World<F> {
             external_torque: 0.0,
             contacts: Vec::new(),
             broken: Vec::new(),
+            stress: None,
         })
     }
 
@@ -230,6 +235,7 @@ impl<F: ExternalForces> World<F> {
             external_torque: s.external_torque.remove(h),
             contacts,
             broken,
+            stress: s.stress_filter.map(|_| s.floe_stress.remove(h)),
         };
         self.pipeline.floes_changed();
         Ok(detached)
@@ -301,6 +307,9 @@ impl<F: ExternalForces> World<F> {
         s.torque.insert(h, d.torque);
         s.external_force.insert(h, d.external_force);
         s.external_torque.insert(h, d.external_torque);
+        if s.stress_filter.is_some() {
+            s.floe_stress.insert(h, d.stress.unwrap_or_default());
+        }
         debug_assert!(self.state.validate().is_ok());
         self.pipeline.floes_changed();
         Ok(())

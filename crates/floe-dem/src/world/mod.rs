@@ -5,7 +5,7 @@
 //! methods by job: `edits.rs` (floes added, removed and moved, handles
 //! renumbered), `drivers.rs` (motion schedules, load points, stress
 //! controls), `ghosts.rs` (what a distributed run copies between
-//! processes).
+//! processes), `life_cycle.rs` (floe stress).
 //!
 //! # A step
 //! [`World::step`] is [`World::drift`], [`World::detect_contacts`],
@@ -79,6 +79,7 @@ use floe_friction::{FrictionLaw, LAW_STATE_SLOTS};
 mod drivers;
 mod edits;
 mod ghosts;
+mod life_cycle;
 #[cfg(test)]
 mod tests;
 
@@ -355,7 +356,8 @@ impl<F: ExternalForces> World<F> {
         }
     }
 
-    /// Third stage: external and contact forces on every floe.
+    /// Third stage: external and contact forces on every floe, and (when
+    /// on) the floe stress.
     pub fn gather_forces(&mut self) {
         self.pipeline.enter(Stage::GatherForces);
         let s = &mut self.state;
@@ -382,6 +384,7 @@ impl<F: ExternalForces> World<F> {
             s.time_s,
             (&mut s.force, &mut s.external_force),
         );
+        self.update_floe_stress();
     }
 
     /// Last stage: the second half kick, and the step's work and

@@ -5,8 +5,11 @@ use super::bytes::ReadResult;
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
-/// Version of the encoding written.
-pub const FORMAT_VERSION: u32 = 7;
+/// Version of the encoding written for a state with floe stress.
+pub const FORMAT_VERSION: u32 = 8;
+/// Version written for a state without floe stress: 8 without its last
+/// section.
+pub const WITHOUT_FLOE_STRESS_VERSION: u32 = 7;
 /// The oldest version read; older and newer ones are refused.
 pub const OLDEST_READABLE_VERSION: u32 = 1;
 /// Bytes before the payload.
@@ -22,12 +25,12 @@ pub fn fnv1a64(bytes: &[u8]) -> u64 {
     h
 }
 
-/// The checkpoint: the header of `payload` in the current format, then
+/// The checkpoint: the header of `payload` in format `version`, then
 /// `payload`.
-pub(super) fn write(payload: &[u8]) -> Vec<u8> {
+pub(super) fn write(payload: &[u8], version: u32) -> Vec<u8> {
     let mut out = Vec::with_capacity(HEADER_LEN + payload.len());
     out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&FORMAT_VERSION.to_le_bytes());
+    out.extend_from_slice(&version.to_le_bytes());
     out.extend_from_slice(&0u32.to_le_bytes());
     out.extend_from_slice(&(payload.len() as u64).to_le_bytes());
     out.extend_from_slice(&fnv1a64(payload).to_le_bytes());

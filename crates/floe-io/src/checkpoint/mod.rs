@@ -21,13 +21,16 @@
 //! `header` (the 32 bytes above), `counts` (snapshots, contact rows,
 //! samples per observable), `floes` (the columns), `contacts` (touching
 //! and broken, with their friction states), `clock_and_energy`,
-//! `schedules` (motion schedules and load points) and `stress_controls`.
-//! [`encode`] writes the current format ([`FORMAT_VERSION`]) only; the
-//! readers branch on the version where an older format differs, and read
-//! a state without what the format lacks:
+//! `schedules` (motion schedules and load points), `stress_controls` and
+//! `floe_stress`. [`encode`] writes the current format ([`FORMAT_VERSION`])
+//! for a state with floe stress and version 7 for one without (the same
+//! bytes as before floe stress existed); the readers branch on the version
+//! where an older format differs, and read a state without what the format
+//! lacks:
 //!
 //! | version | differs from the next by |
 //! | --- | --- |
+//! | 7 | no floe stress |
 //! | 6 | a stress-controlled wall's law is its proportional gain alone (no tag, no servo) |
 //! | 5 | no stress-controlled walls |
 //! | 4 | no load points |
@@ -42,13 +45,17 @@ mod bytes;
 mod clock_and_energy;
 mod contacts;
 mod counts;
+mod floe_stress;
 mod floes;
 mod header;
 mod schedules;
 mod stress_controls;
 
 pub use counts::OutputCounts;
-pub use header::{fnv1a64, verify, FORMAT_VERSION, HEADER_LEN, MAGIC, OLDEST_READABLE_VERSION};
+pub use header::{
+    fnv1a64, verify, FORMAT_VERSION, HEADER_LEN, MAGIC, OLDEST_READABLE_VERSION,
+    WITHOUT_FLOE_STRESS_VERSION,
+};
 
 use bytes::{ReadResult, Reader, Writer};
 use floe_dem::state::WorldState;
@@ -84,6 +91,8 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
         schedules,
         load_points,
         stress_controls,
+        stress_filter,
+        floe_stress,
     } = state;
     floes::write(w, floes);
     contacts::write_touching(w, contacts);
@@ -97,7 +106,15 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
     schedules::write_schedules(w, schedules);
     schedules::write_load_points(w, load_points);
     stress_controls::write(w, stress_controls);
-    header::write(&w.bytes)
+    // A state without floe stress is written as version 7, byte for byte
+    // what floe wrote before floe stress existed.
+    match stress_filter {
+        Some(filter) => {
+            floe_stress::write(w, *filter, floe_stress);
+            header::write(&w.bytes, FORMAT_VERSION)
+        }
+        None => header::write(&w.bytes, WITHOUT_FLOE_STRESS_VERSION),
+    }
 }
 
 /// A generous guess of the encoded size, for reserving slot space.
@@ -108,6 +125,7 @@ pub fn estimate_len(state: &WorldState) -> usize {
         + state.floes.vertices.len() * 16
         + state.contacts.len() * 176
         + state.broken.len() * 48
+        + state.floe_stress.len() * 24
 }
 
 /// The state and counts of checkpoint `bytes`, after checking the header,
@@ -148,7 +166,11 @@ pub fn decode(
         schedules: schedules::read_schedules(r)?,
         load_points: schedules::read_load_points(r)?,
         stress_controls: stress_controls::read(r)?,
+        stress_filter: None,
+        floe_stress: Vec::new(),
     };
+    let mut state = state;
+    (state.stress_filter, state.floe_stress) = floe_stress::read(r)?;
     if r.unread() != 0 {
         return Err(format!("{} unread bytes after the state", r.unread()));
     }

@@ -47,6 +47,8 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let n = columns.len();
         let (mut force, mut torque) = (vec![Vec2::ZERO; n], vec![0.0; n]);
         let (mut external_force, mut external_torque) = (vec![Vec2::ZERO; n], vec![0.0; n]);
+        let stress_filter = state.stress_filter;
+        let mut floe_stress = vec![[0.0; 3]; if stress_filter.is_some() { n } else { 0 }];
         let mut seen = vec![false; n];
         let (mut contacts, mut broken) = (Vec::new(), Vec::new());
         for bytes in parts {
@@ -54,7 +56,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             for row in p.rows.chunks_exact(ROW_BYTES) {
                 let floe_id = u64::from_le_bytes(row[..8].try_into().expect("8 bytes"));
                 let mut rest = &row[8..];
-                let v = take_f64s::<16>(&mut rest).expect("a whole row");
+                let v = take_f64s::<18>(&mut rest).expect("a whole row");
                 let h = match template.handle_of(floe_id) {
                     Some(h) if !seen[h] => h,
                     _ => {
@@ -79,6 +81,9 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
                 torque[h] = v[11];
                 external_force[h] = Vec2::new(v[12], v[13]);
                 external_torque[h] = v[14];
+                if let Some(s) = floe_stress.get_mut(h) {
+                    *s = [v[15], v[16], v[17]];
+                }
             }
             contacts.extend(p.contacts);
             broken.extend(p.broken);
@@ -130,6 +135,8 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             load_points: d.load_points.clone(),
             // As the steps have moved them on (the same on every process).
             stress_controls: self.local().stress_controls().to_vec(),
+            stress_filter,
+            floe_stress,
         }))
     }
 
@@ -183,8 +190,8 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
     }
 }
 
-/// Bytes of a floe's row in the gathered whole: its id and sixteen `f64`.
-const ROW_BYTES: usize = 136;
+/// Bytes of a floe's row in the gathered whole: its id and eighteen `f64`.
+const ROW_BYTES: usize = 152;
 
 /// What a process sends process 0 for the whole world: its floes' rows
 /// ([`put_row`]) and the contacts it counts, named by floe ids.
@@ -197,7 +204,7 @@ struct WholePart {
 
 /// Floe `h`'s row: id, position, angle, velocity, angular velocity,
 /// motion (0 free, 1 prescribed, and the prescribed velocity), force,
-/// torque, external force and torque.
+/// torque, external force and torque, stress (zero when off).
 fn put_row(out: &mut Vec<u8>, state: &WorldState, h: usize) {
     let f = state.floes.columns();
     out.extend_from_slice(&f.id[h].to_le_bytes());
@@ -205,6 +212,7 @@ fn put_row(out: &mut Vec<u8>, state: &WorldState, h: usize) {
         Motion::Free => (0.0, Vec2::ZERO),
         Motion::Prescribed { velocity } => (1.0, velocity),
     };
+    let stress = state.floe_stress.get(h).copied().unwrap_or_default();
     put_f64s(
         out,
         &[
@@ -223,7 +231,9 @@ fn put_row(out: &mut Vec<u8>, state: &WorldState, h: usize) {
             state.external_force[h].x,
             state.external_force[h].y,
             state.external_torque[h],
-            0.0,
+            stress[0],
+            stress[1],
+            stress[2],
         ],
     );
 }

@@ -4,6 +4,7 @@
 //! domain when the work is out of balance.
 
 use super::*;
+use floe_dem::pipeline::floe_stress::StressFilter;
 
 impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
     /// Builds this process's world from the packets it received.
@@ -101,11 +102,18 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let mut floes = Floes::new();
         let (mut force, mut torque) = (Vec::new(), Vec::new());
         let (mut external_force, mut external_torque) = (Vec::new(), Vec::new());
+        let stress_filter = clock
+            .stress_time_scale_s
+            .map(|t| StressFilter { time_scale_s: t });
+        let mut floe_stress = Vec::new();
         for m in migrants {
             force.push(m.force);
             torque.push(m.torque);
             external_force.push(m.external_force);
             external_torque.push(m.external_torque);
+            if stress_filter.is_some() {
+                floe_stress.push(m.stress.unwrap_or_default());
+            }
             floes.insert(m.floe)?;
         }
         let here = |id: u64| handle(id).is_some();
@@ -134,6 +142,8 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
                 .cloned()
                 .collect(),
             stress_controls: d.stress_controls.clone(),
+            stress_filter,
+            floe_stress,
             floes,
         };
         let f = state.floes.columns();
@@ -294,6 +304,8 @@ pub(super) struct Clock {
     steps: u64,
     dt_s: f64,
     energy: floe_dem::energy_ledger::EnergyLedger,
+    /// The floe stress filter's time scale, s, when floe stress is on.
+    stress_time_scale_s: Option<f64>,
 }
 
 impl Clock {
@@ -303,6 +315,7 @@ impl Clock {
             steps: state.steps,
             dt_s: state.dt_s,
             energy: state.energy,
+            stress_time_scale_s: state.stress_filter.map(|f| f.time_scale_s),
         }
     }
 }
@@ -315,6 +328,7 @@ pub(super) fn migrant(state: &WorldState, i: usize, owner: usize, holders: Vec<u
         torque: state.torque[i],
         external_force: state.external_force[i],
         external_torque: state.external_torque[i],
+        stress: state.stress_filter.map(|_| state.floe_stress[i]),
         owner: owner as u32,
         holders: holders.into_iter().map(|r| r as u32).collect(),
     }

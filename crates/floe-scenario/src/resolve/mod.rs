@@ -10,6 +10,7 @@ mod floes;
 mod forcing;
 mod ice;
 pub(crate) mod land;
+mod life_cycle;
 pub(crate) mod limits;
 mod output;
 mod walls;
@@ -39,6 +40,7 @@ use domain::resolve_domain;
 use floes::resolve_floes;
 use forcing::resolve_forcing;
 use ice::resolve_ice;
+use life_cycle::resolve_floe_stress;
 use limits::count;
 use output::resolve_output;
 use walls::resolve_walls;
@@ -104,6 +106,8 @@ pub(crate) struct Resolved {
     pub inputs: Vec<InputFile>,
     /// The gridded fields, with their keys.
     pub(crate) gridded: Vec<crate::gridded_inputs::GriddedOrigin>,
+    /// `[floe_stress]`: the floe stress's time average, if computed.
+    pub floe_stress: Option<floe_dem::pipeline::floe_stress::StressFilter>,
 }
 /// Most time steps a run may take unless raised (`floe run --step-limit`):
 /// about a day at 1e4 steps/s, beyond which a step count is a typo.
@@ -215,6 +219,7 @@ pub(crate) fn resolve(
         }
     }
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
+    let floe_stress = resolve_floe_stress(f, raw.floe_stress.as_ref())?;
     let GridContext {
         start_time,
         inputs,
@@ -246,6 +251,7 @@ pub(crate) fn resolve(
         start_time,
         inputs,
         gridded: origins,
+        floe_stress,
     })
 }
 

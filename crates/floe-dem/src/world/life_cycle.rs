@@ -1,0 +1,64 @@
+//! The floe life cycle's settings and state on the world: floe stress.
+
+use super::World;
+use crate::forcing::ExternalForces;
+use crate::pipeline::floe_stress::{self, FloeStress, StressFilter};
+
+impl<F: ExternalForces> World<F> {
+    /// Computes each floe's time-averaged stress from now on (`Some`), or
+    /// stops (`None`, the stresses dropped). Stresses already held are
+    /// kept (a new time scale applies from the next step); otherwise they
+    /// start at zero. Part of the state: a resumed world goes on with its
+    /// saved filter and stresses.
+    pub fn set_stress_filter(&mut self, filter: Option<StressFilter>) {
+        let s = &mut self.state;
+        match filter {
+            Some(_) => s.floe_stress.resize(s.floes.len(), [0.0; 3]),
+            None => s.floe_stress.clear(),
+        }
+        s.stress_filter = filter;
+    }
+
+    /// The floe stress's time average, if the world computes it.
+    pub fn stress_filter(&self) -> Option<StressFilter> {
+        self.state.stress_filter
+    }
+
+    /// Each floe's time-averaged stress (`[xx, xy, yy]`, Pa), in handle
+    /// order; empty unless the world computes it.
+    pub fn floe_stress(&self) -> &[FloeStress] {
+        &self.state.floe_stress
+    }
+
+    /// Floe `h`'s stress from its contacts at the end of the last step
+    /// (not averaged; zero for a prescribed floe), Pa: a scan of the whole
+    /// contact list, for diagnostics.
+    pub fn instantaneous_stress(&self, h: usize) -> FloeStress {
+        let f = self.state.floes.columns();
+        if !f.is_free(h) {
+            return [0.0; 3];
+        }
+        let mine = self
+            .state
+            .contacts
+            .iter()
+            .filter(|c| c.a as usize == h || c.b as usize == h);
+        floe_stress::from_contacts(f, h, mine)
+    }
+
+    /// The floe stress stage: moves the averages towards the stresses of
+    /// the contacts just gathered.
+    pub(super) fn update_floe_stress(&mut self) {
+        let Some(filter) = self.state.stress_filter else {
+            return;
+        };
+        let s = &mut self.state;
+        floe_stress::update(
+            s.floes.columns(),
+            &s.contacts,
+            &self.pipeline.gathering,
+            filter.weight(s.dt_s),
+            &mut s.floe_stress,
+        );
+    }
+}
