@@ -9,9 +9,11 @@ mod contact_symmetry;
 #[path = "../support/counting_allocator.rs"]
 mod counting_allocator;
 mod floe_edits;
+mod floe_split;
 mod floe_stress;
 mod forcing;
 mod fracture_criteria;
+mod fracture_split;
 mod load_point;
 mod physics;
 mod power_law_floes;

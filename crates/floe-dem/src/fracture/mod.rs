@@ -1,4 +1,5 @@
 //! The floe life cycle's fracture: when a floe's stress breaks it
-//! ([`criteria`]).
+//! ([`criteria`]) and the pieces it breaks into ([`split`]).
 
 pub mod criteria;
+pub mod split;

@@ -181,6 +181,18 @@ impl<F: ExternalForces> World<F> {
         Ok(())
     }
 
+    /// The stable time step of floe `f` under the world's contact model, s.
+    pub(super) fn stable_step_of(&self, f: &Floe) -> f64 {
+        floe_stable_step(
+            f.mass_kg,
+            f.inertia_kg_m2,
+            f.thickness_m,
+            f.area_m2,
+            f.radius_m,
+            &self.model,
+        )
+    }
+
     /// Refuses a free floe whose stable time step `limit_s` is below the
     /// world's.
     fn check_stable(&self, id: u64, limit_s: f64) -> Result<(), DemError> {
@@ -286,18 +298,7 @@ impl<F: ExternalForces> World<F> {
             });
         }
         if let Motion::Free = d.floe.motion {
-            let f = &d.floe;
-            self.check_stable(
-                id,
-                floe_stable_step(
-                    f.mass_kg,
-                    f.inertia_kg_m2,
-                    f.thickness_m,
-                    f.area_m2,
-                    f.radius_m,
-                    &self.model,
-                ),
-            )?;
+            self.check_stable(id, self.stable_step_of(&d.floe))?;
         }
         let s = &mut self.state;
         let h = s.floes.insert(d.floe)?;

@@ -5,7 +5,8 @@
 //! methods by job: `edits.rs` (floes added, removed and moved, handles
 //! renumbered), `drivers.rs` (motion schedules, load points, stress
 //! controls), `ghosts.rs` (what a distributed run copies between
-//! processes), `life_cycle.rs` (floe stress).
+//! processes), `life_cycle.rs` (floe stress), `split.rs` (a floe broken
+//! into pieces).
 //!
 //! # A step
 //! [`World::step`] is [`World::drift`], [`World::detect_contacts`],
@@ -80,6 +81,7 @@ mod drivers;
 mod edits;
 mod ghosts;
 mod life_cycle;
+mod split;
 #[cfg(test)]
 mod tests;
 

@@ -1,0 +1,210 @@
+//! A floe split into pieces between steps: mass, momentum, angular
+//! momentum, kinetic energy and area kept to round-off, its contacts moved
+//! (with their tangential springs and friction states) to the piece that
+//! holds their contact point.
+
+use super::World;
+use crate::contact_kernel::contact_force_on_b;
+use crate::contacts::ContactRecord;
+use crate::error::DemError;
+use crate::floes::{Floe, Motion};
+use crate::forcing::ExternalForces;
+use crate::geometry::shape::FloeShape;
+use crate::geometry::{cross, perp};
+use crate::Vec2;
+
+use super::edits::DetachedFloe;
+
+impl<F: ExternalForces> World<F> {
+    /// Replaces free floe `id`, between steps, by floes of the convex
+    /// `pieces` (vertices relative to its centroid, in world orientation,
+    /// as [`crate::fracture::split::split_polygon`] makes them) with ids
+    /// `piece_ids` (new, and not `id`). Each piece keeps the parent's
+    /// thickness and moves with the parent's rigid motion (`v + omega x r`,
+    /// `omega`); the masses are the parent's in proportion to area, so
+    /// mass, linear and angular momentum and kinetic energy are the
+    /// parent's to round-off. Each contact goes to the piece that holds
+    /// its contact point (or is nearest it), with its friction state; the
+    /// pieces do not touch each other yet, their stresses start at zero,
+    /// and the parent's remembered broken contacts are forgotten (the
+    /// pair is gone). Their last forces are their contacts' and a share of
+    /// the parent's external force by mass, for the next half kick.
+    /// Refuses (changing nothing) a prescribed floe, fewer than two pieces,
+    /// ids in use, a piece that is not a convex polygon or would need a
+    /// smaller time step.
+    pub fn split_floe(
+        &mut self,
+        id: u64,
+        pieces: &[Vec<Vec2>],
+        piece_ids: &[u64],
+    ) -> Result<(), DemError> {
+        self.between_steps(id)?;
+        let h = self.handle(id)?;
+        let refuse = |reason: String| Err(DemError::FloeEdit { id, reason });
+        let parent = self.state.floes.get(h);
+        if !matches!(parent.motion, Motion::Free) {
+            return refuse("only a free floe splits".into());
+        }
+        if pieces.len() < 2 || pieces.len() != piece_ids.len() {
+            return refuse(format!(
+                "{} pieces with {} ids: a split needs two or more, one id each",
+                pieces.len(),
+                piece_ids.len()
+            ));
+        }
+        let mut sorted = piece_ids.to_vec();
+        sorted.sort_unstable();
+        sorted.dedup();
+        if sorted.len() != piece_ids.len()
+            || piece_ids
+                .iter()
+                .any(|&p| p == id || self.state.floes.handle_of(p).is_some())
+        {
+            return refuse("the pieces need new ids, distinct and unused".into());
+        }
+        let shapes = pieces
+            .iter()
+            .enumerate()
+            .map(|(k, p)| FloeShape::from_world(k, p))
+            .collect::<Result<Vec<_>, _>>()?;
+        let total_area: f64 = shapes.iter().map(|(s, _)| s.area_m2).sum();
+        let mut floes: Vec<Floe> = shapes
+            .iter()
+            .zip(piece_ids)
+            .map(|((shape, c), &pid)| {
+                let mass = parent.mass_kg * (shape.area_m2 / total_area);
+                Floe {
+                    id: pid,
+                    position: self.periodicity.wrap(parent.position + *c),
+                    angle: 0.0,
+                    velocity: parent.velocity + perp(*c) * parent.angular_velocity,
+                    angular_velocity: parent.angular_velocity,
+                    thickness_m: parent.thickness_m,
+                    mass_kg: mass,
+                    inertia_kg_m2: mass / shape.area_m2 * shape.polar_moment_m4,
+                    area_m2: shape.area_m2,
+                    radius_m: shape.radius_m,
+                    r3_moment_m5: crate::geometry::polygon_r3_moment(&shape.vertices),
+                    motion: Motion::Free,
+                    vertices: shape.vertices.clone(),
+                }
+            })
+            .collect();
+        for f in &floes {
+            let limit = self.stable_step_of(f);
+            if self.state.dt_s > limit {
+                return refuse(format!(
+                    "a piece of {:.4e} m^2 needs a time step of at most {limit:.4e} s, not {:.4e} s",
+                    f.area_m2, self.state.dt_s
+                ));
+            }
+        }
+        let detached = self.remove_floe(id)?;
+        // Each contact to the piece that holds its point.
+        let mut moved: Vec<Vec<([u64; 2], ContactRecord)>> = vec![Vec::new(); floes.len()];
+        for ([x, y], record) in detached.contacts {
+            let parent_is_b = y == id;
+            let other = if parent_is_b { x } else { y };
+            let offset = if parent_is_b {
+                record.image_offset
+            } else {
+                Vec2::ZERO
+            };
+            let at = record.point - offset - parent.position;
+            let k = holder(pieces, at);
+            moved[k].push(rekey(
+                record,
+                parent_is_b,
+                other,
+                &floes[k],
+                parent.position,
+                shapes[k].1,
+            ));
+        }
+        // The pieces' last forces: their contacts', and the parent's
+        // external force shared by mass.
+        let share = |f: &Floe| f.mass_kg / parent.mass_kg;
+        for (floe, contacts) in floes.drain(..).zip(moved) {
+            let (mut force, mut torque) = (detached.external_force * share(&floe), 0.0);
+            let external_torque = detached.external_torque * share(&floe);
+            torque += external_torque;
+            for ([_, b], c) in &contacts {
+                let (on_this, arm_origin) = if *b == floe.id {
+                    (contact_force_on_b(c), floe.position + c.image_offset)
+                } else {
+                    (-contact_force_on_b(c), floe.position)
+                };
+                force += on_this;
+                torque += cross(c.point - arm_origin, on_this);
+            }
+            self.insert_detached(DetachedFloe {
+                external_force: detached.external_force * share(&floe),
+                external_torque,
+                force,
+                torque,
+                floe,
+                contacts,
+                broken: Vec::new(),
+                stress: None,
+            })?;
+        }
+        Ok(())
+    }
+}
+
+/// The piece containing `at` (relative to the parent's centroid), or the
+/// one it is least outside of.
+fn holder(pieces: &[Vec<Vec2>], at: Vec2) -> usize {
+    let depth = |p: &Vec<Vec2>| {
+        let n = p.len();
+        (0..n)
+            .map(|i| {
+                let e = p[(i + 1) % n] - p[i];
+                cross(e, at - p[i]) / e.length()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    (0..pieces.len())
+        .max_by(|&i, &j| depth(&pieces[i]).total_cmp(&depth(&pieces[j])))
+        .expect("two or more pieces")
+}
+
+/// `record`, a contact of the parent (at `parent_position`) with floe
+/// `other`, as a contact of `piece` with `other`, named by ids: the smaller
+/// id is `a`. Its friction state, age and energies are kept (the
+/// tangential force and slip rate, measured on `b` along `perp(normal)`,
+/// keep their values when the two floes change roles); its normal, point
+/// and image offset are moved to the piece's frame: the piece is stored at
+/// `piece.position`, which is `piece_offset` from the parent's centroid up
+/// to a period. The next detection recomputes its geometry.
+fn rekey(
+    mut record: ContactRecord,
+    parent_was_b: bool,
+    other: u64,
+    piece: &Floe,
+    parent_position: Vec2,
+    piece_offset: Vec2,
+) -> ([u64; 2], ContactRecord) {
+    // As seen from the parent at its stored position: the normal towards
+    // `other`, the point, and the offset to `other`'s touching image.
+    let (normal, point, offset) = if parent_was_b {
+        (
+            -record.normal,
+            record.point - record.image_offset,
+            -record.image_offset,
+        )
+    } else {
+        (record.normal, record.point, record.image_offset)
+    };
+    // The piece's stored position is a whole period from where it sits by
+    // the parent when wrapped: the frame moves with it.
+    let wrap = piece.position - (parent_position + piece_offset);
+    let (point, offset) = (point + wrap, offset + wrap);
+    if piece.id < other {
+        (record.normal, record.point, record.image_offset) = (normal, point, offset);
+        ([piece.id, other], record)
+    } else {
+        (record.normal, record.point, record.image_offset) = (-normal, point - offset, -offset);
+        ([other, piece.id], record)
+    }
+}
