@@ -12,6 +12,7 @@ mod floe_edits;
 mod floe_split;
 mod floe_stress;
 mod forcing;
+mod fracture;
 mod fracture_criteria;
 mod fracture_split;
 mod load_point;

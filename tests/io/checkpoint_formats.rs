@@ -174,6 +174,7 @@ pub fn rich_state() -> WorldState {
         stress_controls: vec![wall],
         stress_filter: None,
         floe_stress: Vec::new(),
+        next_floe_id: 0,
     };
     state.validate().unwrap();
     assert!(state
@@ -229,6 +230,7 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         stress_controls,
         stress_filter,
         floe_stress,
+        next_floe_id,
     } = expected;
     macro_rules! same {
         ($($field:ident),*) => {$(
@@ -252,7 +254,8 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         load_points,
         stress_controls,
         stress_filter,
-        floe_stress
+        floe_stress,
+        next_floe_id
     );
 }
 
@@ -348,8 +351,8 @@ fn version_7_reads_back_to_the_state() {
     assert_same(&back, &no_slots, "version 7, no slots");
 }
 
-/// `rich_state` with floe stress: a 30 s filter, each free floe's stress
-/// distinct, the walls' zero.
+/// `rich_state` with the life cycle: floe stress with a 30 s filter, each
+/// free floe's stress distinct, the walls' zero; the next floe id 57.
 pub fn stressed_state() -> WorldState {
     let mut state = rich_state();
     state.stress_filter = Some(StressFilter::new(30.0).unwrap());
@@ -359,20 +362,23 @@ pub fn stressed_state() -> WorldState {
         [7.5e2, -1.0e5, -4.0e5],
         [0.0; 3],
     ];
+    state.next_floe_id = 57;
     state
 }
 
-/// Version 8 is version 7 with the floe stress after everything else: the
-/// time scale and a length-prefixed list of three `f64` per floe. It reads
-/// back to the state; the encoder writes its frozen bytes exactly, and
-/// still writes version 7 for a state without floe stress.
+/// Version 8 is version 7 with the life cycle after everything else: a
+/// flag, the floe stress (time scale, a length-prefixed list of three
+/// `f64` per floe) when the flag is 1, and the next floe id. It reads back
+/// to the state; the encoder writes its frozen bytes exactly, still writes
+/// version 7 for a state without the life cycle, and version 8 with the
+/// flag 0 for a next id alone.
 #[test]
-fn version_8_is_version_7_with_floe_stress() {
+fn version_8_is_version_7_with_the_life_cycle() {
     use floe_io::checkpoint::{decode, encode, HEADER_LEN};
     let (v7, v8) = (fixture("format_v7.bin"), fixture("format_v8.bin"));
     let stressed = stressed_state();
     let n = stressed.floes.len();
-    assert_eq!(v8.len(), v7.len() + 8 + 8 + 24 * n);
+    assert_eq!(v8.len(), v7.len() + 1 + 8 + 8 + 24 * n + 8);
     assert_eq!(&v8[8..12], &8u32.to_le_bytes());
     assert_eq!(
         &v8[HEADER_LEN..v7.len()],
@@ -383,6 +389,15 @@ fn version_8_is_version_7_with_floe_stress() {
     assert_same(&back, &stressed, "version 8");
     assert_eq!(back_counts, counts());
     assert!(encode(&stressed, &counts(), 3) == v8);
+    let mut id_only = rich_state();
+    id_only.next_floe_id = 9;
+    let bytes = encode(&id_only, &counts(), 3);
+    assert_eq!(bytes.len(), v7.len() + 1 + 8);
+    assert_same(
+        &decode(&bytes, || None, Some(3)).unwrap().0,
+        &id_only,
+        "an id alone",
+    );
     let mut wrong = stressed.clone();
     wrong.floe_stress.pop();
     let e = decode(&encode(&wrong, &counts(), 3), || None, Some(3)).expect_err("3 of 4");

@@ -63,6 +63,9 @@ pub struct WorldState {
     /// Each floe's time-averaged stress (`[xx, xy, yy]`, Pa, zero for
     /// prescribed floes) when `stress_filter` is set; empty otherwise.
     pub floe_stress: Vec<FloeStress>,
+    /// No floe has had an id at or above this (0: none counted yet):
+    /// fracture numbers its pieces from here, so no id is used twice.
+    pub next_floe_id: u64,
 }
 
 impl WorldState {
@@ -86,6 +89,7 @@ impl WorldState {
             stress_controls: Vec::new(),
             stress_filter: None,
             floe_stress: Vec::new(),
+            next_floe_id: 0,
         }
     }
 

@@ -6,7 +6,7 @@
 //! renumbered), `drivers.rs` (motion schedules, load points, stress
 //! controls), `ghosts.rs` (what a distributed run copies between
 //! processes), `life_cycle.rs` (floe stress), `split.rs` (a floe broken
-//! into pieces).
+//! into pieces), `fracture.rs` (the floes a criterion breaks, split).
 //!
 //! # A step
 //! [`World::step`] is [`World::drift`], [`World::detect_contacts`],
@@ -79,6 +79,7 @@ use floe_friction::{FrictionLaw, LAW_STATE_SLOTS};
 
 mod drivers;
 mod edits;
+mod fracture;
 mod ghosts;
 mod life_cycle;
 mod split;
@@ -87,6 +88,7 @@ mod tests;
 
 pub use crate::pipeline::integrator::{stable_time_step, STABILITY_SAFETY};
 pub use edits::DetachedFloe;
+pub use fracture::FractureEvent;
 pub use ghosts::Kinematics;
 
 /// The simulation state and what steps it.

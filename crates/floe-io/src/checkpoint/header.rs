@@ -5,11 +5,12 @@ use super::bytes::ReadResult;
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
-/// Version of the encoding written for a state with floe stress.
+/// Version of the encoding written for a state with the life cycle (floe
+/// stress or a next floe id).
 pub const FORMAT_VERSION: u32 = 8;
-/// Version written for a state without floe stress: 8 without its last
+/// Version written for a state without the life cycle: 8 without its last
 /// section.
-pub const WITHOUT_FLOE_STRESS_VERSION: u32 = 7;
+pub const WITHOUT_LIFE_CYCLE_VERSION: u32 = 7;
 /// The oldest version read; older and newer ones are refused.
 pub const OLDEST_READABLE_VERSION: u32 = 1;
 /// Bytes before the payload.

@@ -22,15 +22,16 @@
 //! samples per observable), `floes` (the columns), `contacts` (touching
 //! and broken, with their friction states), `clock_and_energy`,
 //! `schedules` (motion schedules and load points), `stress_controls` and
-//! `floe_stress`. [`encode`] writes the current format ([`FORMAT_VERSION`])
-//! for a state with floe stress and version 7 for one without (the same
-//! bytes as before floe stress existed); the readers branch on the version
+//! `life_cycle` (floe stress, the next floe id). [`encode`] writes the current format
+//! ([`FORMAT_VERSION`]) for a state with floe stress or a next floe id and
+//! version 7 for one without (the same bytes as before the life cycle
+//! existed); the readers branch on the version
 //! where an older format differs, and read a state without what the format
 //! lacks:
 //!
 //! | version | differs from the next by |
 //! | --- | --- |
-//! | 7 | no floe stress |
+//! | 7 | no life cycle (floe stress, next floe id) |
 //! | 6 | a stress-controlled wall's law is its proportional gain alone (no tag, no servo) |
 //! | 5 | no stress-controlled walls |
 //! | 4 | no load points |
@@ -45,16 +46,16 @@ mod bytes;
 mod clock_and_energy;
 mod contacts;
 mod counts;
-mod floe_stress;
 mod floes;
 mod header;
+mod life_cycle;
 mod schedules;
 mod stress_controls;
 
 pub use counts::OutputCounts;
 pub use header::{
     fnv1a64, verify, FORMAT_VERSION, HEADER_LEN, MAGIC, OLDEST_READABLE_VERSION,
-    WITHOUT_FLOE_STRESS_VERSION,
+    WITHOUT_LIFE_CYCLE_VERSION,
 };
 
 use bytes::{ReadResult, Reader, Writer};
@@ -93,6 +94,7 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
         stress_controls,
         stress_filter,
         floe_stress,
+        next_floe_id,
     } = state;
     floes::write(w, floes);
     contacts::write_touching(w, contacts);
@@ -106,15 +108,18 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
     schedules::write_schedules(w, schedules);
     schedules::write_load_points(w, load_points);
     stress_controls::write(w, stress_controls);
-    // A state without floe stress is written as version 7, byte for byte
-    // what floe wrote before floe stress existed.
-    match stress_filter {
-        Some(filter) => {
-            floe_stress::write(w, *filter, floe_stress);
-            header::write(&w.bytes, FORMAT_VERSION)
-        }
-        None => header::write(&w.bytes, WITHOUT_FLOE_STRESS_VERSION),
+    // A state without the life cycle is written as version 7, byte for
+    // byte what floe wrote before the life cycle existed.
+    if stress_filter.is_none() && *next_floe_id == 0 {
+        return header::write(&w.bytes, WITHOUT_LIFE_CYCLE_VERSION);
     }
+    let life = life_cycle::LifeCycle {
+        stress_filter: *stress_filter,
+        floe_stress: floe_stress.clone(),
+        next_floe_id: *next_floe_id,
+    };
+    life_cycle::write(w, &life);
+    header::write(&w.bytes, FORMAT_VERSION)
 }
 
 /// A generous guess of the encoded size, for reserving slot space.
@@ -168,9 +173,12 @@ pub fn decode(
         stress_controls: stress_controls::read(r)?,
         stress_filter: None,
         floe_stress: Vec::new(),
+        next_floe_id: 0,
     };
     let mut state = state;
-    (state.stress_filter, state.floe_stress) = floe_stress::read(r)?;
+    let life = life_cycle::read(r)?;
+    (state.stress_filter, state.floe_stress, state.next_floe_id) =
+        (life.stress_filter, life.floe_stress, life.next_floe_id);
     if r.unread() != 0 {
         return Err(format!("{} unread bytes after the state", r.unread()));
     }

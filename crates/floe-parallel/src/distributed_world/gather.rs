@@ -137,6 +137,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             stress_controls: self.local().stress_controls().to_vec(),
             stress_filter,
             floe_stress,
+            next_floe_id: state.next_floe_id,
         }))
     }
 

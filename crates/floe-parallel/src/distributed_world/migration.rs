@@ -144,6 +144,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             stress_controls: d.stress_controls.clone(),
             stress_filter,
             floe_stress,
+            next_floe_id: clock.next_floe_id,
             floes,
         };
         let f = state.floes.columns();
@@ -306,6 +307,8 @@ pub(super) struct Clock {
     energy: floe_dem::energy_ledger::EnergyLedger,
     /// The floe stress filter's time scale, s, when floe stress is on.
     stress_time_scale_s: Option<f64>,
+    /// Where fracture numbers new floes from.
+    next_floe_id: u64,
 }
 
 impl Clock {
@@ -316,6 +319,7 @@ impl Clock {
             dt_s: state.dt_s,
             energy: state.energy,
             stress_time_scale_s: state.stress_filter.map(|f| f.time_scale_s),
+            next_floe_id: state.next_floe_id,
         }
     }
 }
