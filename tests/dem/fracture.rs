@@ -195,3 +195,38 @@ fn hiblers_pack_strength_uses_the_packs_thickness_and_concentration() {
     let loose = first_break(StrengthThickness::Pack, SIDE_M * SIDE_M / 0.8);
     assert!(loose < own / 3, "{loose} against {own}");
 }
+
+#[test]
+fn a_run_that_fractured_resumes_bitwise() {
+    let r = rule(FractureCriterion::MohrCoulomb(MohrCoulomb::default()), 4);
+    let broken = || {
+        let mut w = closing_walls();
+        loop {
+            w.step();
+            if !w.fracture(&r, 1e6).unwrap().is_empty() {
+                return w;
+            }
+        }
+    };
+    let (state, model, forcing, periodicity) = broken().into_parts();
+    assert_eq!(state.next_floe_id, 6);
+    let mut resumed = World::resume(state, model, forcing, periodicity).unwrap();
+    let mut straight = broken();
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    for _ in 0..3000 {
+        resumed.step();
+        straight.step();
+        a.extend(resumed.fracture(&r, 1e6).unwrap());
+        b.extend(straight.fracture(&r, 1e6).unwrap());
+    }
+    assert!(!a.is_empty(), "the pieces break in turn");
+    assert!(
+        a.iter().all(|e| e.piece_ids.iter().all(|&id| id >= 6)),
+        "no id reused"
+    );
+    assert_eq!(a, b);
+    assert_eq!(
+        format!("{:?}", resumed.state()),
+        format!("{:?}", straight.state())
+    );
+}

@@ -6,7 +6,11 @@
 //! across the periodic seam, against walls, with contact memory, wind and
 //! ocean drag.
 
+use floe_dem::fracture::criteria::{FractureCriterion, MohrCoulomb};
+use floe_dem::fracture::rule::{FractureRule, StrengthThickness};
+use floe_dem::fracture::split::SplitRule;
 use floe_dem::pipeline::floe_stress::StressFilter;
+use floe_dem::world::FractureEvent;
 use std::sync::atomic::AtomicBool;
 
 use floe_dem::contact_model::ContactModel;
@@ -468,5 +472,101 @@ fn a_skin_thinner_than_a_step_grows_and_the_run_stays_bitwise() {
             got[0].0.as_ref() == Some(&reference),
             "{processes} processes"
         );
+    }
+}
+
+/// The sheared layer at half its time step (room for pieces), fracturing
+/// under a weak Mohr-Coulomb cone (uniaxial strength about 400 Pa).
+fn fracturing_layer() -> (World<Forcing>, FractureRule) {
+    let (mut state, model, forcing, periodicity) = sheared_layer(3).into_parts();
+    state.dt_s *= 0.5;
+    let world = World::resume(state, model, forcing, periodicity).unwrap();
+    let rule = FractureRule {
+        criterion: FractureCriterion::MohrCoulomb(MohrCoulomb {
+            q: 5.2,
+            sigma_c_pa: 2500.0,
+            sigma_11_pa: -337.5,
+        }),
+        check_every_steps: 50,
+        min_floe_area_m2: 0.3 * S * S,
+        split: SplitRule {
+            pieces: 2,
+            min_piece_area_m2: 0.15 * S * S,
+            attempts: 10,
+        },
+        strength_thickness: StrengthThickness::Pack,
+        seed: 3,
+    };
+    (world, rule)
+}
+
+/// The fracturing layer's states every `EVERY` steps and its fracture
+/// events, on one process.
+fn fracturing_single() -> (Vec<String>, Vec<FractureEvent>) {
+    let (mut w, rule) = fracturing_layer();
+    let domain = NX as f64 * S * NY as f64 * S;
+    let (mut states, mut events) = (vec![bits(w.state())], Vec::new());
+    while w.steps() < STEPS {
+        w.step();
+        events.extend(w.fracture(&rule, domain).unwrap());
+        if w.steps().is_multiple_of(EVERY) {
+            states.push(bits(w.state()));
+        }
+    }
+    (states, events)
+}
+
+/// [`fracturing_single`] on `processes` processes (ThreadComm).
+fn fracturing_parallel(processes: usize) -> (Vec<String>, Vec<FractureEvent>) {
+    let never = AtomicBool::new(false);
+    let results = ThreadComm::run(processes, |comm| {
+        let (w, rule) = fracturing_layer();
+        let domain = NX as f64 * S * NY as f64 * S;
+        let (state, model, forcing, periodicity) = w.into_parts();
+        let settings = Settings {
+            skin_fraction: 0.1,
+            rebalance_threshold: 0.2,
+        };
+        let mut d =
+            DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
+                .unwrap();
+        let (mut states, mut events) = (Vec::new(), Vec::new());
+        if let Some(s) = d.gather_whole().unwrap() {
+            states.push(bits(&s));
+        }
+        while d.steps() < STEPS {
+            assert_eq!(d.step(&never), Default::default());
+            events.extend(d.fracture(&rule, domain).unwrap());
+            if d.steps().is_multiple_of(EVERY) {
+                if let Some(s) = d.gather_whole().unwrap() {
+                    states.push(bits(&s));
+                }
+            }
+        }
+        (states, events)
+    });
+    let events = results[0].1.clone();
+    for (_, theirs) in &results {
+        assert_eq!(theirs, &events, "every process returns every event");
+    }
+    results.into_iter().next().unwrap()
+}
+
+#[test]
+fn fracture_over_one_to_four_processes_is_bitwise_as_one() {
+    let (states, events) = fracturing_single();
+    let splits = events.iter().filter(|e| !e.piece_ids.is_empty()).count();
+    assert!(splits >= 3, "floes broke ({splits})");
+    for processes in [1, 2, 3, 4] {
+        let (p_states, p_events) = fracturing_parallel(processes);
+        assert_eq!(p_events, events, "{processes} processes: the events");
+        assert_eq!(p_states.len(), states.len());
+        for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {
+            assert!(
+                a == b,
+                "{processes} processes: the state at step {} differs",
+                k as u64 * EVERY
+            );
+        }
     }
 }

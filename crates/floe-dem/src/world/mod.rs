@@ -88,7 +88,7 @@ mod tests;
 
 pub use crate::pipeline::integrator::{stable_time_step, STABILITY_SAFETY};
 pub use edits::DetachedFloe;
-pub use fracture::FractureEvent;
+pub use fracture::{FractureEvent, PackSums, PlannedSplit};
 pub use ghosts::Kinematics;
 
 /// The simulation state and what steps it.

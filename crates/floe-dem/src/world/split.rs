@@ -62,42 +62,9 @@ impl<F: ExternalForces> World<F> {
         {
             return refuse("the pieces need new ids, distinct and unused".into());
         }
-        let shapes = pieces
-            .iter()
-            .enumerate()
-            .map(|(k, p)| FloeShape::from_world(k, p))
-            .collect::<Result<Vec<_>, _>>()?;
-        let total_area: f64 = shapes.iter().map(|(s, _)| s.area_m2).sum();
-        let mut floes: Vec<Floe> = shapes
-            .iter()
-            .zip(piece_ids)
-            .map(|((shape, c), &pid)| {
-                let mass = parent.mass_kg * (shape.area_m2 / total_area);
-                Floe {
-                    id: pid,
-                    position: self.periodicity.wrap(parent.position + *c),
-                    angle: 0.0,
-                    velocity: parent.velocity + perp(*c) * parent.angular_velocity,
-                    angular_velocity: parent.angular_velocity,
-                    thickness_m: parent.thickness_m,
-                    mass_kg: mass,
-                    inertia_kg_m2: mass / shape.area_m2 * shape.polar_moment_m4,
-                    area_m2: shape.area_m2,
-                    radius_m: shape.radius_m,
-                    r3_moment_m5: crate::geometry::polygon_r3_moment(&shape.vertices),
-                    motion: Motion::Free,
-                    vertices: shape.vertices.clone(),
-                }
-            })
-            .collect();
-        for f in &floes {
-            let limit = self.stable_step_of(f);
-            if self.state.dt_s > limit {
-                return refuse(format!(
-                    "a piece of {:.4e} m^2 needs a time step of at most {limit:.4e} s, not {:.4e} s",
-                    f.area_m2, self.state.dt_s
-                ));
-            }
+        let (shapes, mut floes) = piece_floes(&parent, pieces, piece_ids, self.periodicity)?;
+        if let Some(why) = self.unstable_piece(&floes) {
+            return refuse(why);
         }
         let detached = self.remove_floe(id)?;
         // Each contact to the piece that holds its point.
@@ -207,4 +174,73 @@ fn rekey(
         (record.normal, record.point, record.image_offset) = (-normal, point - offset, -offset);
         ([other, piece.id], record)
     }
+}
+
+impl<F: ExternalForces> World<F> {
+    /// Why splitting floe `id` into `pieces` would be refused for the time
+    /// step, if it would.
+    pub(super) fn too_small_for_the_step(&self, id: u64, pieces: &[Vec<Vec2>]) -> Option<String> {
+        let h = self.state.floes.handle_of(id)?;
+        let parent = self.state.floes.get(h);
+        let ids: Vec<u64> = (0..pieces.len() as u64).collect();
+        match piece_floes(&parent, pieces, &ids, self.periodicity) {
+            Ok((_, floes)) => self.unstable_piece(&floes),
+            Err(e) => Some(e.to_string()),
+        }
+    }
+
+    /// Why one of `floes` needs a shorter time step than the world's.
+    fn unstable_piece(&self, floes: &[Floe]) -> Option<String> {
+        floes.iter().find_map(|f| {
+            let limit = self.stable_step_of(f);
+            (self.state.dt_s > limit).then(|| {
+                format!(
+                    "a piece of {:.4e} m^2 needs a time step of at most {limit:.4e} s, not {:.4e} s",
+                    f.area_m2, self.state.dt_s
+                )
+            })
+        })
+    }
+}
+
+/// A piece's shape and its centroid about the parent's.
+type PlacedShape = (FloeShape, Vec2);
+
+/// The pieces' shapes (with their centroids about the parent's) and
+/// floes: the parent's thickness and rigid motion, masses by area.
+fn piece_floes(
+    parent: &Floe,
+    pieces: &[Vec<Vec2>],
+    piece_ids: &[u64],
+    periodicity: crate::periodicity::Periodicity,
+) -> Result<(Vec<PlacedShape>, Vec<Floe>), DemError> {
+    let shapes = pieces
+        .iter()
+        .enumerate()
+        .map(|(k, p)| FloeShape::from_world(k, p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let total_area: f64 = shapes.iter().map(|(s, _)| s.area_m2).sum();
+    let floes: Vec<Floe> = shapes
+        .iter()
+        .zip(piece_ids)
+        .map(|((shape, c), &pid)| {
+            let mass = parent.mass_kg * (shape.area_m2 / total_area);
+            Floe {
+                id: pid,
+                position: periodicity.wrap(parent.position + *c),
+                angle: 0.0,
+                velocity: parent.velocity + perp(*c) * parent.angular_velocity,
+                angular_velocity: parent.angular_velocity,
+                thickness_m: parent.thickness_m,
+                mass_kg: mass,
+                inertia_kg_m2: mass / shape.area_m2 * shape.polar_moment_m4,
+                area_m2: shape.area_m2,
+                radius_m: shape.radius_m,
+                r3_moment_m5: crate::geometry::polygon_r3_moment(&shape.vertices),
+                motion: Motion::Free,
+                vertices: shape.vertices.clone(),
+            }
+        })
+        .collect();
+    Ok((shapes, floes))
 }

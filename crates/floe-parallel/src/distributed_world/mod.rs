@@ -42,6 +42,7 @@ use crate::error::ParallelError;
 use crate::reach::{box_distance, images, Outline, OutlineGrid};
 use crate::wire::{decode, encode, put_f64s, take_f64s, Migrant, Packet};
 
+mod fracture;
 mod gather;
 mod halo;
 mod migration;
