@@ -27,6 +27,9 @@ const LONG: &str = include_str!("../data/run_long.toml");
 /// Walls that close far faster than contacts can push back.
 const BLOW_UP: &str = include_str!("../data/run_blow_up.toml");
 
+/// The small channel, its floes breaking against the bottom wall.
+const FRACTURE: &str = include_str!("../data/run_fracture.toml");
+
 /// Free floes whose x moved by more than half the 6 km period between the
 /// first and the last snapshot: they crossed the periodic seam.
 fn free_floes_across_the_seam(file: &Path) -> usize {
@@ -84,6 +87,35 @@ fn one_to_four_processes_write_the_single_process_run_file_bitwise() {
             Path::new(&case.path(&name)),
         );
     }
+}
+
+#[test]
+fn floes_break_on_two_and_three_processes_as_on_one_and_resume_across_counts() {
+    let case = Case::new(FRACTURE);
+    case.run_ok("alone.h5", &["--threads", "1"]);
+    let broke = RunFile::open(Path::new(&case.path("alone.h5")))
+        .unwrap()
+        .fractures()
+        .unwrap()
+        .len();
+    assert!(broke > 30, "floes broke ({broke})");
+    for np in [2, 3] {
+        let name = format!("np{np}.h5");
+        let out = case.run_with(Launch::Mpi(np), &name, &["--threads", "1"]);
+        assert_eq!(code(&out), 0, "-np {np}: {}", text(&out.stderr));
+        assert_same_run(
+            Path::new(&case.path("alone.h5")),
+            Path::new(&case.path(&name)),
+        );
+    }
+    let out = case.run_with(Launch::Mpi(2), "parts.h5", &["--max-steps", "1371"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume_with(Launch::Mpi(3), "parts.h5", &[]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("alone.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
 }
 
 #[test]

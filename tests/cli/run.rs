@@ -26,6 +26,9 @@ const LONG: &str = include_str!("../data/run_long.toml");
 /// Walls that close far faster than contacts can push back.
 const BLOW_UP: &str = include_str!("../data/run_blow_up.toml");
 
+/// The small channel, its floes breaking against the bottom wall.
+const FRACTURE: &str = include_str!("../data/run_fracture.toml");
+
 fn floe() -> Command {
     Launch::Alone.command()
 }
@@ -175,6 +178,68 @@ fn a_run_with_floe_stress_writes_it_with_every_snapshot_and_resumes_bitwise() {
     plain.run_ok("plain.h5", &["--max-steps", "20"]);
     let plain = RunFile::open(Path::new(&plain.path("plain.h5"))).unwrap();
     assert!(!plain.has_floe_stress() && plain.floe_stress(0).unwrap().is_none());
+}
+
+#[test]
+fn floes_break_keeping_their_mass_and_a_paused_run_resumes_bitwise() {
+    let case = Case::new(FRACTURE);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    // 1371 steps: between fracture checks, snapshots and checkpoints.
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "1371"]);
+    let out = case.resume("parts.h5", &["--threads", "2"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+    let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
+    let n = f.snapshot_count().unwrap();
+    let counts: Vec<usize> = (0..n).map(|k| f.floes_at(k).unwrap().len()).collect();
+    assert!(counts.windows(2).all(|w| w[0] <= w[1]), "{counts:?}");
+    assert!(counts[n - 1] > counts[0] + 30, "floes broke: {counts:?}");
+    // Free ice mass and area are kept through every split.
+    let free = |k: usize| {
+        let s = f.floes_at(k).unwrap();
+        let sum = |v: &[f64]| {
+            (0..s.len())
+                .filter(|&i| !s.prescribed[i])
+                .map(|i| v[i])
+                .sum::<f64>()
+        };
+        [sum(&s.mass_kg), sum(&s.area_m2)]
+    };
+    let (start, end) = (free(0), free(n - 1));
+    for (a, b) in start.iter().zip(end) {
+        assert!((b - a).abs() < 1e-12 * a, "{start:?} then {end:?}");
+    }
+    // The log names each split: the parent leaves, its pieces arrive.
+    let log = f.fractures().unwrap();
+    assert!(log.iter().filter(|e| !e.piece_ids.is_empty()).count() + counts[0] > counts[n - 1] / 3);
+    let last = f.floes_at(n - 1).unwrap();
+    for e in log.iter().filter(|e| !e.piece_ids.is_empty()) {
+        assert!(!last.id.contains(&e.parent_id), "{} broke", e.parent_id);
+        assert!(
+            e.principal_pa.1 < -100.0,
+            "broken in compression: {:?}",
+            e.principal_pa
+        );
+    }
+    let info = Launch::Alone
+        .command()
+        .args(["info", &case.path("whole.h5")])
+        .output()
+        .unwrap();
+    assert!(
+        text(&info.stdout).contains("floes broke"),
+        "{}",
+        text(&info.stdout)
+    );
+    let out = Launch::Alone
+        .command()
+        .args(["render", &case.path("whole.h5"), "-o", &case.path("frames")])
+        .output()
+        .unwrap();
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
 }
 
 #[test]

@@ -165,6 +165,18 @@ pub fn assert_same_run(a: &Path, b: &Path) {
             "tangential force {k}"
         );
     }
+    for k in 0..n {
+        assert_eq!(
+            fa.floes_at(k).unwrap(),
+            fb.floes_at(k).unwrap(),
+            "floes {k}"
+        );
+    }
+    assert_eq!(
+        fa.fractures().unwrap(),
+        fb.fractures().unwrap(),
+        "fracture log"
+    );
     let names = fa.observable_names().unwrap();
     assert_eq!(names, fb.observable_names().unwrap());
     for name in &names {

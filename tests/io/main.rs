@@ -6,4 +6,5 @@ mod errors;
 mod h5py;
 mod kill;
 mod roundtrip;
+mod segments;
 mod support;

@@ -1462,3 +1462,89 @@ fn floe_stress_takes_a_positive_time_scale_and_nothing_else() {
         .unwrap();
     assert!(plain.world.stress_filter().is_none() && plain.world.floe_stress().is_empty());
 }
+
+#[test]
+fn fracture_tables_are_checked_key_by_key() {
+    let with = |table: &str| format!("{BASE}\n[fracture]\n{table}\n");
+    check(
+        &with("check_every_s = 10.0"),
+        "[fracture]",
+        0,
+        "fracture.criterion",
+        &["missing", "mohr_coulomb"],
+    );
+    let t = with("criterion = \"griffith\"");
+    check(
+        &t,
+        "\"griffith\"",
+        0,
+        "fracture.criterion",
+        &["\"mohr_coulomb\" or \"hibler\""],
+    );
+    let t = with("criterion = \"mohr_coulomb\"\np_star_pa_per_m = 1e5");
+    check(
+        &t,
+        "1e5",
+        0,
+        "fracture.p_star_pa_per_m",
+        &["does not apply to criterion \"mohr_coulomb\""],
+    );
+    let t = with("criterion = \"hibler\"\nq = 3.0");
+    check(
+        &t,
+        "q = 3.0",
+        4,
+        "fracture.q",
+        &["does not apply to criterion \"hibler\""],
+    );
+    let t = with("criterion = \"mohr_coulomb\"\nq = 0.5");
+    check(&t, "q = 0.5", 4, "fracture.q", &["> 1"]);
+    let t = with("criterion = \"mohr_coulomb\"\nsigma_11_pa = -1e6");
+    check(&t, "-1e6", 0, "fracture.sigma_11_pa", &["outside the cone"]);
+    let t = with("criterion = \"hibler\"\nc = -1.0");
+    check(&t, "c = -1.0", 4, "fracture.c", &[">= 0"]);
+    let t = with("criterion = \"hibler\"\nstrength_thickness = \"mean\"");
+    check(
+        &t,
+        "\"mean\"",
+        0,
+        "fracture.strength_thickness",
+        &["\"own\"", "\"pack\""],
+    );
+    let t = with("criterion = \"hibler\"\ncheck_every_s = 0.0");
+    check(
+        &t,
+        "check_every_s = 0.0",
+        16,
+        "fracture.check_every_s",
+        &["> 0"],
+    );
+    let t = with("criterion = \"hibler\"\npieces = 1");
+    check(&t, "pieces = 1", 9, "fracture.pieces", &["from 2 to 16"]);
+    let t = with("criterion = \"hibler\"\nmin_floe_area_m2 = -5.0");
+    check(&t, "-5.0", 0, "fracture.min_floe_area_m2", &[">= 0"]);
+    let t = with("criterion = \"hibler\"\nnpieces = 3");
+    check(&t, "npieces", 0, "npieces", &["unknown field"]);
+    // A good table: floe stress on, the rule in whole steps, the seed.
+    let s = Scenario::from_text(
+        &with("criterion = \"hibler\"\ncheck_every_s = 30.0"),
+        Path::new("ok.toml"),
+    )
+    .unwrap();
+    let setup = s.build().unwrap();
+    assert!(setup.world.stress_filter().is_some());
+    let f = setup.world.fracturing().expect("fracture on");
+    assert_eq!(f.rule.check_every_steps, (30.0 / setup.dt_s).round() as u64);
+    assert_eq!(f.rule.split.pieces, 3);
+    assert_eq!(f.rule.min_floe_area_m2, 1e6);
+    assert!((f.rule.split.min_piece_area_m2 - 1e6 / 6.0).abs() < 1e-6);
+    assert_eq!(f.domain_area_m2, 4000.0 * 4000.0);
+    assert!(
+        setup
+            .report
+            .iter()
+            .any(|l| l.starts_with("fracture: Hibler's ellipse")),
+        "{:?}",
+        setup.report
+    );
+}

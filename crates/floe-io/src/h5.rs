@@ -175,6 +175,11 @@ pub(crate) fn write_array<T: H5Type>(loc: &Location, name: &str, values: &[T]) -
         .write_raw(values)
 }
 
+/// Reads a scalar attribute.
+pub(crate) fn read_scalar<T: H5Type>(loc: &Location, name: &str) -> hdf5::Result<T> {
+    loc.attr(name)?.read_scalar::<T>()
+}
+
 /// Reads a scalar string attribute.
 pub(crate) fn read_str(loc: &Location, name: &str) -> hdf5::Result<String> {
     Ok(loc

@@ -10,8 +10,23 @@ pub const CREATOR: &str = "floe";
 
 /// H5MD metadata group.
 pub const H5MD: &str = "h5md";
-/// The floes' particle group.
+/// The floes' particle group (the first segment of a run whose floes
+/// change).
 pub const FLOES: &str = "particles/floes";
+/// Attribute of a later segment: the snapshot (over the whole file) of
+/// its first row.
+pub const FIRST_SNAPSHOT: &str = "first_snapshot";
+
+/// The particle group of segment `k`: [`FLOES`] for the first, then
+/// `particles/floes_1`, `particles/floes_2`, ...: a run whose floe set
+/// changes (fracture) starts a segment at each change.
+pub fn floe_segment(k: usize) -> String {
+    if k == 0 {
+        FLOES.to_string()
+    } else {
+        format!("{FLOES}_{k}")
+    }
+}
 /// The simulation box, inside [`FLOES`].
 pub const BOX: &str = "particles/floes/box";
 /// Inside [`FLOES`]: uint8 per floe, 1 for land pieces (optional: files
@@ -30,6 +45,8 @@ pub const FLOE_ELEMENTS: [(&str, &str, usize); 4] = [
 pub const FLOE_STRESS: (&str, &str, usize) = ("stress", "Pa", 3);
 /// Attribute of [`FLOE_STRESS`]'s `value`: the order of its components.
 pub const STRESS_COMPONENTS: &str = "xx xy yy";
+/// The fracture event log (runs whose floes broke).
+pub const FRACTURE: &str = "fracture";
 /// Contact lists, one per snapshot.
 pub const CONTACTS: &str = "contacts";
 /// Assembly-wide time series.

@@ -14,7 +14,10 @@
 
 mod appendable;
 pub mod checkpoint;
+mod element;
 pub mod error;
+mod floe_group;
+pub mod fracture_log;
 mod h5;
 mod headroom;
 pub mod layout;

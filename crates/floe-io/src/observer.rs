@@ -6,7 +6,7 @@ use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
 use floe_dem::run::RunObserver;
 use floe_dem::state::WorldState;
-use floe_dem::world::World;
+use floe_dem::world::{FractureEvent, World};
 
 use crate::error::IoError;
 use crate::writer::RunWriter;
@@ -24,5 +24,9 @@ impl<F: ExternalForces> RunObserver<F> for RunWriter {
 
     fn checkpoint(&mut self, state: &WorldState, law_state_slots: usize) -> Result<(), IoError> {
         self.write_checkpoint(state, law_state_slots)
+    }
+
+    fn fractures(&mut self, events: &[FractureEvent]) -> Result<(), IoError> {
+        self.write_fractures(events)
     }
 }

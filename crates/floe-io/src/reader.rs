@@ -144,6 +144,14 @@ fn rows(ds: &Dataset) -> usize {
 }
 
 impl RunFile {
+    /// A reader of `file`, already open (the writer's, on resume).
+    pub(crate) fn of_open(path: &Path, file: hdf5::File) -> Self {
+        Self {
+            path: path.to_path_buf(),
+            file,
+        }
+    }
+
     /// Opens the run file at `path` read-only, after checking that it is a
     /// floe run file.
     pub fn open(path: &Path) -> Result<Self, IoError> {
@@ -276,9 +284,72 @@ impl RunFile {
         .at(&self.path, || "reading /parameters status".into())
     }
 
-    /// The floes' fixed properties.
+    /// The fixed properties of the floes the run began with (those of
+    /// every snapshot unless floes broke: then [`RunFile::floes_at`]).
     pub fn static_floes(&self) -> Result<StaticFloes, IoError> {
-        let p = |name: &str| format!("{}/{name}", layout::FLOES);
+        self.segment_floes(0)
+    }
+
+    /// The fixed properties of the floes of snapshot `k`, in the order of
+    /// its arrays (a run whose floes break writes a segment per floe set,
+    /// docs/output.md).
+    pub fn floes_at(&self, k: usize) -> Result<StaticFloes, IoError> {
+        let (segment, _) = self.locate(k)?;
+        self.segment_floes(segment)
+    }
+
+    /// The floe groups (segments) of the file: each one's index, first
+    /// snapshot and complete snapshots.
+    fn segments(&self) -> Result<Vec<(usize, usize, usize)>, IoError> {
+        let mut out = Vec::new();
+        loop {
+            let index = out.len();
+            let name = layout::floe_segment(index);
+            if !self.file.link_exists(&name) {
+                return Ok(out);
+            }
+            let first = if index == 0 {
+                0
+            } else {
+                (|| -> hdf5::Result<u64> {
+                    let g = self.file.group(&name)?;
+                    h5::read_scalar(&g, layout::FIRST_SNAPSHOT)
+                })()
+                .at(&self.path, || {
+                    format!("reading /{name} {}", layout::FIRST_SNAPSHOT)
+                })? as usize
+            };
+            let mut rows = usize::MAX;
+            let stress = self
+                .file
+                .link_exists(&format!("{name}/{}", layout::FLOE_STRESS.0))
+                .then_some(layout::FLOE_STRESS);
+            for (element, _, _) in layout::FLOE_ELEMENTS.into_iter().chain(stress) {
+                for part in ["step", "time", "value"] {
+                    rows = rows.min(self::rows(&self.ds(&format!("{name}/{element}/{part}"))?));
+                }
+            }
+            out.push((index, first, rows));
+        }
+    }
+
+    /// The segment holding snapshot `k` and the snapshot's row in it.
+    fn locate(&self, k: usize) -> Result<(usize, usize), IoError> {
+        self.check_snapshot(k)?;
+        let segments = self.segments()?;
+        let (index, first, _) = segments
+            .iter()
+            .rev()
+            .find(|&&(_, first, _)| first <= k)
+            .copied()
+            .unwrap_or((0, 0, 0));
+        Ok((index, k - first))
+    }
+
+    /// Segment `index`'s floes' fixed properties.
+    fn segment_floes(&self, index: usize) -> Result<StaticFloes, IoError> {
+        let group = layout::floe_segment(index);
+        let p = |name: &str| format!("{group}/{name}");
         let id: Vec<u64> = self.read_all(&p("id"))?;
         let n = id.len();
         let vertex_offsets: Vec<u32> = self.read_all(&p("vertex_offsets"))?;
@@ -324,10 +395,7 @@ impl RunFile {
         if !consistent {
             return Err(invalid(
                 &self.path,
-                format!(
-                    "the floe arrays under /{} do not agree in length",
-                    layout::FLOES
-                ),
+                format!("the floe arrays under /{group} do not agree in length"),
             ));
         }
         Ok(floes)
@@ -335,13 +403,12 @@ impl RunFile {
 
     /// Complete snapshots in the file.
     pub fn snapshot_count(&self) -> Result<usize, IoError> {
-        let mut n = usize::MAX;
-        let stress = self.has_floe_stress().then_some(layout::FLOE_STRESS);
-        for (name, _, _) in layout::FLOE_ELEMENTS.into_iter().chain(stress) {
-            for part in ["step", "time", "value"] {
-                n = n.min(rows(&self.ds(&format!("{}/{name}/{part}", layout::FLOES))?));
-            }
-        }
+        // Segments are written one after the other: the last one's rows
+        // follow all the others'.
+        let mut n = self
+            .segments()?
+            .last()
+            .map_or(0, |&(_, first, rows)| first + rows);
         for part in ["start", "count", "step", "time"] {
             n = n.min(rows(&self.ds(&format!("{}/{part}", layout::CONTACTS))?));
         }
@@ -352,7 +419,17 @@ impl RunFile {
     /// with `[[output.window]]` writes them unevenly spaced).
     pub fn snapshot_times(&self) -> Result<Vec<f64>, IoError> {
         let n = self.snapshot_count()?;
-        self.read_range(&format!("{}/position/time", layout::FLOES), 0..n)
+        let mut times = Vec::with_capacity(n);
+        for (index, first, _) in self.segments()? {
+            if first >= n {
+                break;
+            }
+            let name = format!("{}/position/time", layout::floe_segment(index));
+            let end = rows(&self.ds(&name)?).min(n - first);
+            times.truncate(first);
+            times.extend(self.read_range::<f64>(&name, 0..end)?);
+        }
+        Ok(times)
     }
 
     fn check_snapshot(&self, k: usize) -> Result<(), IoError> {
@@ -368,13 +445,14 @@ impl RunFile {
 
     /// Snapshot `k` (0 is the first).
     pub fn snapshot(&self, k: usize) -> Result<Snapshot, IoError> {
-        self.check_snapshot(k)?;
-        let el = |name: &str, part: &str| format!("{}/{name}/{part}", layout::FLOES);
-        let value = |name: &str| self.read_range::<f64>(&el(name, "value"), k..k + 1);
-        let step: i64 = self.read_one(&el("position", "step"), k)?;
+        let (segment, row) = self.locate(k)?;
+        let group = layout::floe_segment(segment);
+        let el = |name: &str, part: &str| format!("{group}/{name}/{part}");
+        let value = |name: &str| self.read_range::<f64>(&el(name, "value"), row..row + 1);
+        let step: i64 = self.read_one(&el("position", "step"), row)?;
         Ok(Snapshot {
             step: step as u64,
-            time_s: self.read_one(&el("position", "time"), k)?,
+            time_s: self.read_one(&el("position", "time"), row)?,
             position: pairs(&value("position")?),
             velocity: pairs(&value("velocity")?),
             angle: value("angle")?,
@@ -390,18 +468,29 @@ impl RunFile {
     }
 
     /// Each floe's time-averaged stress at snapshot `k` (`[xx, xy, yy]`,
-    /// Pa, tension positive), in the file's floe order; `None` if the run
-    /// did not compute floe stress.
+    /// Pa, tension positive), in the snapshot's floe order; `None` if the
+    /// run did not compute floe stress.
     pub fn floe_stress(&self, k: usize) -> Result<Option<Vec<[f64; 3]>>, IoError> {
-        if !self.has_floe_stress() {
+        let (segment, row) = self.locate(k)?;
+        let name = format!(
+            "{}/{}/value",
+            layout::floe_segment(segment),
+            layout::FLOE_STRESS.0
+        );
+        if !self.file.link_exists(&name) {
             return Ok(None);
         }
-        self.check_snapshot(k)?;
-        let name = format!("{}/{}/value", layout::FLOES, layout::FLOE_STRESS.0);
-        let flat = self.read_range::<f64>(&name, k..k + 1)?;
+        let flat = self.read_range::<f64>(&name, row..row + 1)?;
         Ok(Some(
             flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
         ))
+    }
+
+    /// The fracture event log: every floe a criterion broke, in order
+    /// (empty for a run without fracture).
+    pub fn fractures(&self) -> Result<Vec<floe_dem::world::FractureEvent>, IoError> {
+        crate::fracture_log::read(&self.file)
+            .at(&self.path, || format!("reading /{}", layout::FRACTURE))
     }
 
     /// The contacts of snapshot `k`.

@@ -8,73 +8,21 @@ use floe_dem::floes::Floes;
 use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
 use floe_dem::state::WorldState;
-use floe_dem::world::World;
+use floe_dem::world::{FractureEvent, World};
 use floe_friction::FrictionLaw;
 use hdf5::Group;
 
 use crate::appendable::{Appendable, Storage};
 use crate::checkpoint::{self, fnv1a64, OutputCounts};
+use crate::element::Element;
 use crate::error::{invalid, Context, IoError};
+use crate::floe_group::FloeGroup;
+use crate::fracture_log::FractureLog;
 use crate::h5;
 use crate::headroom::Headroom;
 use crate::layout;
-use crate::metadata::{CheckpointInfo, InputRecord, OutputOptions, RunMetadata};
-use crate::reader;
-
-/// A time-dependent H5MD element: `step`, `time` and `value` grown together.
-pub(crate) struct Element {
-    pub step: Appendable,
-    pub time: Appendable,
-    pub value: Appendable,
-}
-
-impl Element {
-    fn create(
-        parent: &Group,
-        name: &str,
-        unit: &str,
-        inner: &[usize],
-        value_storage: &Storage,
-    ) -> hdf5::Result<Self> {
-        let g = parent.create_group(name)?;
-        let series = Storage::plain(layout::SERIES_CHUNK, &[]);
-        let step = Appendable::create::<i64>(&g, "step", &[], &series, None)?;
-        let time = Appendable::create::<f64>(&g, "time", &[], &series, None)?;
-        h5::write_str(time.dataset(), "unit", "s")?;
-        let value = Appendable::create::<f64>(&g, "value", inner, value_storage, None)?;
-        h5::write_str(value.dataset(), "unit", unit)?;
-        Ok(Self { step, time, value })
-    }
-
-    fn open(parent: &Group, name: &str) -> hdf5::Result<Self> {
-        let g = parent.group(name)?;
-        Ok(Self {
-            step: Appendable::open(&g, "step")?,
-            time: Appendable::open(&g, "time")?,
-            value: Appendable::open(&g, "value")?,
-        })
-    }
-
-    fn append(&mut self, step: u64, time_s: f64, value: &[f64]) -> hdf5::Result<()> {
-        self.step.append(&[step as i64])?;
-        self.time.append(&[time_s])?;
-        self.value.append(value)
-    }
-
-    fn truncate(&mut self, rows: usize) -> hdf5::Result<()> {
-        self.step.truncate(rows)?;
-        self.time.truncate(rows)?;
-        self.value.truncate(rows)
-    }
-
-    /// Complete samples (all three datasets written).
-    fn rows(&self) -> usize {
-        self.step
-            .rows()
-            .min(self.time.rows())
-            .min(self.value.rows())
-    }
-}
+use crate::metadata::{CheckpointInfo, DomainBox, InputRecord, OutputOptions, RunMetadata};
+use crate::reader::{self, RunFile};
 
 /// The contact datasets.
 struct ContactTables {
@@ -111,10 +59,16 @@ impl ContactTables {
 pub struct RunWriter {
     path: PathBuf,
     file: hdf5::File,
-    /// Ids of the floes the file holds, in its row order.
-    ids: Vec<u64>,
-    /// In [`layout::FLOE_ELEMENTS`] order.
-    elements: Vec<Element>,
+    /// The floe group being written: the last segment.
+    segment: FloeGroup,
+    /// The domain, for the box of a new segment.
+    domain: DomainBox,
+    /// Compression and stress, for a new segment.
+    opts: OutputOptions,
+    /// Ids of the land floes, sorted, for a new segment.
+    land_ids: Vec<u64>,
+    /// The fracture event log, from the first event on.
+    fractures: Option<FractureLog>,
     contacts: ContactTables,
     /// In [`layout::observable_samples`] order.
     observables: Vec<(String, Element)>,
@@ -263,82 +217,9 @@ impl RunWriter {
             Ok(())
         })()
         .at(path, at("/parameters"))?;
-        // /particles/floes: box and fixed properties.
-        let particles = (|| -> hdf5::Result<Group> {
-            let g = file.create_group("particles")?.create_group("floes")?;
-            let b = g.create_group("box")?;
-            h5::write_scalar(&b, "dimension", 2i32)?;
-            let boundary = meta
-                .domain
-                .periodic
-                .map(|p| if p { "periodic" } else { "none" });
-            h5::write_strs(&b, "boundary", &boundary)?;
-            for (name, v) in [("edges", meta.domain.size_m), ("origin", meta.domain.min_m)] {
-                let ds = b.new_dataset_builder().with_data(&v[..]).create(name)?;
-                h5::write_str(&ds, "unit", "m")?;
-            }
-            let column = |name: &str, unit: &str, v: &[f64]| -> hdf5::Result<()> {
-                let ds = g.new_dataset_builder().with_data(v).create(name)?;
-                h5::write_str(&ds, "unit", unit)
-            };
-            g.new_dataset_builder()
-                .with_data(&floes.id[..n])
-                .create("id")?;
-            let offsets = &floes.vertex_start[..=n];
-            g.new_dataset_builder()
-                .with_data(offsets)
-                .create("vertex_offsets")?;
-            let nv = offsets[n] as usize;
-            let flat: Vec<f64> = floes.vertices[..nv]
-                .iter()
-                .flat_map(|v| [v.x, v.y])
-                .collect();
-            let vertices = ndarray::ArrayView2::from_shape((nv, 2), &flat)
-                .map_err(|e| hdf5::Error::from(e.to_string()))?;
-            let ds = g
-                .new_dataset_builder()
-                .with_data(vertices)
-                .create("vertices")?;
-            h5::write_str(&ds, "unit", "m")?;
-            column("thickness", "m", &floes.thickness_m[..n])?;
-            column("mass", "kg", &floes.mass_kg[..n])?;
-            column("area", "m2", &floes.area_m2[..n])?;
-            column("inertia", "kg m2", &floes.inertia_kg_m2[..n])?;
-            let prescribed: Vec<u8> = (0..n).map(|i| u8::from(!floes.is_free(i))).collect();
-            g.new_dataset_builder()
-                .with_data(&prescribed[..])
-                .create("prescribed")?;
-            Ok(g)
-        })()
-        .at(path, at("/particles/floes"))?;
-        // Snapshot elements: one chunk per snapshot (up to MAX_FLOE_CHUNK
-        // floes), compressed; each chunk is written once.
-        let floe_chunk = n.min(layout::MAX_FLOE_CHUNK);
-        let mut elements = Vec::new();
-        let stress = opts.floe_stress.then_some(layout::FLOE_STRESS);
-        for (name, unit, width) in layout::FLOE_ELEMENTS.into_iter().chain(stress) {
-            let inner: Vec<usize> = if width == 1 { vec![n] } else { vec![n, width] };
-            let chunk_inner: Vec<usize> = if width == 1 {
-                vec![floe_chunk]
-            } else {
-                vec![floe_chunk, width]
-            };
-            let storage = Storage {
-                chunk_rows: 1,
-                chunk_inner,
-                deflate: opts.deflate_level,
-                shuffle: opts.shuffle,
-            };
-            let element = Element::create(&particles, name, unit, &inner, &storage)
-                .and_then(|e| {
-                    if name == layout::FLOE_STRESS.0 {
-                        h5::write_str(e.value.dataset(), "components", layout::STRESS_COMPONENTS)?;
-                    }
-                    Ok(e)
-                })
-                .at(path, at(&format!("/particles/floes/{name}")))?;
-            elements.push(element);
-        }
+        // /particles/floes: box, fixed properties, snapshot elements.
+        let segment = FloeGroup::create(&file, 0, &meta.domain, floes, opts, None)
+            .at(path, at("/particles/floes"))?;
         // Contacts: compressed, each snapshot starts a chunk (padded with
         // fill values) so that each compressed chunk is written once.
         let chunk_rows = n.next_power_of_two().clamp(256, 16_384);
@@ -411,8 +292,11 @@ impl RunWriter {
         Ok(Self {
             path: path.to_path_buf(),
             file,
-            ids: floes.id.clone(),
-            elements,
+            segment,
+            domain: meta.domain,
+            opts: *opts,
+            land_ids: Vec::new(),
+            fractures: None,
             contacts,
             observables,
             next_slot: 0,
@@ -431,10 +315,12 @@ impl RunWriter {
         let mut sorted = land_ids.to_vec();
         sorted.sort_unstable();
         let flags: Vec<u8> = self
+            .segment
             .ids
             .iter()
             .map(|id| u8::from(sorted.binary_search(id).is_ok()))
             .collect();
+        self.land_ids = sorted;
         (|| -> hdf5::Result<()> {
             self.file
                 .group(layout::FLOES)?
@@ -460,15 +346,8 @@ impl RunWriter {
     pub fn write_snapshot<F: ExternalForces>(&mut self, world: &World<F>) -> Result<(), IoError> {
         let f = world.floes();
         let n = f.len();
-        if f.id != self.ids {
-            return Err(invalid(
-                &self.path,
-                format!(
-                    "the world's {n} floes are not the {} the file was created for \
-                     (a run file holds a fixed set of floes)",
-                    self.ids.len()
-                ),
-            ));
+        if f.id != self.segment.ids {
+            self.start_segment(world)?;
         }
         let (step, time) = (world.steps(), world.time_s());
         // Floe arrays, contact rows (88 B, padded to a chunk) and indices.
@@ -482,7 +361,7 @@ impl RunWriter {
             f.angular_velocity[..n].to_vec(),
         ];
         let mut names = layout::FLOE_ELEMENTS.map(|(name, _, _)| name).to_vec();
-        if self.elements.len() > names.len() {
+        if self.segment.has_stress() {
             let stress = world.floe_stress();
             if stress.len() != n {
                 return Err(invalid(
@@ -493,10 +372,13 @@ impl RunWriter {
             values.push(stress.iter().flatten().copied().collect());
             names.push(layout::FLOE_STRESS.0);
         }
-        for (name, (el, v)) in names.iter().zip(self.elements.iter_mut().zip(&values)) {
-            el.append(step, time, v).at(&self.path, || {
-                format!("appending to /particles/floes/{name}")
-            })?;
+        let group = layout::floe_segment(self.segment.index);
+        for (name, (el, v)) in names
+            .iter()
+            .zip(self.segment.elements.iter_mut().zip(&values))
+        {
+            el.append(step, time, v)
+                .at(&self.path, || format!("appending to /{group}/{name}"))?;
         }
         let cs = world.contacts();
         let law = &world.model().law;
@@ -534,6 +416,45 @@ impl RunWriter {
         c.step.append(&[step as i64]).at(&path, what)?;
         c.time.append(&[time]).at(&path, what)?;
         self.flush()
+    }
+
+    /// Appends `events` to the fracture log (made at the first).
+    pub fn write_fractures(&mut self, events: &[FractureEvent]) -> Result<(), IoError> {
+        if events.is_empty() {
+            return Ok(());
+        }
+        self.claim(events.len() as u64 * 64 + (64 << 10))?;
+        let what = || format!("appending to /{}", layout::FRACTURE);
+        if self.fractures.is_none() {
+            self.fractures = Some(FractureLog::open_or_create(&self.file).at(&self.path, what)?);
+        }
+        let log = self.fractures.as_mut().expect("made above");
+        log.append(events).at(&self.path, what)
+    }
+
+    /// Starts the next segment for the world's floes (their set changed:
+    /// fracture), from the next snapshot on.
+    fn start_segment<F: ExternalForces>(&mut self, world: &World<F>) -> Result<(), IoError> {
+        let floes = world.floes();
+        self.claim(floes.len() as u64 * 512 + floes.vertices.len() as u64 * 16)?;
+        let index = self.segment.index + 1;
+        let first = self.segment.first_snapshot + self.segment.rows();
+        let opts = OutputOptions {
+            floe_stress: world.stress_filter().is_some(),
+            ..self.opts
+        };
+        self.segment = FloeGroup::create(
+            &self.file,
+            index,
+            &self.domain,
+            floes,
+            &opts,
+            Some((first, &self.land_ids)),
+        )
+        .at(&self.path, || {
+            format!("writing /{}", layout::floe_segment(index))
+        })?;
+        Ok(())
     }
 
     /// Appends one sample of every observable, at `step` and `o.time_s`.
@@ -591,7 +512,7 @@ impl RunWriter {
     ) -> Result<(), IoError> {
         self.write_pending()?;
         let counts = OutputCounts {
-            snapshots: self.elements[0].rows() as u64,
+            snapshots: (self.segment.first_snapshot + self.segment.rows()) as u64,
             contact_rows: self.contacts.pair.rows() as u64,
             observables: self
                 .observables
@@ -682,32 +603,36 @@ impl RunWriter {
             reason,
         };
         let what = || "opening the datasets to resume".to_string();
-        let particles = file.group(layout::FLOES).at(path, what)?;
-        let ids: Vec<u64> = particles
-            .dataset("id")
-            .and_then(|d| d.read_raw::<u64>())
-            .at(path, what)?;
-        if state.floes.id != ids {
+        // The floe groups (segments); the resumed run writes on the last
+        // that starts before the checkpoint's snapshot count.
+        let mut segments = Vec::new();
+        while let Some(g) = FloeGroup::open(&file, segments.len()).at(path, what)? {
+            segments.push(g);
+        }
+        let snapshots = counts.snapshots as usize;
+        let keep = segments
+            .iter()
+            .rposition(|g| g.first_snapshot < snapshots)
+            .unwrap_or(0);
+        let Some(mut segment) = segments.drain(..).nth(keep) else {
+            return Err(corrupt(format!("the file has no /{}", layout::FLOES)));
+        };
+        // A run without fracture keeps its floes: the checkpoint's are the
+        // file's (with fracture they may be the next segment's).
+        if state.next_floe_id == 0 && state.floes.id != segment.ids {
             return Err(corrupt(format!(
                 "its {} floes are not the file's {}",
                 state.floes.len(),
-                ids.len()
+                segment.ids.len()
             )));
         }
-        let mut elements = Vec::new();
-        for (name, _, _) in layout::FLOE_ELEMENTS {
-            elements.push(Element::open(&particles, name).at(path, what)?);
-        }
-        let (stress, stress_in_file) = (
-            layout::FLOE_STRESS.0,
-            particles.link_exists(layout::FLOE_STRESS.0),
-        );
-        match (state.stress_filter.is_some(), stress_in_file) {
-            (true, true) => elements.push(Element::open(&particles, stress).at(path, what)?),
-            (false, false) => {}
+        let stress = layout::FLOE_STRESS.0;
+        let group = layout::floe_segment(segment.index);
+        match (state.stress_filter.is_some(), segment.has_stress()) {
+            (true, true) | (false, false) => {}
             (on, _) => {
                 return Err(corrupt(format!(
-                    "it {} floe stress but the file {} /particles/floes/{stress}",
+                    "it {} floe stress but the file {} /{group}/{stress}",
                     if on { "holds" } else { "holds no" },
                     if on { "has no" } else { "has" },
                 )))
@@ -752,10 +677,10 @@ impl RunWriter {
                 "it records {want} {what} but the file holds {have}"
             ))
         };
-        for el in &mut elements {
-            if el.rows() < snapshots {
-                return Err(exceeds("snapshots", counts.snapshots, el.rows()));
-            }
+        let local = snapshots - segment.first_snapshot.min(snapshots);
+        if segment.rows() < local {
+            let have = segment.first_snapshot + segment.rows();
+            return Err(exceeds("snapshots", counts.snapshots, have));
         }
         let rows = counts.contact_rows as usize;
         if contacts.per_row().any(|a| a.rows() < rows) {
@@ -784,11 +709,25 @@ impl RunWriter {
             }
             observable_rows.push(want as usize);
         }
+        // What a new segment needs: the domain's box and the land.
+        let reader = RunFile::of_open(path, file.clone());
+        let domain = reader.metadata()?.domain;
+        let first = reader.static_floes()?;
+        let land_ids: Vec<u64> = (0..first.len())
+            .filter(|&i| first.land[i])
+            .map(|i| first.id[i])
+            .collect();
         let mut headroom = Headroom::open(path, file.size())?;
         headroom.claim(path, file.size(), 0)?;
         let what = || "truncating the output to the checkpoint".to_string();
-        for el in &mut elements {
-            el.truncate(snapshots).at(path, what)?;
+        for el in &mut segment.elements {
+            el.truncate(local).at(path, what)?;
+        }
+        // Segments after the checkpoint go: the resumed run makes them again.
+        let mut later = keep + 1;
+        while file.link_exists(&layout::floe_segment(later)) {
+            file.unlink(&layout::floe_segment(later)).at(path, what)?;
+            later += 1;
         }
         for a in contacts.per_row() {
             a.truncate(rows).at(path, what)?;
@@ -799,6 +738,10 @@ impl RunWriter {
         for ((_, el), &want) in observables.iter_mut().zip(&observable_rows) {
             el.truncate(want).at(path, what)?;
         }
+        let mut fractures = FractureLog::open(&file).at(path, what)?;
+        if let Some(log) = fractures.as_mut() {
+            log.truncate_after(state.steps).at(path, what)?;
+        }
         file.flush().at(path, what)?;
         let info = CheckpointInfo {
             step: state.steps,
@@ -808,8 +751,15 @@ impl RunWriter {
             Self {
                 path: path.to_path_buf(),
                 file,
-                ids,
-                elements,
+                segment,
+                domain,
+                opts: OutputOptions {
+                    deflate_level: if contacts.pad { 4 } else { 0 },
+                    shuffle: contacts.pad,
+                    floe_stress: state.stress_filter.is_some(),
+                },
+                land_ids,
+                fractures,
                 contacts,
                 observables,
                 next_slot: 1 - slot,

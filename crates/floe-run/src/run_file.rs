@@ -13,7 +13,7 @@ use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
 use floe_dem::run::{self, format_sim_time, Ending, Progress, RunObserver, Silent, Stepper};
 use floe_dem::state::WorldState;
-use floe_dem::world::World;
+use floe_dem::world::{FractureEvent, World};
 use floe_friction::{FrictionLaw, LawRegistry};
 use floe_io::{DomainBox, InputRecord, IoError, OutputOptions, RunFile, RunMetadata, RunWriter};
 use floe_scenario::Scenario;
@@ -197,6 +197,7 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         let parts = scenario.engine_parts();
         let (mut writer, state) = reopen(args, &scenario, hooks)?;
         let mut world = World::resume(state, parts.model, parts.forcing, parts.periodicity)?;
+        world.set_fracturing(scenario.fracturing(world.dt_s()))?;
         advance(
             &scenario,
             &mut world,
@@ -370,6 +371,13 @@ impl<F: ExternalForces> RunObserver<F> for RootWriter<'_> {
     fn checkpoint(&mut self, state: &WorldState, law_state_slots: usize) -> Result<(), IoError> {
         match &mut self.0 {
             Some(w) => RunObserver::<F>::checkpoint(*w, state, law_state_slots),
+            None => Ok(()),
+        }
+    }
+
+    fn fractures(&mut self, events: &[FractureEvent]) -> Result<(), IoError> {
+        match &mut self.0 {
+            Some(w) => RunObserver::<F>::fractures(*w, events),
             None => Ok(()),
         }
     }

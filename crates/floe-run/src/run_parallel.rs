@@ -122,6 +122,8 @@ fn run_inner<C: Communicator + Sync>(
             comm,
             settings,
         )?;
+        let dt_s = world.local().dt_s();
+        world.set_fracturing(scenario.fracturing(dt_s))?;
         let stats = world.stats();
         hooks.say(&format!(
             "{} processes x {threads} threads; process 0 owns {} floes and holds {} ghosts",

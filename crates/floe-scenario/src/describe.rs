@@ -2,6 +2,7 @@
 
 use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
+use floe_dem::fracture::rule::Fracturing;
 use floe_dem::Vec2;
 
 use crate::law_variants::LAW_NUMBERS;
@@ -55,6 +56,38 @@ pub(crate) fn describe_forcing(fo: &Forcing) -> String {
         } else {
             format!("f = {} /s", sig(f))
         }
+    )
+}
+
+/// The fracture line of the build report.
+pub(crate) fn describe_fracture(f: &Fracturing, dt_s: f64) -> String {
+    use floe_dem::fracture::criteria::FractureCriterion;
+    use floe_dem::fracture::rule::StrengthThickness;
+    let r = &f.rule;
+    let criterion = match r.criterion {
+        FractureCriterion::MohrCoulomb(m) => format!(
+            "Mohr-Coulomb cone (q = {}, sigma_c = {} Pa, sigma_11 = {} Pa)",
+            sig(m.q),
+            sig(m.sigma_c_pa),
+            sig(m.sigma_11_pa)
+        ),
+        FractureCriterion::Hibler(h) => format!(
+            "Hibler's ellipse (p* = {} Pa/m, c = {}, {})",
+            sig(h.p_star_pa_per_m),
+            sig(h.c),
+            match r.strength_thickness {
+                StrengthThickness::Own => "each floe's thickness",
+                StrengthThickness::Pack => "the pack's mean thickness and concentration",
+            }
+        ),
+    };
+    format!(
+        "fracture: {criterion}, checked every {} steps ({} s); floes of {} m^2 or more break into {} pieces of at least {} m^2",
+        r.check_every_steps,
+        sig(r.check_every_steps as f64 * dt_s),
+        sig(r.min_floe_area_m2),
+        r.split.pieces,
+        sig(r.split.min_piece_area_m2)
     )
 }
 

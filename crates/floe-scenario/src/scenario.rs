@@ -6,6 +6,8 @@ use std::path::Path;
 
 use floe_dem::contact_model::ContactModel;
 use floe_dem::forcing::Forcing;
+use floe_dem::fracture::rule::{FractureRule, Fracturing};
+use floe_dem::fracture::split::SplitRule;
 use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::MotionSchedule;
 use floe_dem::periodicity::Periodicity;
@@ -17,7 +19,7 @@ use floe_friction::LawRegistry;
 
 use crate::build;
 use crate::checks;
-use crate::describe::{describe_contact, describe_forcing, describe_thickness};
+use crate::describe::{describe_contact, describe_forcing, describe_fracture, describe_thickness};
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::gridded_inputs::InputFile;
@@ -270,6 +272,12 @@ impl Scenario {
         }
         if let Some(filter) = r.floe_stress {
             world.set_stress_filter(Some(filter));
+        }
+        if let Some(fracturing) = self.fracturing(dt_s) {
+            world.set_fracturing(Some(fracturing))?;
+            report.push(describe_fracture(&fracturing, dt_s));
+        }
+        if let Some(filter) = world.stress_filter() {
             report.push(format!(
                 "  floe stress: each floe's, from its contacts, averaged over {} s",
                 sig(filter.time_scale_s)
@@ -324,6 +332,29 @@ impl Scenario {
             forcing: r.forcing.clone(),
             periodicity: r.domain.periodicity(),
         }
+    }
+
+    /// Fracture as the run applies it at time step `dt_s` (`[fracture]`;
+    /// `None` without): the check interval in whole steps (at least one),
+    /// the scenario's seed, the domain's area.
+    pub fn fracturing(&self, dt_s: f64) -> Option<Fracturing> {
+        let r = &self.resolved;
+        let s = r.fracture?;
+        Some(Fracturing {
+            rule: FractureRule {
+                criterion: s.criterion,
+                check_every_steps: ((s.check_every_s / dt_s).round() as u64).max(1),
+                min_floe_area_m2: s.min_floe_area_m2,
+                split: SplitRule {
+                    pieces: s.pieces,
+                    min_piece_area_m2: s.min_piece_area_m2,
+                    attempts: s.attempts,
+                },
+                strength_thickness: s.strength_thickness,
+                seed: r.seed,
+            },
+            domain_area_m2: r.domain.size_m.x * r.domain.size_m.y,
+        })
     }
 
     /// The time step [`Scenario::build`] chooses, s: the floes are built to

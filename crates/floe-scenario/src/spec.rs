@@ -53,6 +53,26 @@ pub(crate) struct RawScenario {
     pub output: Option<RawOutput>,
     /// `[floe_stress]`: each floe's stress from its contacts, averaged.
     pub floe_stress: Option<Spanned<RawFloeStress>>,
+    /// `[fracture]`: floes that break when their stress leaves a criterion.
+    pub fracture: Option<Spanned<RawFracture>>,
+}
+
+/// `[fracture]`: which keys apply depends on `criterion`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawFracture {
+    pub criterion: Word,
+    pub check_every_s: Num,
+    pub min_floe_area_m2: Num,
+    pub min_piece_area_m2: Num,
+    pub pieces: Count,
+    pub attempts: Count,
+    pub q: Num,
+    pub sigma_c_pa: Num,
+    pub sigma_11_pa: Num,
+    pub p_star_pa_per_m: Num,
+    pub c: Num,
+    pub strength_thickness: Word,
 }
 
 /// `[floe_stress]`

@@ -44,8 +44,6 @@ fn parse_pair(s: &str) -> (f64, f64) {
 
 fn read(path: &std::path::Path, gate: f64, mouth: f64, xr: (f64, f64)) -> Series {
     let run = RunFile::open(path).expect("run file");
-    let statics = run.static_floes().expect("floes");
-    let free: Vec<bool> = statics.prescribed.iter().map(|p| !p).collect();
     let n = run.snapshot_count().expect("snapshots");
     let mouth_area = MOUTH_DEPTH_M * (xr.1 - xr.0);
     let mut s = Series {
@@ -58,6 +56,8 @@ fn read(path: &std::path::Path, gate: f64, mouth: f64, xr: (f64, f64)) -> Series
     };
     for k in 0..n {
         let snap = run.snapshot(k).expect("snapshot");
+        let statics = run.floes_at(k).expect("floes");
+        let free: Vec<bool> = statics.prescribed.iter().map(|p| !p).collect();
         let polys: Vec<Vec<[f64; 2]>> = (0..statics.len())
             .map(|i| snap.world_vertices(&statics, i))
             .collect();

@@ -139,7 +139,6 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
     }
     let run = RunFile::open(&args.run)?;
     let meta = run.metadata()?;
-    let floes = run.static_floes()?;
     let (min, size) = (meta.domain.min_m, meta.domain.size_m);
     let shape = [0, 1].map(|a| (size[a] / args.cell_m).ceil().max(1.0));
     if shape.iter().any(|&n| n > MAX_CELLS_PER_AXIS as f64)
@@ -185,6 +184,7 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
         variable(&mut file, "time")
             .and_then(|mut v| v.put_value(times[k], [record]))
             .map_err(nc)?;
+        let floes = run.floes_at(k)?;
         let fields = snapshot_fields(&run, &floes, &grid, meta.domain.periodic, size, k)?;
         for ((name, ..), mut values) in FIELDS.iter().zip(fields) {
             // Cells without ice (NaN) get the fill value.

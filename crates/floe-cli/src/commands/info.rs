@@ -66,10 +66,18 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
         );
     }
     let walls = floes.prescribed.iter().filter(|&&p| p).count();
+    // Floes that broke: the last snapshot's set differs from the first.
+    let now = match snapshots {
+        0 => None,
+        k => Some(run.floes_at(k - 1)?).filter(|last| last.id != floes.id),
+    };
+    let broke = now.map_or(String::new(), |last| {
+        format!("; {} at the last snapshot (floes broke)", last.len())
+    });
     line(
         "floes",
         format!(
-            "{} ({} free, {walls} prescribed: walls)",
+            "{} ({} free, {walls} prescribed: walls){broke}",
             floes.len(),
             floes.len() - walls
         ),

@@ -70,3 +70,13 @@ impl FractureRule {
         step.is_multiple_of(self.check_every_steps)
     }
 }
+
+/// Fracture as a run applies it after every step: the rule and the area
+/// of the domain (for the pack's concentration).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fracturing {
+    /// When and how floes break.
+    pub rule: FractureRule,
+    /// The domain's area, m^2.
+    pub domain_area_m2: f64,
+}

@@ -11,7 +11,7 @@ use std::sync::atomic::AtomicBool;
 use crate::forcing::ExternalForces;
 use crate::observables::Observables;
 use crate::state::WorldState;
-use crate::world::World;
+use crate::world::{FractureEvent, World};
 
 use floe_friction::FrictionLaw;
 
@@ -32,6 +32,12 @@ pub trait RunObserver<F: ExternalForces> {
     /// friction state has `law_state_slots` slots of law state.
     fn checkpoint(&mut self, state: &WorldState, law_state_slots: usize)
         -> Result<(), Self::Error>;
+    /// Floes that broke after the step just taken (every process calls
+    /// it with the same events; the default records nothing).
+    fn fractures(&mut self, events: &[FractureEvent]) -> Result<(), Self::Error> {
+        let _ = events;
+        Ok(())
+    }
 }
 
 /// How a call to [`drive`] ended.
@@ -144,6 +150,9 @@ pub fn drive<S: Stepper, O: RunObserver<S::Whole>>(
             });
         }
         progress.update(world.steps(), total_steps, world.time_s());
+        if !report.fractures.is_empty() {
+            observer.fractures(&report.fractures)?;
+        }
         if let Some(blow_up) = report.blow_up {
             // The bad state is shown (it is what one needs to see), but the
             // checkpoint is left at the last good state.

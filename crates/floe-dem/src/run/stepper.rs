@@ -5,7 +5,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::forcing::ExternalForces;
-use crate::world::World;
+use crate::world::{FractureEvent, World};
 
 use super::health::{check_health, BlowUp};
 
@@ -18,6 +18,9 @@ pub struct StepReport {
     pub blow_up: Option<BlowUp>,
     /// The interrupt flag was raised (on any process).
     pub interrupted: bool,
+    /// Floes the fracture after the step broke (every process's, by
+    /// parent id; empty without fracture).
+    pub fractures: Vec<FractureEvent>,
 }
 
 /// A simulation the loop can step and write.
@@ -44,11 +47,19 @@ impl<F: ExternalForces> Stepper for World<F> {
 
     fn step(&mut self, interrupt: &AtomicBool) -> StepReport {
         World::step(self);
-        StepReport {
+        let mut report = StepReport {
             forcing_failure: self.forcing_failure().map(ToString::to_string),
             blow_up: check_health(self),
             interrupted: interrupt.load(Ordering::SeqCst),
+            fractures: Vec::new(),
+        };
+        if let (Some(f), None, None) = (self.fracturing(), &report.forcing_failure, &report.blow_up)
+        {
+            report.fractures = self
+                .fracture(&f.rule, f.domain_area_m2)
+                .unwrap_or_else(|e| panic!("fracture after step {}: {e}", self.steps()));
         }
+        report
     }
 
     fn steps(&self) -> u64 {

@@ -1,7 +1,10 @@
-//! The floe life cycle's settings and state on the world: floe stress.
+//! The floe life cycle's settings and state on the world: floe stress,
+//! fracture after every step of a run.
 
 use super::World;
+use crate::error::DemError;
 use crate::forcing::ExternalForces;
+use crate::fracture::rule::Fracturing;
 use crate::pipeline::floe_stress::{self, FloeStress, StressFilter};
 
 impl<F: ExternalForces> World<F> {
@@ -17,6 +20,26 @@ impl<F: ExternalForces> World<F> {
             None => s.floe_stress.clear(),
         }
         s.stress_filter = filter;
+    }
+
+    /// Fracture after every step a run takes (`Stepper::step`; not
+    /// `World::step`, which is the four stages alone): `Some` checks the
+    /// rule (and turns floe stress on with its default average if off),
+    /// `None` stops.
+    pub fn set_fracturing(&mut self, fracturing: Option<Fracturing>) -> Result<(), DemError> {
+        if let Some(f) = &fracturing {
+            f.rule.check()?;
+            if self.state.stress_filter.is_none() {
+                self.set_stress_filter(Some(StressFilter::default()));
+            }
+        }
+        self.fracturing = fracturing;
+        Ok(())
+    }
+
+    /// Fracture after every step, if on.
+    pub fn fracturing(&self) -> Option<Fracturing> {
+        self.fracturing
     }
 
     /// The floe stress's time average, if the world computes it.

@@ -102,6 +102,8 @@ pub struct World<F: ExternalForces> {
     periodicity: Periodicity,
     /// The first failure of the forcing's per-step preparation.
     forcing_failure: Option<ForcingFailure>,
+    /// Fracture after every step (through `Stepper::step`), if on.
+    fracturing: Option<crate::fracture::rule::Fracturing>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -194,6 +196,7 @@ impl<F: ExternalForces> World<F> {
             forcing,
             periodicity,
             forcing_failure: None,
+            fracturing: None,
         })
     }
 

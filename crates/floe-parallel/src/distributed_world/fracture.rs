@@ -12,6 +12,15 @@ use floe_dem::fracture::rule::FractureRule;
 use floe_dem::world::{FractureEvent, PackSums, PlannedSplit};
 
 impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
+    /// Fracture after every step (`try_step`), as
+    /// [`World::set_fracturing`]: `Some` checks the rule and turns floe
+    /// stress on (default average) if off, on every process.
+    pub fn set_fracturing(&mut self, fracturing: Option<Fracturing>) -> Result<(), ParallelError> {
+        self.local_mut().set_fracturing(fracturing)?;
+        self.fracturing = fracturing;
+        Ok(())
+    }
+
     /// [`World::fracture`] over every process: the same pieces, ids and
     /// events as one process would make. Every process returns every
     /// event, in parent id order. Call between steps, on every process.

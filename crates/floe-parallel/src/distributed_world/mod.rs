@@ -26,6 +26,7 @@ use floe_dem::contacts::{BrokenContact, ContactRecord};
 use floe_dem::decomposition::Decomposition;
 use floe_dem::floes::{FloeColumns, Floes, Motion};
 use floe_dem::forcing::{ExternalForces, NoForcing};
+use floe_dem::fracture::rule::Fracturing;
 use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::ScheduledMotion;
 use floe_dem::periodicity::Periodicity;
@@ -266,6 +267,9 @@ pub struct DistributedWorld<F: ExternalForces, C: Communicator> {
     /// changes (shapes, masses) when the world is gathered.
     whole_floes: Option<Floes>,
     stats: DecompositionStats,
+    /// Fracture after every step, if on (kept here: each migration
+    /// rebuilds the local world).
+    fracturing: Option<Fracturing>,
 }
 
 impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
@@ -321,6 +325,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             drivers: plan.drivers,
             whole_floes: None,
             stats: DecompositionStats::default(),
+            fracturing: None,
         };
         let packets = match &whole {
             Some(state) => this.scatter_packets(state),
@@ -434,11 +439,16 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             report.forcing_failure = Some(self.forcing_failure_message()?);
         } else if v[3] > 0.0 {
             report.blow_up = self.blow_up()?;
-        } else if v[0] > 0.5 * self.skin_m {
-            // The skin also covers two steps of the fastest floe, so that
-            // the step after a migration stays inside it.
-            self.skin_m = self.base_skin_m().max(4.0 * v[4]);
-            self.migrate()?;
+        } else {
+            if v[0] > 0.5 * self.skin_m {
+                // The skin also covers two steps of the fastest floe, so that
+                // the step after a migration stays inside it.
+                self.skin_m = self.base_skin_m().max(4.0 * v[4]);
+                self.migrate()?;
+            }
+            if let Some(f) = self.fracturing {
+                report.fractures = self.fracture(&f.rule, f.domain_area_m2)?;
+            }
         }
         Ok(report)
     }

@@ -1,11 +1,43 @@
-//! `[floe_stress]`: the floe life cycle's settings.
+//! `[floe_stress]` and `[fracture]`: the floe life cycle's settings.
 
+use floe_dem::fracture::criteria::{FractureCriterion, HiblerEllipse, MohrCoulomb};
+use floe_dem::fracture::rule::StrengthThickness;
 use floe_dem::pipeline::floe_stress::StressFilter;
 use toml::Spanned;
 
 use crate::error::ScenarioError;
+use crate::resolve::limits::{count, refuse_given, span_of};
 use crate::source_file::SourceFile;
-use crate::spec::RawFloeStress;
+use crate::spec::{RawFloeStress, RawFracture};
+
+/// Smallest floe that breaks unless given, m^2: the anchors' smallest
+/// floe (Subzero.jl `FloeSettings.min_floe_area`).
+pub const DEFAULT_MIN_FLOE_AREA_M2: f64 = 1e6;
+/// Fracture checks unless given, s.
+pub const DEFAULT_CHECK_EVERY_S: f64 = 60.0;
+/// Most pieces a split may make.
+pub const MAX_PIECES: u64 = 16;
+/// Most attempts at a split.
+pub const MAX_ATTEMPTS: u64 = 1000;
+
+/// `[fracture]` checked, in seconds (the time step turns it into a rule).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FractureSettings {
+    /// The criterion.
+    pub criterion: FractureCriterion,
+    /// How often it is checked, s.
+    pub check_every_s: f64,
+    /// Floes smaller than this never break, m^2.
+    pub min_floe_area_m2: f64,
+    /// No piece is smaller, m^2.
+    pub min_piece_area_m2: f64,
+    /// Pieces per split.
+    pub pieces: usize,
+    /// Attempts per split.
+    pub attempts: u32,
+    /// Hibler's thickness and concentration.
+    pub strength_thickness: StrengthThickness,
+}
 
 /// The floe stress's time average, if `[floe_stress]` is given
 /// (`time_scale_s` defaults to the anchors' averaging).
@@ -22,4 +54,147 @@ pub(crate) fn resolve_floe_stress(
         },
         None => StressFilter::default(),
     }))
+}
+
+/// `[fracture]`, if given: each value checked, defaults applied, the
+/// other criterion's keys refused.
+pub(crate) fn resolve_fracture(
+    f: &SourceFile,
+    raw: Option<&Spanned<RawFracture>>,
+) -> Result<Option<FractureSettings>, ScenarioError> {
+    let Some(spanned) = raw else {
+        return Ok(None);
+    };
+    let r = spanned.get_ref();
+    let Some(criterion) = &r.criterion else {
+        return Err(f.error(
+            spanned.span(),
+            "fracture.criterion",
+            "missing: \"mohr_coulomb\" or \"hibler\"",
+        ));
+    };
+    let num = |v: &Option<Spanned<f64>>, key: &str, default: f64| -> Result<f64, ScenarioError> {
+        match v {
+            Some(x) => f.finite(x, &format!("fracture.{key}")),
+            None => Ok(default),
+        }
+    };
+    let given = [
+        (span_of(&r.q), "q"),
+        (span_of(&r.sigma_c_pa), "sigma_c_pa"),
+        (span_of(&r.sigma_11_pa), "sigma_11_pa"),
+        (span_of(&r.p_star_pa_per_m), "p_star_pa_per_m"),
+        (span_of(&r.c), "c"),
+        (span_of(&r.strength_thickness), "strength_thickness"),
+    ];
+    let (criterion, strength_thickness) = match criterion.get_ref().as_str() {
+        "mohr_coulomb" => {
+            refuse_given(
+                f,
+                "fracture",
+                "criterion \"mohr_coulomb\"",
+                &given,
+                &["q", "sigma_c_pa", "sigma_11_pa"],
+            )?;
+            let d = MohrCoulomb::default();
+            let m = MohrCoulomb {
+                q: num(&r.q, "q", d.q)?,
+                sigma_c_pa: num(&r.sigma_c_pa, "sigma_c_pa", d.sigma_c_pa)?,
+                sigma_11_pa: num(&r.sigma_11_pa, "sigma_11_pa", d.sigma_11_pa)?,
+            };
+            m.check().map_err(|why| located(f, spanned, r, why))?;
+            (FractureCriterion::MohrCoulomb(m), StrengthThickness::Own)
+        }
+        "hibler" => {
+            refuse_given(
+                f,
+                "fracture",
+                "criterion \"hibler\"",
+                &given,
+                &["p_star_pa_per_m", "c", "strength_thickness"],
+            )?;
+            let d = HiblerEllipse::default();
+            let h = HiblerEllipse {
+                p_star_pa_per_m: num(&r.p_star_pa_per_m, "p_star_pa_per_m", d.p_star_pa_per_m)?,
+                c: num(&r.c, "c", d.c)?,
+            };
+            h.check().map_err(|why| located(f, spanned, r, why))?;
+            let thickness = match &r.strength_thickness {
+                None => StrengthThickness::Pack,
+                Some(w) => match w.get_ref().as_str() {
+                    "own" => StrengthThickness::Own,
+                    "pack" => StrengthThickness::Pack,
+                    other => {
+                        return Err(f.error(
+                            w.span(),
+                            "fracture.strength_thickness",
+                            format!("\"{other}\": \"own\" (the floe's) or \"pack\" (the pack's mean and concentration)"),
+                        ))
+                    }
+                },
+            };
+            (FractureCriterion::Hibler(h), thickness)
+        }
+        other => {
+            return Err(f.error(
+                criterion.span(),
+                "fracture.criterion",
+                format!("\"{other}\": \"mohr_coulomb\" or \"hibler\""),
+            ))
+        }
+    };
+    let check_every_s = match &r.check_every_s {
+        Some(t) => f.positive(t, "fracture.check_every_s")?,
+        None => DEFAULT_CHECK_EVERY_S,
+    };
+    let min_floe_area_m2 = match &r.min_floe_area_m2 {
+        Some(a) => f.non_negative(a, "fracture.min_floe_area_m2")?,
+        None => DEFAULT_MIN_FLOE_AREA_M2,
+    };
+    let pieces = match &r.pieces {
+        Some(n) => count(f, n, "fracture.pieces", 2, MAX_PIECES)?,
+        None => 3,
+    };
+    let attempts = match &r.attempts {
+        Some(n) => count(f, n, "fracture.attempts", 1, MAX_ATTEMPTS)? as u32,
+        None => 10,
+    };
+    let min_piece_area_m2 = match &r.min_piece_area_m2 {
+        Some(a) => f.non_negative(a, "fracture.min_piece_area_m2")?,
+        None => min_floe_area_m2 / (2 * pieces) as f64,
+    };
+    Ok(Some(FractureSettings {
+        criterion,
+        check_every_s,
+        min_floe_area_m2,
+        min_piece_area_m2,
+        pieces,
+        attempts,
+        strength_thickness,
+    }))
+}
+
+/// A criterion's parameter check `why` (which starts with the parameter's
+/// name), located at that key if given, else at the table.
+fn located(
+    f: &SourceFile,
+    table: &Spanned<RawFracture>,
+    r: &RawFracture,
+    why: String,
+) -> ScenarioError {
+    let keys = [
+        ("sigma_c", "sigma_c_pa", span_of(&r.sigma_c_pa)),
+        ("sigma_11", "sigma_11_pa", span_of(&r.sigma_11_pa)),
+        ("q", "q", span_of(&r.q)),
+        ("p*", "p_star_pa_per_m", span_of(&r.p_star_pa_per_m)),
+        ("c", "c", span_of(&r.c)),
+    ];
+    let found = keys
+        .into_iter()
+        .find(|(name, _, _)| why.starts_with(&format!("{name} ")));
+    match found {
+        Some((_, key, Some(span))) => f.error(span, format!("fracture.{key}"), why),
+        Some((_, key, None)) => f.error(table.span(), format!("fracture.{key}"), why),
+        None => f.error(table.span(), "fracture", why),
+    }
 }

@@ -40,7 +40,8 @@ use domain::resolve_domain;
 use floes::resolve_floes;
 use forcing::resolve_forcing;
 use ice::resolve_ice;
-use life_cycle::resolve_floe_stress;
+use life_cycle::{resolve_floe_stress, resolve_fracture};
+pub use life_cycle::{FractureSettings, DEFAULT_CHECK_EVERY_S, DEFAULT_MIN_FLOE_AREA_M2};
 use limits::count;
 use output::resolve_output;
 use walls::resolve_walls;
@@ -108,6 +109,8 @@ pub(crate) struct Resolved {
     pub(crate) gridded: Vec<crate::gridded_inputs::GriddedOrigin>,
     /// `[floe_stress]`: the floe stress's time average, if computed.
     pub floe_stress: Option<floe_dem::pipeline::floe_stress::StressFilter>,
+    /// `[fracture]`, if floes break.
+    pub fracture: Option<FractureSettings>,
 }
 /// Most time steps a run may take unless raised (`floe run --step-limit`):
 /// about a day at 1e4 steps/s, beyond which a step count is a typo.
@@ -220,6 +223,7 @@ pub(crate) fn resolve(
     }
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
     let floe_stress = resolve_floe_stress(f, raw.floe_stress.as_ref())?;
+    let fracture = resolve_fracture(f, raw.fracture.as_ref())?;
     let GridContext {
         start_time,
         inputs,
@@ -252,6 +256,7 @@ pub(crate) fn resolve(
         inputs,
         gridded: origins,
         floe_stress,
+        fracture,
     })
 }
 

@@ -109,7 +109,6 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
     let (_, sliding) = series(&run, "sliding_fraction")?;
 
     let meta = run.metadata()?;
-    let floes = run.static_floes()?;
     let snapshots = run.snapshot_count()?;
     if snapshots == 0 {
         return Err(Error::Usage(format!(
@@ -132,6 +131,7 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
             .map_err(Error::analysis)?;
         if k >= late_from {
             let snap = run.snapshot(k)?;
+            let floes = run.floes_at(k)?;
             for i in 0..floes.id.len() {
                 if !floes.prescribed[i] {
                     y.push(snap.position[i][1]);

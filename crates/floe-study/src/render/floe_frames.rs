@@ -22,7 +22,6 @@ const SCALE_SAMPLE: usize = 4_000_000;
 pub(crate) struct FloeFrames {
     file: PathBuf,
     colour: ColourBy,
-    floes: StaticFloes,
     period: [Option<f64>; 2],
     frames: Vec<usize>,
     steps: Vec<u64>,
@@ -37,15 +36,15 @@ impl FloeFrames {
         // Read with retries: the file may be one a run is writing.
         let count = RunFile::read_retrying(file, RunFile::snapshot_count)?;
         let frames = select(which, count)?;
-        let (meta, floes, steps, sample) = RunFile::read_retrying(file, |run| {
+        let (meta, steps, sample) = RunFile::read_retrying(file, |run| {
             let meta = run.metadata()?;
-            let floes = run.static_floes()?;
             let period = period(&meta.domain);
-            let free = floes.prescribed.iter().filter(|p| !**p).count();
+            let first = run.static_floes()?;
+            let free = first.prescribed.iter().filter(|p| !**p).count();
             let stride = (free * frames.len()).div_ceil(SCALE_SAMPLE).max(1);
             let (mut steps, mut sample) = (Vec::with_capacity(frames.len()), Vec::new());
             for &k in &frames {
-                let (snap, values) = frame_values(run, &floes, k, colour, period)?;
+                let (snap, floes, values) = frame_values(run, k, colour, period)?;
                 steps.push(snap.step);
                 let free_values =
                     values
@@ -54,7 +53,7 @@ impl FloeFrames {
                         .filter_map(|(v, &p)| if p { None } else { *v });
                 sample.extend(free_values.step_by(stride));
             }
-            Ok((meta, floes, steps, sample))
+            Ok((meta, steps, sample))
         })?;
         let domain = meta.domain;
         let margin = 0.04 * domain.size_m[0].max(domain.size_m[1]);
@@ -73,7 +72,6 @@ impl FloeFrames {
             colour,
             period: period(&domain),
             scale: ColourScale::fit(sample.into_iter(), colour == ColourBy::Theta),
-            floes,
             frames,
             steps,
             view,
@@ -105,10 +103,10 @@ impl FloeFrames {
         draw: impl FnOnce(&FloeMap) -> Result<(), Error>,
     ) -> Result<(), Error> {
         let k = self.frames[i];
-        let (snap, values) = RunFile::read_retrying(&self.file, |run| {
-            frame_values(run, &self.floes, k, self.colour, self.period)
+        let (snap, floes, values) = RunFile::read_retrying(&self.file, |run| {
+            frame_values(run, k, self.colour, self.period)
         })?;
-        let floes = &self.floes;
+        let floes = &floes;
         let polygons: Vec<Vec<(f64, f64)>> = (0..floes.len())
             .map(|i| {
                 let (s, c) = snap.angle[i].sin_cos();
@@ -144,15 +142,15 @@ fn period(domain: &floe_io::DomainBox) -> [Option<f64>; 2] {
     [0, 1].map(|d| domain.periodic[d].then_some(domain.size_m[d]))
 }
 
-/// Snapshot `k` and the value each floe is coloured by.
+/// Snapshot `k`, its floes and the value each floe is coloured by.
 fn frame_values(
     run: &RunFile,
-    floes: &StaticFloes,
     k: usize,
     colour: ColourBy,
     period: [Option<f64>; 2],
-) -> Result<(Snapshot, Vec<Option<f64>>), IoError> {
+) -> Result<(Snapshot, StaticFloes, Vec<Option<f64>>), IoError> {
     let snap = run.snapshot(k)?;
+    let floes = run.floes_at(k)?;
     let values = match colour {
         ColourBy::Speed => snap
             .velocity
@@ -179,5 +177,5 @@ fn frame_values(
             }
         }
     };
-    Ok((snap, values))
+    Ok((snap, floes, values))
 }

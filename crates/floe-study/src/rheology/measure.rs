@@ -25,9 +25,9 @@ pub fn cell_samples(path: &Path) -> Result<Vec<(f64, Option<CellSample>)>, Error
             path.display()
         )));
     }
-    let floes = run.static_floes()?;
     let mut out = Vec::new();
     for k in 1..run.snapshot_count()? {
+        let floes = run.floes_at(k)?;
         let snap = run.snapshot(k)?;
         let contacts = run.contacts(k)?;
         let vertices: Vec<Vec<[f64; 2]>> = (0..floes.len())
