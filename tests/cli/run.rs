@@ -212,18 +212,37 @@ fn floes_break_keeping_their_mass_and_a_paused_run_resumes_bitwise() {
     for (a, b) in start.iter().zip(end) {
         assert!((b - a).abs() < 1e-12 * a, "{start:?} then {end:?}");
     }
-    // The log names each split: the parent leaves, its pieces arrive.
+    // The log accounts for every floe: each split adds its pieces less its
+    // parent, the parent leaves and its pieces arrive.
     let log = f.fractures().unwrap();
-    assert!(log.iter().filter(|e| !e.piece_ids.is_empty()).count() + counts[0] > counts[n - 1] / 3);
-    let last = f.floes_at(n - 1).unwrap();
-    for e in log.iter().filter(|e| !e.piece_ids.is_empty()) {
-        assert!(!last.id.contains(&e.parent_id), "{} broke", e.parent_id);
-        assert!(
-            e.principal_pa.1 < -100.0,
-            "broken in compression: {:?}",
-            e.principal_pa
-        );
+    for k in 0..n {
+        let step = f.snapshot(k).unwrap().step;
+        let added: usize = log
+            .iter()
+            .filter(|e| e.step <= step)
+            .map(|e| e.piece_ids.len().saturating_sub(1))
+            .sum();
+        assert_eq!(counts[k], counts[0] + added, "snapshot {k}");
+        let floes = f.floes_at(k).unwrap();
+        for e in log
+            .iter()
+            .filter(|e| e.step <= step && !e.piece_ids.is_empty())
+        {
+            assert!(!floes.id.contains(&e.parent_id), "{} broke", e.parent_id);
+            assert!(
+                e.principal_pa.1 < -100.0,
+                "broken in compression: {:?}",
+                e.principal_pa
+            );
+        }
     }
+    let last = f.floes_at(n - 1).unwrap();
+    let mut born: Vec<u64> = log.iter().flat_map(|e| e.piece_ids.clone()).collect();
+    born.retain(|id| !log.iter().any(|e| e.parent_id == *id));
+    assert!(
+        born.iter().all(|id| last.id.contains(id)),
+        "unbroken pieces remain"
+    );
     let info = Launch::Alone
         .command()
         .args(["info", &case.path("whole.h5")])

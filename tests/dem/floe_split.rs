@@ -8,7 +8,7 @@
 use floe_dem::contact_model::ContactModel;
 use floe_dem::floes::Floes;
 use floe_dem::forcing::NoForcing;
-use floe_dem::fracture::split::{split_polygon, SplitKey, SplitRule};
+use floe_dem::fracture::split::{clip_half_plane, split_polygon, SplitKey, SplitRule};
 use floe_dem::geometry::cross;
 use floe_dem::periodicity::Periodicity;
 use floe_dem::world::{stable_time_step, World};
@@ -212,14 +212,21 @@ fn bad_splits_are_refused_and_change_nothing() {
     assert!(refused(&mut w, 12, &pieces, &[12, 100, 101]).contains("unused"));
     assert!(refused(&mut w, 12, &pieces[..1], &ids[..1]).contains("two or more"));
     assert!(refused(&mut w, 99, &pieces, &ids).contains("no such floe"));
-    // A sliver needs a time step far below the world's.
+    // Pieces that leave part of the floe out.
+    assert!(refused(&mut w, 12, &pieces[..2], &ids[..2]).contains("do not tile"));
+    // A sliver (5 cm wide) needs a time step far below the world's.
+    let h = w.floes().handle_of(12).unwrap();
+    let (s, c) = w.floes().angle[h].sin_cos();
+    let parent: Vec<Vec2> = w
+        .floes()
+        .local_vertices(h)
+        .iter()
+        .map(|v| Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y))
+        .collect();
+    let cut = parent.iter().map(|v| v.x).fold(f64::MIN, f64::max) - 0.05;
     let sliver = vec![
-        vec![
-            Vec2::new(-100.0, -100.0),
-            Vec2::new(-99.99, -100.0),
-            Vec2::new(-100.0, -99.99),
-        ],
-        pieces[0].clone(),
+        clip_half_plane(&parent, Vec2::new(1.0, 0.0), cut),
+        clip_half_plane(&parent, Vec2::new(-1.0, 0.0), -cut),
     ];
     assert!(refused(&mut w, 12, &sliver, &ids[..2]).contains("time step"));
     let mut walled = pressed_block();

@@ -1547,4 +1547,34 @@ fn fracture_tables_are_checked_key_by_key() {
         "{:?}",
         setup.report
     );
+    // The automatic step was shortened for the smallest piece.
+    assert!(
+        setup.report.iter().any(|l| l.contains("shortened to")),
+        "{:?}",
+        setup.report
+    );
+    // A given step too long for the pieces is refused at the piece area.
+    let t = edit("duration_s = 100.0", "duration_s = 100.0\ndt_s = 4.0")
+        + "\n[fracture]\ncriterion = \"hibler\"\nmin_piece_area_m2 = 100000.0\n";
+    check(
+        &t,
+        "100000.0",
+        0,
+        "fracture.min_piece_area_m2",
+        &["time step", "shorter dt_s"],
+    );
+    let t = with("criterion = \"hibler\"\nmin_floe_area_m2 = 3e5\nmin_piece_area_m2 = 2e5");
+    check(
+        &t,
+        "2e5",
+        0,
+        "fracture.min_piece_area_m2",
+        &["do not fit", "at most 100000"],
+    );
+    // Only sigma_c given: the cap keeps its place relative to it.
+    let t = with("criterion = \"mohr_coulomb\"\nsigma_c_pa = 5000.0");
+    Scenario::from_text(&t, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
 }

@@ -308,22 +308,23 @@ impl RunFile {
             if !self.file.link_exists(&name) {
                 return Ok(out);
             }
+            // A later segment still being made (a writer stopped inside
+            // it) counts as absent: it holds no snapshot yet.
+            let made = |path: &str| self.file.link_exists(&format!("{name}/{path}"));
             let first = if index == 0 {
                 0
             } else {
-                (|| -> hdf5::Result<u64> {
+                let read = || -> hdf5::Result<u64> {
                     let g = self.file.group(&name)?;
                     h5::read_scalar(&g, layout::FIRST_SNAPSHOT)
-                })()
-                .at(&self.path, || {
-                    format!("reading /{name} {}", layout::FIRST_SNAPSHOT)
-                })? as usize
+                };
+                match read() {
+                    Ok(first) if made("angular_velocity/value") => first as usize,
+                    _ => return Ok(out),
+                }
             };
             let mut rows = usize::MAX;
-            let stress = self
-                .file
-                .link_exists(&format!("{name}/{}", layout::FLOE_STRESS.0))
-                .then_some(layout::FLOE_STRESS);
+            let stress = made(layout::FLOE_STRESS.0).then_some(layout::FLOE_STRESS);
             for (element, _, _) in layout::FLOE_ELEMENTS.into_iter().chain(stress) {
                 for part in ["step", "time", "value"] {
                     rows = rows.min(self::rows(&self.ds(&format!("{name}/{element}/{part}"))?));
@@ -335,8 +336,14 @@ impl RunFile {
 
     /// The segment holding snapshot `k` and the snapshot's row in it.
     fn locate(&self, k: usize) -> Result<(usize, usize), IoError> {
-        self.check_snapshot(k)?;
         let segments = self.segments()?;
+        let n = self.count_of(&segments)?;
+        if k >= n {
+            return Err(invalid(
+                &self.path,
+                format!("no snapshot {k}: the file has {n} snapshots"),
+            ));
+        }
         let (index, first, _) = segments
             .iter()
             .rev()
@@ -403,12 +410,14 @@ impl RunFile {
 
     /// Complete snapshots in the file.
     pub fn snapshot_count(&self) -> Result<usize, IoError> {
+        self.count_of(&self.segments()?)
+    }
+
+    /// Complete snapshots of a file with these `segments`.
+    fn count_of(&self, segments: &[(usize, usize, usize)]) -> Result<usize, IoError> {
         // Segments are written one after the other: the last one's rows
         // follow all the others'.
-        let mut n = self
-            .segments()?
-            .last()
-            .map_or(0, |&(_, first, rows)| first + rows);
+        let mut n = segments.last().map_or(0, |&(_, first, rows)| first + rows);
         for part in ["start", "count", "step", "time"] {
             n = n.min(rows(&self.ds(&format!("{}/{part}", layout::CONTACTS))?));
         }

@@ -606,8 +606,14 @@ impl RunWriter {
         // The floe groups (segments); the resumed run writes on the last
         // that starts before the checkpoint's snapshot count.
         let mut segments = Vec::new();
-        while let Some(g) = FloeGroup::open(&file, segments.len()).at(path, what)? {
-            segments.push(g);
+        loop {
+            match FloeGroup::open(&file, segments.len()) {
+                Ok(Some(g)) => segments.push(g),
+                Ok(None) => break,
+                // A later segment the writer stopped inside: it goes below.
+                Err(_) if !segments.is_empty() => break,
+                Err(e) => return Err(e).at(path, what),
+            }
         }
         let snapshots = counts.snapshots as usize;
         let keep = segments

@@ -11,6 +11,7 @@ use floe_dem::fracture::split::SplitRule;
 use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::MotionSchedule;
 use floe_dem::periodicity::Periodicity;
+use floe_dem::pipeline::integrator::floe_stable_step;
 use floe_dem::stress_control::StressControl;
 use floe_dem::world::World;
 use floe_dem::DemError;
@@ -235,7 +236,26 @@ impl Scenario {
         let f = &self.source;
         let r = &self.resolved;
         let built = build::build_floes(f, r)?;
-        let (dt_s, stable_limit_s, dt_line) = build::time_step(f, r, &built, self.max_steps)?;
+        let (mut dt_s, stable_limit_s, mut dt_line) =
+            build::time_step(f, r, &built, self.max_steps)?;
+        // An automatic step also carries fracture's smallest pieces.
+        let fraction = match r.dt {
+            resolve::DtChoice::Auto => Some(resolve::AUTO_DT_FRACTION),
+            resolve::DtChoice::Fraction(x, _) => Some(x),
+            resolve::DtChoice::Given(..) => None,
+        };
+        if let (Some(fraction), Some(piece)) = (fraction, r.fracture) {
+            let piece_step = square_piece_step(&built.floes, &r.model, piece.min_piece_area_m2);
+            if fraction * piece_step < dt_s {
+                dt_s = fraction * piece_step;
+                dt_line = format!(
+                    "{dt_line}; shortened to {} s ({} x the stable step of fracture's smallest piece, a square of {} m^2)",
+                    sig(dt_s),
+                    sig(fraction),
+                    sig(piece.min_piece_area_m2)
+                );
+            }
+        }
         // Gridded fields must cover the whole run (its last step's time).
         let steps = ((r.duration_s / dt_s).round()).max(1.0);
         crate::gridded_inputs::check_times_cover_run(f, &r.gridded, steps * dt_s)?;
@@ -274,6 +294,7 @@ impl Scenario {
             world.set_stress_filter(Some(filter));
         }
         if let Some(fracturing) = self.fracturing(dt_s) {
+            self.check_pieces_fit_the_step(&world, &fracturing, dt_s)?;
             world.set_fracturing(Some(fracturing))?;
             report.push(describe_fracture(&fracturing, dt_s));
         }
@@ -357,6 +378,53 @@ impl Scenario {
         })
     }
 
+    /// Refuses a smallest piece that the time step cannot carry: a square
+    /// piece of `min_piece_area_m2`, as thin as the thinnest free floe,
+    /// must be stable at `dt_s`, or nearly every split would be refused.
+    fn check_pieces_fit_the_step(
+        &self,
+        world: &World<Forcing>,
+        fracturing: &Fracturing,
+        dt_s: f64,
+    ) -> Result<(), ScenarioError> {
+        let (f, model) = (world.floes(), world.model());
+        let square_step = |area: f64| square_piece_step(f, model, area);
+        let h = thinnest_free(f).map_or(0.0, |(h, _)| h);
+        let piece = fracturing.rule.split.min_piece_area_m2;
+        if square_step(piece) >= dt_s {
+            return Ok(());
+        }
+        // The smallest square piece the step carries (the limit grows with
+        // the size): by bisection on the area.
+        let (mut lo, mut hi) = (piece.max(f64::MIN_POSITIVE), piece.max(1.0));
+        while square_step(hi) < dt_s && hi < 1e18 {
+            hi *= 4.0;
+        }
+        for _ in 0..100 {
+            let mid = (lo * hi).sqrt();
+            if square_step(mid) < dt_s {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let src = &self.source;
+        let raw = self.resolved.fracture_spans.clone();
+        Err(src.error(
+            raw.min_piece.unwrap_or(raw.table),
+            "fracture.min_piece_area_m2",
+            format!(
+                "a square piece of {} m^2 ({} m thick) needs a time step of at most {} s, and the run's is {} s: \
+                 nearly every split would be refused; give fracture.min_piece_area_m2 >= {} m^2, or a shorter dt_s",
+                sig(piece),
+                sig(h),
+                sig(square_step(piece)),
+                sig(dt_s),
+                sig(hi * 1.01)
+            ),
+        ))
+    }
+
     /// The time step [`Scenario::build`] chooses, s: the floes are built to
     /// find the automatic one (deterministically). Only checkpoints of
     /// format 1 and 2, which do not store it, need this.
@@ -366,6 +434,37 @@ impl Scenario {
         let built = build::build_floes(f, r)?;
         Ok(build::time_step(f, r, &built, f64::INFINITY)?.0)
     }
+}
+
+/// The thinnest free floe's thickness (m) and its density (kg/m^3).
+fn thinnest_free(f: &floe_dem::floes::Floes) -> Option<(f64, f64)> {
+    (0..f.len())
+        .filter(|&i| f.is_free(i))
+        .map(|i| {
+            (
+                f.thickness_m[i],
+                f.mass_kg[i] / (f.area_m2[i] * f.thickness_m[i]),
+            )
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+/// The stable time step of a square piece of `area_m2` as thin as the
+/// thinnest free floe of `floes` (infinite without free floes), s.
+fn square_piece_step(floes: &floe_dem::floes::Floes, model: &ContactModel, area_m2: f64) -> f64 {
+    let Some((h, density)) = thinnest_free(floes) else {
+        return f64::INFINITY;
+    };
+    let side = area_m2.sqrt();
+    let mass = density * h * area_m2;
+    floe_stable_step(
+        mass,
+        mass * side * side / 6.0,
+        h,
+        area_m2,
+        side / 2f64.sqrt(),
+        model,
+    )
 }
 
 /// The directory of a scenario file, where its relative input paths start.

@@ -22,6 +22,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let run = RunFile::open(Path::new(path))?;
     let meta = run.metadata()?;
     let floes = run.static_floes()?;
+    let count = run.snapshot_count()?;
+    if count > 0 && run.floes_at(count - 1)?.id != floes.id {
+        return Err(
+            format!("{path}: its floes broke; this check reads a fixed set of floes").into(),
+        );
+    }
     let free: Vec<usize> = (0..floes.len()).filter(|&i| !floes.prescribed[i]).collect();
     let (min, size) = (meta.domain.min_m, meta.domain.size_m);
     let shape = [0, 1].map(|a| (size[a] / cell).ceil().max(1.0) as usize);

@@ -109,6 +109,13 @@ fn measure(
     // axis) over the time between them. Ringing about a stuck state has a
     // speed but no drift.
     let floes = run.static_floes()?;
+    let count = run.snapshot_count()?;
+    if count > 0 && run.floes_at(count - 1)?.id != floes.id {
+        return Err(usage(format!(
+            "{}: its floes broke; this map follows floes by their place in a fixed set",
+            path.display()
+        )));
+    }
     let domain = run.metadata()?.domain;
     let mut window = Vec::new();
     for k in 0..run.snapshot_count()? {

@@ -23,7 +23,7 @@ pub struct FractureRule {
     pub criterion: FractureCriterion,
     /// The criterion is checked at steps that are multiples of this.
     pub check_every_steps: u64,
-    /// Floes smaller than this never break, and no piece is smaller, m^2.
+    /// Floes smaller than this never break, m^2.
     pub min_floe_area_m2: f64,
     /// Pieces per split and attempts (its smallest piece is
     /// `min_floe_area_m2`).
@@ -54,6 +54,12 @@ impl FractureRule {
             return bad(format!(
                 "smallest floe area {} m^2: must be finite and >= 0",
                 self.min_floe_area_m2
+            ));
+        }
+        let piece = self.split.min_piece_area_m2;
+        if !(piece.is_finite() && piece >= 0.0) {
+            return bad(format!(
+                "smallest piece area {piece} m^2: must be finite and >= 0"
             ));
         }
         if self.split.pieces < 2 || self.split.attempts == 0 {

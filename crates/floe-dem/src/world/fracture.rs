@@ -67,6 +67,13 @@ impl<F: ExternalForces> World<F> {
         rule: &FractureRule,
         domain_area_m2: f64,
     ) -> Result<Vec<FractureEvent>, DemError> {
+        if !rule.due(self.state.steps) {
+            // Off the checks nothing changes, the next id included (as on
+            // several processes).
+            return self
+                .plan_fracture(rule, &PackSums::default(), domain_area_m2)
+                .map(|_| Vec::new());
+        }
         let sums = self.pack_sums();
         let plans = self.plan_fracture(rule, &sums, domain_area_m2)?;
         let first = self.first_free_id();
@@ -103,7 +110,8 @@ impl<F: ExternalForces> World<F> {
     }
 
     /// The splits `rule` makes at this step (none off its check steps), of
-    /// this world's own free floes (not ghosts: their owners judge them),
+    /// this world's own free floes (not ghosts: their owners judge them;
+    /// nor floes on a load point),
     /// in id order, with the pack's sums `sums` (all processes') for
     /// Hibler's pack strength. Nothing changes; a piece that would need a
     /// shorter time step leaves its floe whole here.
@@ -130,8 +138,10 @@ impl<F: ExternalForces> World<F> {
         let f = self.state.floes.columns();
         let (step, time_s) = (self.state.steps, self.state.time_s);
         let mut plans = Vec::new();
+        // A floe on a load point is apparatus (a driven block): it stays whole.
+        let driven: Vec<u64> = self.state.load_points.iter().map(|l| l.floe_id).collect();
         for i in (0..f.len()).filter(|&i| f.is_free(i) && !self.is_ghost(i)) {
-            if f.area_m2[i] < rule.min_floe_area_m2 {
+            if f.area_m2[i] < rule.min_floe_area_m2 || driven.contains(&f.id[i]) {
                 continue;
             }
             let (h, c) = match rule.strength_thickness {

@@ -220,6 +220,20 @@ fn piece_floes(
         .map(|(k, p)| FloeShape::from_world(k, p))
         .collect::<Result<Vec<_>, _>>()?;
     let total_area: f64 = shapes.iter().map(|(s, _)| s.area_m2).sum();
+    // The pieces must tile the parent: their areas add up to its area and
+    // their centroids average to its centroid (to round-off).
+    let first: Vec2 = shapes.iter().map(|(s, c)| *c * s.area_m2).sum();
+    let tol = 1e-9 * parent.area_m2;
+    if (total_area - parent.area_m2).abs() > tol || first.length() > tol * parent.radius_m {
+        return Err(DemError::FloeEdit {
+            id: parent.id,
+            reason: format!(
+                "the pieces do not tile the floe: area {total_area} m^2 against {} m^2, centroid off by {} m",
+                parent.area_m2,
+                first.length() / total_area
+            ),
+        });
+    }
     let floes: Vec<Floe> = shapes
         .iter()
         .zip(piece_ids)

@@ -20,6 +20,15 @@ pub const MAX_PIECES: u64 = 16;
 /// Most attempts at a split.
 pub const MAX_ATTEMPTS: u64 = 1000;
 
+/// Where `[fracture]` and its smallest piece stand in the file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FractureSpans {
+    /// The table.
+    pub table: std::ops::Range<usize>,
+    /// `min_piece_area_m2`, if given.
+    pub min_piece: Option<std::ops::Range<usize>>,
+}
+
 /// `[fracture]` checked, in seconds (the time step turns it into a rule).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FractureSettings {
@@ -61,7 +70,7 @@ pub(crate) fn resolve_floe_stress(
 pub(crate) fn resolve_fracture(
     f: &SourceFile,
     raw: Option<&Spanned<RawFracture>>,
-) -> Result<Option<FractureSettings>, ScenarioError> {
+) -> Result<Option<(FractureSettings, FractureSpans)>, ScenarioError> {
     let Some(spanned) = raw else {
         return Ok(None);
     };
@@ -97,10 +106,13 @@ pub(crate) fn resolve_fracture(
                 &["q", "sigma_c_pa", "sigma_11_pa"],
             )?;
             let d = MohrCoulomb::default();
+            let sigma_c_pa = num(&r.sigma_c_pa, "sigma_c_pa", d.sigma_c_pa)?;
+            // The cap keeps the anchors' place relative to sigma_c unless given.
+            let sigma_11 = d.sigma_11_pa / d.sigma_c_pa * sigma_c_pa;
             let m = MohrCoulomb {
                 q: num(&r.q, "q", d.q)?,
-                sigma_c_pa: num(&r.sigma_c_pa, "sigma_c_pa", d.sigma_c_pa)?,
-                sigma_11_pa: num(&r.sigma_11_pa, "sigma_11_pa", d.sigma_11_pa)?,
+                sigma_c_pa,
+                sigma_11_pa: num(&r.sigma_11_pa, "sigma_11_pa", sigma_11)?,
             };
             m.check().map_err(|why| located(f, spanned, r, why))?;
             (FractureCriterion::MohrCoulomb(m), StrengthThickness::Own)
@@ -160,18 +172,38 @@ pub(crate) fn resolve_fracture(
         None => 10,
     };
     let min_piece_area_m2 = match &r.min_piece_area_m2 {
-        Some(a) => f.non_negative(a, "fracture.min_piece_area_m2")?,
+        Some(a) => {
+            let piece = f.non_negative(a, "fracture.min_piece_area_m2")?;
+            if piece * pieces as f64 > min_floe_area_m2 {
+                return Err(f.error(
+                    a.span(),
+                    "fracture.min_piece_area_m2",
+                    format!(
+                        "{pieces} pieces of at least {piece} m^2 do not fit in a floe of fracture.min_floe_area_m2 = {min_floe_area_m2} m^2: give at most {} m^2",
+                        min_floe_area_m2 / pieces as f64
+                    ),
+                ));
+            }
+            piece
+        }
         None => min_floe_area_m2 / (2 * pieces) as f64,
     };
-    Ok(Some(FractureSettings {
-        criterion,
-        check_every_s,
-        min_floe_area_m2,
-        min_piece_area_m2,
-        pieces,
-        attempts,
-        strength_thickness,
-    }))
+    let spans = FractureSpans {
+        table: spanned.span(),
+        min_piece: span_of(&r.min_piece_area_m2),
+    };
+    Ok(Some((
+        FractureSettings {
+            criterion,
+            check_every_s,
+            min_floe_area_m2,
+            min_piece_area_m2,
+            pieces,
+            attempts,
+            strength_thickness,
+        },
+        spans,
+    )))
 }
 
 /// A criterion's parameter check `why` (which starts with the parameter's

@@ -111,6 +111,8 @@ pub(crate) struct Resolved {
     pub floe_stress: Option<floe_dem::pipeline::floe_stress::StressFilter>,
     /// `[fracture]`, if floes break.
     pub fracture: Option<FractureSettings>,
+    /// Where `[fracture]` stands (for the build's checks).
+    pub fracture_spans: life_cycle::FractureSpans,
 }
 /// Most time steps a run may take unless raised (`floe run --step-limit`):
 /// about a day at 1e4 steps/s, beyond which a step count is a typo.
@@ -223,7 +225,16 @@ pub(crate) fn resolve(
     }
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
     let floe_stress = resolve_floe_stress(f, raw.floe_stress.as_ref())?;
-    let fracture = resolve_fracture(f, raw.fracture.as_ref())?;
+    let (fracture, fracture_spans) = match resolve_fracture(f, raw.fracture.as_ref())? {
+        Some((settings, spans)) => (Some(settings), spans),
+        None => (
+            None,
+            life_cycle::FractureSpans {
+                table: 0..0,
+                min_piece: None,
+            },
+        ),
+    };
     let GridContext {
         start_time,
         inputs,
@@ -257,6 +268,7 @@ pub(crate) fn resolve(
         gridded: origins,
         floe_stress,
         fracture,
+        fracture_spans,
     })
 }
 
