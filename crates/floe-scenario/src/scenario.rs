@@ -245,7 +245,8 @@ impl Scenario {
             resolve::DtChoice::Given(..) => None,
         };
         if let (Some(fraction), Some(piece)) = (fraction, r.fracture) {
-            let piece_step = square_piece_step(&built.floes, &r.model, piece.min_piece_area_m2);
+            let thin = thinnest_free(&built.floes);
+            let piece_step = square_piece_step(thin, &r.model, piece.min_piece_area_m2);
             if fraction * piece_step < dt_s {
                 dt_s = fraction * piece_step;
                 dt_line = format!(
@@ -388,8 +389,10 @@ impl Scenario {
         dt_s: f64,
     ) -> Result<(), ScenarioError> {
         let (f, model) = (world.floes(), world.model());
-        let square_step = |area: f64| square_piece_step(f, model, area);
-        let h = thinnest_free(f).map_or(0.0, |(h, _)| h);
+        // The thinnest floe found once: the bisection below asks often.
+        let thin = thinnest_free(f);
+        let square_step = |area: f64| square_piece_step(thin, model, area);
+        let h = thin.map_or(0.0, |(h, _)| h);
         let piece = fracturing.rule.split.min_piece_area_m2;
         if square_step(piece) >= dt_s {
             return Ok(());
@@ -450,9 +453,10 @@ fn thinnest_free(f: &floe_dem::floes::Floes) -> Option<(f64, f64)> {
 }
 
 /// The stable time step of a square piece of `area_m2` as thin as the
-/// thinnest free floe of `floes` (infinite without free floes), s.
-fn square_piece_step(floes: &floe_dem::floes::Floes, model: &ContactModel, area_m2: f64) -> f64 {
-    let Some((h, density)) = thinnest_free(floes) else {
+/// thinnest free floe, `thin` ([`thinnest_free`]; infinite without free
+/// floes), s.
+fn square_piece_step(thin: Option<(f64, f64)>, model: &ContactModel, area_m2: f64) -> f64 {
+    let Some((h, density)) = thin else {
         return f64::INFINITY;
     };
     let side = area_m2.sqrt();
