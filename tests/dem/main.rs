@@ -5,6 +5,7 @@
 mod broad_phase;
 mod checkpoint;
 mod clip;
+mod cohesion;
 mod contact_symmetry;
 #[path = "../support/counting_allocator.rs"]
 mod counting_allocator;

@@ -2,6 +2,7 @@
 //! they hold, from frozen files (tests/data/checkpoints/, README.md there);
 //! the encoder writes the current format's frozen bytes exactly.
 
+use floe_dem::bonds::Bond;
 use floe_dem::contacts::{BrokenContact, ContactRecord};
 use floe_dem::energy_ledger::EnergyLedger;
 use floe_dem::floes::{FloeColumns, Floes, Motion};
@@ -126,6 +127,7 @@ pub fn rich_state() -> WorldState {
     let state = WorldState {
         floes,
         contacts: vec![contact(0, 1, 1.0), contact(0, 2, 0.3), contact(1, 3, 7.0)],
+        bonds: Vec::new(),
         broken: vec![
             BrokenContact {
                 a: 0,
@@ -217,6 +219,7 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         floes,
         contacts,
         broken,
+        bonds,
         time_s,
         steps,
         dt_s,
@@ -242,6 +245,7 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         floes,
         contacts,
         broken,
+        bonds,
         time_s,
         steps,
         dt_s,
@@ -402,6 +406,64 @@ fn version_8_is_version_7_with_the_life_cycle() {
     wrong.floe_stress.pop();
     let e = decode(&encode(&wrong, &counts(), 3), || None, Some(3)).expect_err("3 of 4");
     assert!(e.contains("floe_stress has 3 entries for 4 floes"), "{e}");
+}
+
+/// [`stressed_state`] with bonds: a formed one between the free floes 0
+/// and 2 (every field distinct) and a quiet pair 1-3 on its way to one.
+pub fn bonded_state() -> WorldState {
+    let mut state = stressed_state();
+    let mut formed = Bond::candidate(0, 2, 12.5);
+    formed.formed = true;
+    formed.formed_at_s = 100.0 / 3.0;
+    formed.anchor_a = Vec2::new(0.5, -1.0 / 7.0);
+    formed.anchor_b = Vec2::new(-0.5, 0.25);
+    formed.normal_a = Vec2::new(0.6, 0.8);
+    formed.rest_angle_rad = -0.125;
+    formed.length_m = 0.75;
+    formed.stiffness_n_per_m = 4.5e6;
+    formed.point_a = Vec2::new(1.5, 2.0 / 3.0);
+    formed.point_b = Vec2::new(1.5 + 1e-3, 2.0 / 3.0);
+    formed.force_on_b = Vec2::new(-4.5e3, 2.0);
+    formed.torque_on_a = 17.0;
+    formed.torque_on_b = -3.0;
+    formed.energy_j = 2.25;
+    formed.damping_power_w = 1e-3;
+    formed.tension_n_per_m = 6e3;
+    formed.shear_n_per_m = 2.0 / 3.0;
+    state.bonds = vec![formed, Bond::candidate(1, 3, 40.0)];
+    state.validate().unwrap();
+    state
+}
+
+/// Bytes of a bond in format 9.
+const BOND_BYTES: usize = 4 + 4 + 8 + 1 + 8 + 3 * 16 + 3 * 8 + 3 * 16 + 6 * 8;
+
+/// Version 9 is version 8 with the bonds after everything else (a
+/// length, then every field of each). It reads back to the state; the
+/// encoder writes its frozen bytes exactly, and still writes version 8 for
+/// a state with the life cycle and no bonds.
+#[test]
+fn version_9_is_version_8_with_the_bonds() {
+    use floe_io::checkpoint::{decode, encode, HEADER_LEN};
+    let (v8, v9) = (fixture("format_v8.bin"), fixture("format_v9.bin"));
+    let bonded = bonded_state();
+    assert_eq!(v9.len(), v8.len() + 8 + 2 * BOND_BYTES);
+    assert_eq!(&v9[8..12], &9u32.to_le_bytes());
+    assert_eq!(
+        &v9[HEADER_LEN..v8.len()],
+        &v8[HEADER_LEN..],
+        "the payload of 8 first"
+    );
+    let (back, back_counts) = decode(&v9, || None, Some(3)).unwrap();
+    assert_same(&back, &bonded, "version 9");
+    assert_eq!(back_counts, counts());
+    assert!(encode(&bonded, &counts(), 3) == v9);
+    assert!(encode(&stressed_state(), &counts(), 3) == v8);
+    // A bond naming a floe that is not there is refused.
+    let mut wrong = bonded.clone();
+    wrong.bonds[1].b = 4;
+    let e = decode(&encode(&wrong, &counts(), 3), || None, Some(3)).expect_err("floe 4 of 4");
+    assert!(e.contains("bonds are not sorted pairs"), "{e}");
 }
 
 /// The encoder writes the frozen bytes of the current format exactly.

@@ -6,6 +6,7 @@
 //! across the periodic seam, against walls, with contact memory, wind and
 //! ocean drag.
 
+use floe_dem::cohesion::Cohesion;
 use floe_dem::fracture::criteria::{FractureCriterion, MohrCoulomb};
 use floe_dem::fracture::rule::{FractureRule, StrengthThickness};
 use floe_dem::fracture::split::SplitRule;
@@ -502,8 +503,9 @@ fn fracturing_layer() -> (World<Forcing>, FractureRule) {
 
 /// The fracturing layer's states every `EVERY` steps and its fracture
 /// events, on one process.
-fn fracturing_single() -> (Vec<String>, Vec<FractureEvent>) {
+fn fracturing_single(cohesion: Option<Cohesion>) -> (Vec<String>, Vec<FractureEvent>) {
     let (mut w, rule) = fracturing_layer();
+    w.set_cohesion(cohesion).unwrap();
     let domain = NX as f64 * S * NY as f64 * S;
     let (mut states, mut events) = (vec![bits(w.state())], Vec::new());
     while w.steps() < STEPS {
@@ -517,7 +519,10 @@ fn fracturing_single() -> (Vec<String>, Vec<FractureEvent>) {
 }
 
 /// [`fracturing_single`] on `processes` processes (ThreadComm).
-fn fracturing_parallel(processes: usize) -> (Vec<String>, Vec<FractureEvent>) {
+fn fracturing_parallel(
+    processes: usize,
+    cohesion: Option<Cohesion>,
+) -> (Vec<String>, Vec<FractureEvent>) {
     let never = AtomicBool::new(false);
     let results = ThreadComm::run(processes, |comm| {
         let (w, rule) = fracturing_layer();
@@ -530,6 +535,7 @@ fn fracturing_parallel(processes: usize) -> (Vec<String>, Vec<FractureEvent>) {
         let mut d =
             DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
                 .unwrap();
+        d.set_cohesion(cohesion).unwrap();
         let (mut states, mut events) = (Vec::new(), Vec::new());
         if let Some(s) = d.gather_whole().unwrap() {
             states.push(bits(&s));
@@ -554,11 +560,61 @@ fn fracturing_parallel(processes: usize) -> (Vec<String>, Vec<FractureEvent>) {
 
 #[test]
 fn fracture_over_one_to_four_processes_is_bitwise_as_one() {
-    let (states, events) = fracturing_single();
+    let (states, events) = fracturing_single(None);
     let splits = events.iter().filter(|e| !e.piece_ids.is_empty()).count();
     assert!(splits >= 3, "floes broke ({splits})");
     for processes in [1, 2, 3, 4] {
-        let (p_states, p_events) = fracturing_parallel(processes);
+        let (p_states, p_events) = fracturing_parallel(processes, None);
+        assert_eq!(p_events, events, "{processes} processes: the events");
+        assert_eq!(p_states.len(), states.len());
+        for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {
+            assert!(
+                a == b,
+                "{processes} processes: the state at step {} differs",
+                k as u64 * EVERY
+            );
+        }
+    }
+}
+
+/// Floes of the fracturing layer freeze together where they rest against
+/// each other: weak bonds that form and break within the run.
+fn weak_cohesion() -> Cohesion {
+    Cohesion {
+        quiet_speed_m_per_s: 0.3,
+        bond_after_s: 5.0,
+        tensile_strength_n_per_m: 3000.0,
+        shear_strength_n_per_m: 1500.0,
+        growth_time_s: 60.0,
+    }
+}
+
+#[test]
+fn cohesion_with_fracture_over_one_to_four_processes_is_bitwise_as_one() {
+    // The run is only as strong a test as it is eventful.
+    let (mut w, rule) = fracturing_layer();
+    w.set_cohesion(Some(weak_cohesion())).unwrap();
+    let domain = NX as f64 * S * NY as f64 * S;
+    let (mut most_bonds, mut splits) = (0, 0);
+    while w.steps() < STEPS {
+        w.step();
+        splits += w
+            .fracture(&rule, domain)
+            .unwrap()
+            .iter()
+            .filter(|e| !e.piece_ids.is_empty())
+            .count();
+        most_bonds = most_bonds.max(w.bonds().iter().filter(|b| b.formed).count());
+    }
+    eprintln!(
+        "at most {most_bonds} bonds, {} broken, {splits} splits",
+        w.bonds_broken()
+    );
+    assert!(most_bonds >= 5 && w.bonds_broken() >= 5 && splits >= 1);
+
+    let (states, events) = fracturing_single(Some(weak_cohesion()));
+    for processes in [1, 2, 3, 4] {
+        let (p_states, p_events) = fracturing_parallel(processes, Some(weak_cohesion()));
         assert_eq!(p_events, events, "{processes} processes: the events");
         assert_eq!(p_states.len(), states.len());
         for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {

@@ -17,6 +17,7 @@ pub struct EnergyLedger {
     /// spring's energy. An overlap-area force is not the gradient of a
     /// potential (sliding changes the overlap without normal motion), so this
     /// is not zero: it is the model's own non-conservation, reported rather
-    /// than hidden. Positive: energy lost from the floes.
+    /// than hidden. Bonds that break ([`crate::cohesion`]) add the
+    /// elastic energy they held. Positive: energy lost from the floes.
     pub released_at_break_j: f64,
 }

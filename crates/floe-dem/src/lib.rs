@@ -13,6 +13,9 @@
 //! in README.md ("Layout").
 #![deny(missing_docs)]
 
+pub mod bond_kernel;
+pub mod bonds;
+pub mod cohesion;
 pub mod contact_kernel;
 pub mod contact_model;
 pub mod contacts;

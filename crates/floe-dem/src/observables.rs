@@ -14,7 +14,7 @@ pub struct Observables {
     pub kinetic_translational_j: f64,
     /// Rotational kinetic energy of the free floes, J.
     pub kinetic_rotational_j: f64,
-    /// Elastic energy held by the contacts, J.
+    /// Elastic energy held by the contacts and the bonds, J.
     pub contact_energy_j: f64,
     /// Cumulative work and dissipation since the start, J.
     pub ledger: EnergyLedger,
@@ -82,6 +82,25 @@ impl<F: ExternalForces> World<F> {
             }
             mu_weighted += c.tangential_force_n().abs();
             normal_sum += c.normal_force_n;
+        }
+        for b in self.bonds().iter().filter(|b| b.formed) {
+            o.contact_energy_j += b.energy_j;
+            // A bond's force acts at its anchors.
+            let arm = |h: usize, anchor| {
+                let (s, c) = f.angle[h].sin_cos();
+                crate::geometry::rotate(anchor, c, s)
+            };
+            for (h, force, arm) in [
+                (b.a as usize, -b.force_on_b, arm(b.a as usize, b.anchor_a)),
+                (b.b as usize, b.force_on_b, arm(b.b as usize, b.anchor_b)),
+            ] {
+                if f.is_free(h) {
+                    o.mean_stress_n_per_m[0] += force.x * arm.x;
+                    o.mean_stress_n_per_m[1] += force.x * arm.y;
+                    o.mean_stress_n_per_m[2] += force.y * arm.x;
+                    o.mean_stress_n_per_m[3] += force.y * arm.y;
+                }
+            }
         }
         for s in &mut o.mean_stress_n_per_m {
             *s /= domain_area_m2;

@@ -10,6 +10,7 @@
 //! list only has to contain every touching pair, and the contact list is
 //! sorted by pair).
 
+use crate::bonds::Bond;
 use crate::contacts::{BrokenContact, ContactRecord};
 use crate::energy_ledger::EnergyLedger;
 use crate::error::DemError;
@@ -38,6 +39,9 @@ pub struct WorldState {
     pub steps: u64,
     /// The time step, s.
     pub dt_s: f64,
+    /// Bonds and pairs quiet on their way to one, sorted by `(a, b)`
+    /// (empty without cohesion).
+    pub bonds: Vec<Bond>,
     /// Energy bookkeeping since the start.
     pub energy: EnergyLedger,
     /// Total force on each floe from the last evaluation, N. Saved rather
@@ -76,6 +80,7 @@ impl WorldState {
             floes,
             contacts: Vec::new(),
             broken: Vec::new(),
+            bonds: Vec::new(),
             time_s: 0.0,
             steps: 0,
             dt_s,
@@ -131,6 +136,9 @@ impl WorldState {
             return bad(
                 "broken contacts are not sorted pairs (a, b) of existing floes with a < b".into(),
             );
+        }
+        if !sorted_pairs(self.bonds.iter().map(|c| (c.a, c.b)), n) {
+            return bad("bonds are not sorted pairs (a, b) of existing floes with a < b".into());
         }
         if !self.time_s.is_finite() {
             return bad(format!("time {} is not finite", self.time_s));

@@ -1,8 +1,9 @@
 //! What processes send each other when floes migrate and when the whole
-//! world is gathered: floes with their forces, and contact records named by
-//! their floes' ids (handles differ between processes). Encoded with
+//! world is gathered: floes with their forces, and contact and bond
+//! records named by their floes' ids (handles differ between processes). Encoded with
 //! bincode, which keeps every `f64`'s bits.
 
+use floe_dem::bonds::Bond;
 use floe_dem::contacts::{BrokenContact, ContactRecord};
 use floe_dem::floes::Floe;
 use floe_dem::Vec2;
@@ -33,6 +34,7 @@ pub(crate) struct Packet {
     pub(crate) floes: Vec<Migrant>,
     pub(crate) contacts: Vec<([u64; 2], ContactRecord)>,
     pub(crate) broken: Vec<([u64; 2], BrokenContact)>,
+    pub(crate) bonds: Vec<([u64; 2], Bond)>,
 }
 
 /// `value` as bytes.

@@ -144,6 +144,8 @@ pub(crate) struct EnergyAccounting {
     pub(crate) forcing_partials: Vec<ExactSum>,
     /// The step's energy released at break (the narrow phase adds to it).
     pub(crate) released_j: ExactSum,
+    /// The bonds' sums of the step (the cohesion stage adds to them).
+    pub(crate) bonds: super::cohesion::BondPower,
     /// The external forces at the start of the step, N, for the work
     /// integral (trapezoidal in the force).
     pub(crate) previous_external_force: Vec<Vec2>,
@@ -176,12 +178,17 @@ impl EnergyAccounting {
         for p in &self.contact_partials {
             power.merge(p);
         }
+        let bonds = std::mem::take(&mut self.bonds);
+        power.damping_w.merge(&bonds.damping_w);
+        power.boundary_w.merge(&bonds.boundary_w);
+        let mut released_j = std::mem::take(&mut self.released_j);
+        released_j.merge(&bonds.released_j);
         StepSums {
             forcing_w,
             friction_w: power.friction_w,
             damping_w: power.damping_w,
             boundary_w: power.boundary_w,
-            released_j: std::mem::take(&mut self.released_j),
+            released_j,
         }
     }
 }

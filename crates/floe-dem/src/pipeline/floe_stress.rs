@@ -73,11 +73,14 @@ pub fn principal(s: FloeStress) -> (f64, f64) {
 /// Moves every free floe's averaged stress `stress` towards its
 /// instantaneous stress by `weight`; prescribed floes keep zero. Each
 /// floe's contacts are summed in contact order (the force gathering's
-/// index), so the result is the same for any thread count.
+/// index), so the result is the same for any thread count; then its
+/// entry of `bond_moments` (the bonds' moments, summed as
+/// [`from_contacts`] sums; empty without bonds) is added.
 pub(crate) fn update(
     f: &FloeColumns,
     contacts: &[ContactRecord],
     index: &ForceGathering,
+    bond_moments: &[[f64; 3]],
     weight: f64,
     stress: &mut [FloeStress],
 ) {
@@ -85,29 +88,21 @@ pub(crate) fn update(
         if !f.is_free(i) {
             return;
         }
-        let now = instantaneous(f, contacts, index, i);
+        let (as_b, as_a) = index.contacts_of(i, contacts);
+        let now = from_contacts(f, i, as_b.chain(as_a), bond_moments.get(i));
         for (s, now) in s.iter_mut().zip(now) {
             *s += weight * (now - *s);
         }
     });
 }
 
-/// Floe `i`'s stress from its contacts now, Pa (through the index).
-fn instantaneous(
-    f: &FloeColumns,
-    contacts: &[ContactRecord],
-    index: &ForceGathering,
-    i: usize,
-) -> FloeStress {
-    let (as_b, as_a) = index.contacts_of(i, contacts);
-    from_contacts(f, i, as_b.chain(as_a))
-}
-
-/// Floe `i`'s stress from `contacts`, each of which touches it, Pa.
+/// Floe `i`'s stress from `contacts`, each of which touches it, and its
+/// bonds' moments `bonds` (if any), Pa.
 pub(crate) fn from_contacts<'c>(
     f: &FloeColumns,
     i: usize,
     contacts: impl Iterator<Item = &'c ContactRecord>,
+    bonds: Option<&[f64; 3]>,
 ) -> FloeStress {
     let mut m = [0.0; 3];
     for c in contacts {
@@ -120,6 +115,11 @@ pub(crate) fn from_contacts<'c>(
         m[0] += force.x * arm.x;
         m[1] += force.x * arm.y + force.y * arm.x;
         m[2] += force.y * arm.y;
+    }
+    if let Some(b) = bonds {
+        for (m, b) in m.iter_mut().zip(b) {
+            *m += b;
+        }
     }
     let volume = f.area_m2[i] * f.thickness_m[i];
     [m[0] / volume, 0.5 * m[1] / volume, m[2] / volume]

@@ -8,6 +8,7 @@
 //! | narrow phase | [`narrow_phase`] | candidate pairs, floes | contact list: overlaps, normal forces; contacts formed, continued, ended; contact memory; the contacts' power sums |
 //! | friction | [`friction`] | each contact's load | its tangential spring and friction state (the one call of the law) |
 //! | force gathering | [`force_gathering`] | contacts, forcing | per-floe force and torque |
+//! | cohesion (when on) | [`cohesion`] | contacts, floes | bonds formed, their forces, broken bonds |
 //! | floe stress (when on) | [`floe_stress`] | contacts, per-floe contact index | each free floe's time-averaged stress |
 //! | kick | [`integrator`] | forces and their rates with velocity | velocities; external forces at the new velocities |
 //! | energy accounting | [`energy_accounting`] | the contacts' power sums, forces, velocities | the energy ledger |
@@ -25,6 +26,7 @@
 
 pub(crate) mod boundary_motion;
 pub mod broad_phase;
+pub(crate) mod cohesion;
 pub(crate) mod contact_memory;
 pub(crate) mod contact_merge;
 pub mod energy_accounting;
@@ -77,6 +79,12 @@ pub struct Pipeline {
     /// stepped here for its contacts but not counted in the energy sums.
     /// Empty: every floe is this process's.
     pub(crate) ghost: Vec<bool>,
+    /// The bond list being rebuilt by the cohesion stage.
+    pub(crate) bond_scratch: Vec<crate::bonds::Bond>,
+    /// Per floe, its bonds' stress moments (floe stress with cohesion).
+    pub(crate) bond_moments: Vec<[f64; 3]>,
+    /// Bonds broken since the world was made or resumed.
+    pub(crate) bonds_broken: u64,
     pub(crate) next: Stage,
 }
 
@@ -92,6 +100,9 @@ impl Pipeline {
             rates: Vec::new(),
             moved_far: true,
             ghost: Vec::new(),
+            bond_scratch: Vec::new(),
+            bond_moments: Vec::new(),
+            bonds_broken: 0,
             next: Stage::Drift,
         }
     }

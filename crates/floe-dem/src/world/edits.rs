@@ -3,6 +3,7 @@
 //! them.
 
 use super::World;
+use crate::bonds::Bond;
 use crate::contacts::{BrokenContact, ContactRecord};
 use crate::error::DemError;
 use crate::floes::{Floe, Floes, Motion};
@@ -27,6 +28,15 @@ impl HandlePair for ContactRecord {
 }
 
 impl HandlePair for BrokenContact {
+    fn pair(&self) -> (u32, u32) {
+        (self.a, self.b)
+    }
+    fn set_pair(&mut self, (a, b): (u32, u32)) {
+        (self.a, self.b) = (a, b);
+    }
+}
+
+impl HandlePair for Bond {
     fn pair(&self) -> (u32, u32) {
         (self.a, self.b)
     }
@@ -76,7 +86,7 @@ fn put_pairs_back<T: HandlePair>(
 }
 
 /// A floe taken out of a world with what it owns there: its forces from
-/// the last evaluation, its contacts and its remembered broken contacts.
+/// the last evaluation, its contacts, its remembered broken contacts and its bonds.
 /// [`World::insert_detached`] puts it back.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DetachedFloe {
@@ -95,6 +105,9 @@ pub struct DetachedFloe {
     pub contacts: Vec<([u64; 2], ContactRecord)>,
     /// Its remembered broken contacts, each with the ids of its two floes.
     pub broken: Vec<([u64; 2], BrokenContact)>,
+    /// Its bonds and quiet pairs on their way to one, each with the ids of
+    /// its two floes.
+    pub bonds: Vec<([u64; 2], Bond)>,
     /// Its time-averaged stress, if the world it left computed one (a
     /// world that computes stress gives a floe without one zero).
     pub stress: Option<FloeStress>,
@@ -221,12 +234,13 @@ impl<F: ExternalForces> World<F> {
             external_torque: 0.0,
             contacts: Vec::new(),
             broken: Vec::new(),
+            bonds: Vec::new(),
             stress: None,
         })
     }
 
-    /// Takes floe `id` out between steps, with its forces, its contacts
-    /// and its remembered broken contacts (no energy is counted as
+    /// Takes floe `id` out between steps, with its forces, its contacts,
+    /// its remembered broken contacts and its bonds (no energy is counted as
     /// released: the contacts leave with the floe).
     pub fn remove_floe(&mut self, id: u64) -> Result<DetachedFloe, DemError> {
         self.between_steps(id)?;
@@ -239,6 +253,7 @@ impl<F: ExternalForces> World<F> {
         let s = &mut self.state;
         let contacts = take_pairs_of(&mut s.contacts, h, &s.floes.id);
         let broken = take_pairs_of(&mut s.broken, h, &s.floes.id);
+        let bonds = take_pairs_of(&mut s.bonds, h, &s.floes.id);
         let detached = DetachedFloe {
             floe: s.floes.remove(h),
             force: s.force.remove(h),
@@ -247,6 +262,7 @@ impl<F: ExternalForces> World<F> {
             external_torque: s.external_torque.remove(h),
             contacts,
             broken,
+            bonds,
             stress: s.stress_filter.map(|_| s.floe_stress.remove(h)),
         };
         self.pipeline.floes_changed();
@@ -271,7 +287,8 @@ impl<F: ExternalForces> World<F> {
             .contacts
             .iter()
             .map(|(ids, _)| *ids)
-            .chain(d.broken.iter().map(|(ids, _)| *ids));
+            .chain(d.broken.iter().map(|(ids, _)| *ids))
+            .chain(d.bonds.iter().map(|(ids, _)| *ids));
         for [x, y] in pairs {
             let other = if x == id { y } else { x };
             if x >= y || (x != id && y != id) || floes.handle_of(other).is_none() {
@@ -290,7 +307,8 @@ impl<F: ExternalForces> World<F> {
             sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
         };
         let repeated = twice(d.contacts.iter().map(|(ids, _)| *ids).collect())
-            .or_else(|| twice(d.broken.iter().map(|(ids, _)| *ids).collect()));
+            .or_else(|| twice(d.broken.iter().map(|(ids, _)| *ids).collect()))
+            .or_else(|| twice(d.bonds.iter().map(|(ids, _)| *ids).collect()));
         if let Some([x, y]) = repeated {
             return Err(DemError::FloeEdit {
                 id,
@@ -304,6 +322,7 @@ impl<F: ExternalForces> World<F> {
         let h = s.floes.insert(d.floe)?;
         put_pairs_back(&mut s.contacts, h, &s.floes, d.contacts);
         put_pairs_back(&mut s.broken, h, &s.floes, d.broken);
+        put_pairs_back(&mut s.bonds, h, &s.floes, d.bonds);
         s.force.insert(h, d.force);
         s.torque.insert(h, d.torque);
         s.external_force.insert(h, d.external_force);

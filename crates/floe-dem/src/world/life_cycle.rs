@@ -54,8 +54,8 @@ impl<F: ExternalForces> World<F> {
     }
 
     /// Floe `h`'s stress from its contacts at the end of the last step
-    /// (not averaged; zero for a prescribed floe), Pa: a scan of the whole
-    /// contact list, for diagnostics.
+    /// and bonds (not averaged; zero for a prescribed floe), Pa: a scan of
+    /// the whole contact and bond lists, for diagnostics.
     pub fn instantaneous_stress(&self, h: usize) -> FloeStress {
         let f = self.state.floes.columns();
         if !f.is_free(h) {
@@ -66,7 +66,14 @@ impl<F: ExternalForces> World<F> {
             .contacts
             .iter()
             .filter(|c| c.a as usize == h || c.b as usize == h);
-        floe_stress::from_contacts(f, h, mine)
+        // Its bonds' moments: the whole list's, for a diagnostic.
+        let mut moments = Vec::new();
+        if self.state.bonds.iter().any(|b| b.formed) {
+            let trig: Vec<(f64, f64)> = f.angle.iter().map(|a| a.sin_cos()).collect();
+            moments.resize(f.len(), [0.0; 3]);
+            crate::pipeline::cohesion::add_bond_moments(f, &trig, &self.state.bonds, &mut moments);
+        }
+        floe_stress::from_contacts(f, h, mine, moments.get(h))
     }
 
     /// The floe stress stage: moves the averages towards the stresses of
@@ -76,10 +83,22 @@ impl<F: ExternalForces> World<F> {
             return;
         };
         let s = &mut self.state;
+        let p = &mut self.pipeline;
+        p.bond_moments.clear();
+        if s.bonds.iter().any(|b| b.formed) {
+            p.bond_moments.resize(s.floes.len(), [0.0; 3]);
+            crate::pipeline::cohesion::add_bond_moments(
+                s.floes.columns(),
+                &p.trig,
+                &s.bonds,
+                &mut p.bond_moments,
+            );
+        }
         floe_stress::update(
             s.floes.columns(),
             &s.contacts,
-            &self.pipeline.gathering,
+            &p.gathering,
+            &p.bond_moments,
             filter.weight(s.dt_s),
             &mut s.floe_stress,
         );

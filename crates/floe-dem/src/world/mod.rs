@@ -4,7 +4,7 @@
 //! This file holds the world's state and the stages of a step; its
 //! methods by job: `edits.rs` (floes added, removed and moved, handles
 //! renumbered), `drivers.rs` (motion schedules, load points, stress
-//! controls), `ghosts.rs` (what a distributed run copies between
+//! controls), `cohesion.rs` (bonds between floes frozen together), `ghosts.rs` (what a distributed run copies between
 //! processes), `life_cycle.rs` (floe stress), `split.rs` (a floe broken
 //! into pieces), `fracture.rs` (the floes a criterion breaks, split).
 //!
@@ -20,7 +20,7 @@
 //! pipeline: floes are added and removed between steps
 //! ([`World::insert_floe`], [`World::remove_floe`],
 //! [`World::insert_detached`]), their velocity, pose and motion set at any
-//! stage. A removed floe takes its contacts and contact memory with it, and
+//! stage. A removed floe takes its contacts, contact memory and bonds with it, and
 //! putting it back restores them: the run continues as if it had never been
 //! taken out.
 //!
@@ -77,6 +77,7 @@ use crate::pipeline::{Pipeline, Stage};
 use crate::state::WorldState;
 use floe_friction::{FrictionLaw, LAW_STATE_SLOTS};
 
+mod cohesion;
 mod drivers;
 mod edits;
 mod fracture;
@@ -104,6 +105,8 @@ pub struct World<F: ExternalForces> {
     forcing_failure: Option<ForcingFailure>,
     /// Fracture after every step (through `Stepper::step`), if on.
     fracturing: Option<crate::fracture::rule::Fracturing>,
+    /// Bonds form and break, if on.
+    cohesion: Option<crate::cohesion::Cohesion>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -197,6 +200,7 @@ impl<F: ExternalForces> World<F> {
             periodicity,
             forcing_failure: None,
             fracturing: None,
+            cohesion: None,
         })
     }
 
@@ -361,6 +365,9 @@ impl<F: ExternalForces> World<F> {
         if changed {
             p.gathering.invalidate();
         }
+        if dt > 0.0 {
+            self.update_bonds();
+        }
     }
 
     /// Third stage: external and contact forces on every floe, and (when
@@ -384,6 +391,7 @@ impl<F: ExternalForces> World<F> {
         };
         p.gathering
             .gather(floes, contacts, &self.forcing, s.time_s, out);
+        crate::pipeline::cohesion::add_bond_forces(&s.bonds, &mut s.force, &mut s.torque);
         boundary_motion::add_load_point_forces(
             &s.floes,
             &s.load_points,

@@ -1,16 +1,18 @@
 //! A floe split into pieces between steps: mass, momentum, angular
 //! momentum, kinetic energy and area kept to round-off, its contacts moved
 //! (with their tangential springs and friction states) to the piece that
-//! holds their contact point.
+//! holds their contact point, its bonds to the piece that holds their
+//! anchor.
 
 use super::World;
+use crate::bonds::Bond;
 use crate::contact_kernel::contact_force_on_b;
 use crate::contacts::ContactRecord;
 use crate::error::DemError;
 use crate::floes::{Floe, Motion};
 use crate::forcing::ExternalForces;
 use crate::geometry::shape::FloeShape;
-use crate::geometry::{cross, perp};
+use crate::geometry::{cross, perp, rotate};
 use crate::Vec2;
 
 use super::edits::DetachedFloe;
@@ -24,7 +26,9 @@ impl<F: ExternalForces> World<F> {
     /// `omega`); the masses are the parent's in proportion to area, so
     /// mass, linear and angular momentum and kinetic energy are the
     /// parent's to round-off. Each contact goes to the piece that holds
-    /// its contact point (or is nearest it), with its friction state; the
+    /// its contact point (or is nearest it), with its friction state, and
+    /// each bond to the piece that holds its anchor, with its age and
+    /// stretch (quiet pairs not yet bonded start again); the
     /// pieces do not touch each other yet, their stresses start at zero,
     /// and the parent's remembered broken contacts are forgotten (the
     /// pair is gone). Their last forces are their contacts' and a share of
@@ -88,10 +92,31 @@ impl<F: ExternalForces> World<F> {
                 shapes[k].1,
             ));
         }
-        // The pieces' last forces: their contacts', and the parent's
+        // Each bond to the piece that holds its anchor.
+        let mut bonded: Vec<Vec<([u64; 2], Bond)>> = vec![Vec::new(); floes.len()];
+        let parent_angle = parent.angle.sin_cos();
+        for ([x, y], bond) in detached.bonds.into_iter().filter(|(_, b)| b.formed) {
+            let parent_is_b = y == id;
+            let other = if parent_is_b { x } else { y };
+            let anchor = if parent_is_b {
+                bond.anchor_b
+            } else {
+                bond.anchor_a
+            };
+            let at = rotate(anchor, parent_angle.1, parent_angle.0);
+            let k = holder(pieces, at);
+            let other_angle = self.state.floes.angle[self.handle(other)?];
+            bonded[k].push(rekey_bond(
+                bond,
+                (parent_is_b, parent.angle),
+                (floes[k].id, at - shapes[k].1),
+                (other, other_angle),
+            ));
+        }
+        // The pieces' last forces: their contacts' and bonds', and the parent's
         // external force shared by mass.
         let share = |f: &Floe| f.mass_kg / parent.mass_kg;
-        for (floe, contacts) in floes.drain(..).zip(moved) {
+        for ((floe, contacts), bonds) in floes.drain(..).zip(moved).zip(bonded) {
             let (mut force, mut torque) = (detached.external_force * share(&floe), 0.0);
             let external_torque = detached.external_torque * share(&floe);
             torque += external_torque;
@@ -104,6 +129,15 @@ impl<F: ExternalForces> World<F> {
                 force += on_this;
                 torque += cross(c.point - arm_origin, on_this);
             }
+            for ([a, _], bond) in &bonds {
+                let (on_this, anchor) = if *a == floe.id {
+                    (-bond.force_on_b, bond.anchor_a)
+                } else {
+                    (bond.force_on_b, bond.anchor_b)
+                };
+                force += on_this;
+                torque += cross(anchor, on_this);
+            }
             self.insert_detached(DetachedFloe {
                 external_force: detached.external_force * share(&floe),
                 external_torque,
@@ -112,6 +146,7 @@ impl<F: ExternalForces> World<F> {
                 floe,
                 contacts,
                 broken: Vec::new(),
+                bonds,
                 stress: None,
             })?;
         }
@@ -174,6 +209,70 @@ fn rekey(
         (record.normal, record.point, record.image_offset) = (-normal, point - offset, -offset);
         ([other, piece.id], record)
     }
+}
+
+/// `bond`, of the parent (at angle `parent_angle`, its `b` if
+/// `parent_was_b`) with floe `other` (at `other_angle`), as a bond of the
+/// piece `piece_id` (at angle 0) whose anchor is `piece_anchor` from the
+/// piece's centroid, named by ids: the smaller id is `a`. The physical
+/// joint is unchanged (the same anchors in the world, normal, stretch and
+/// relative rotation: its energy and loads keep their values), only
+/// expressed in the piece's frame, with the roles swapped when the piece's
+/// id is above `other`.
+fn rekey_bond(
+    mut bond: Bond,
+    (parent_was_b, parent_angle): (bool, f64),
+    (piece_id, piece_anchor): (u64, Vec2),
+    (other, other_angle): (u64, f64),
+) -> ([u64; 2], Bond) {
+    let old_a_angle = if parent_was_b {
+        other_angle
+    } else {
+        parent_angle
+    };
+    let (s, c) = old_a_angle.sin_cos();
+    let normal = rotate(bond.normal_a, c, s);
+    let other_anchor = if parent_was_b {
+        bond.anchor_a
+    } else {
+        bond.anchor_b
+    };
+    // The piece at angle 0 is the parent's material at the parent's angle.
+    let rest = if parent_was_b {
+        bond.rest_angle_rad - parent_angle
+    } else {
+        bond.rest_angle_rad + parent_angle
+    };
+    let piece_is_a = piece_id < other;
+    if piece_is_a != parent_was_b {
+        // Same roles.
+        bond.rest_angle_rad = rest;
+        if piece_is_a {
+            (bond.anchor_a, bond.normal_a) = (piece_anchor, normal);
+        } else {
+            bond.anchor_b = piece_anchor;
+        }
+    } else {
+        // Swapped roles: the normal from the new `a` to the new `b` is the
+        // old one reversed, and the relative rotation changes sign.
+        bond.rest_angle_rad = -rest;
+        (bond.point_a, bond.point_b) = (bond.point_b, bond.point_a);
+        bond.force_on_b = -bond.force_on_b;
+        (bond.torque_on_a, bond.torque_on_b) = (bond.torque_on_b, bond.torque_on_a);
+        if piece_is_a {
+            (bond.anchor_a, bond.anchor_b, bond.normal_a) = (piece_anchor, other_anchor, -normal);
+        } else {
+            let (so, co) = other_angle.sin_cos();
+            (bond.anchor_a, bond.anchor_b) = (other_anchor, piece_anchor);
+            bond.normal_a = rotate(-normal, co, -so);
+        }
+    }
+    let ids = if piece_is_a {
+        [piece_id, other]
+    } else {
+        [other, piece_id]
+    };
+    (ids, bond)
 }
 
 impl<F: ExternalForces> World<F> {

@@ -5,9 +5,11 @@ use super::bytes::ReadResult;
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
-/// Version of the encoding written for a state with the life cycle (floe
-/// stress or a next floe id).
-pub const FORMAT_VERSION: u32 = 8;
+/// Version of the encoding written for a state with bonds.
+pub const FORMAT_VERSION: u32 = 9;
+/// Version written for a state with the life cycle (floe stress or a next
+/// floe id) but no bonds: 9 without its last section.
+pub const WITHOUT_BONDS_VERSION: u32 = 8;
 /// Version written for a state without the life cycle: 8 without its last
 /// section.
 pub const WITHOUT_LIFE_CYCLE_VERSION: u32 = 7;

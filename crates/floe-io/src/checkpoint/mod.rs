@@ -22,15 +22,17 @@
 //! samples per observable), `floes` (the columns), `contacts` (touching
 //! and broken, with their friction states), `clock_and_energy`,
 //! `schedules` (motion schedules and load points), `stress_controls` and
-//! `life_cycle` (floe stress, the next floe id). [`encode`] writes the current format
-//! ([`FORMAT_VERSION`]) for a state with floe stress or a next floe id and
-//! version 7 for one without (the same bytes as before the life cycle
+//! `life_cycle` (floe stress, the next floe id) and `bonds`. [`encode`]
+//! writes the current format ([`FORMAT_VERSION`]) for a state with bonds,
+//! version 8 for one with floe stress or a next floe id but no bonds, and
+//! version 7 for one with neither (the same bytes as before the life cycle
 //! existed); the readers branch on the version
 //! where an older format differs, and read a state without what the format
 //! lacks:
 //!
 //! | version | differs from the next by |
 //! | --- | --- |
+//! | 8 | no bonds |
 //! | 7 | no life cycle (floe stress, next floe id) |
 //! | 6 | a stress-controlled wall's law is its proportional gain alone (no tag, no servo) |
 //! | 5 | no stress-controlled walls |
@@ -42,6 +44,7 @@
 //! tests/data/checkpoints/ holds a frozen checkpoint of each format, which
 //! tests/io/checkpoint_formats.rs reads back.
 
+mod bonds;
 mod bytes;
 mod clock_and_energy;
 mod contacts;
@@ -55,7 +58,7 @@ mod stress_controls;
 pub use counts::OutputCounts;
 pub use header::{
     fnv1a64, verify, FORMAT_VERSION, HEADER_LEN, MAGIC, OLDEST_READABLE_VERSION,
-    WITHOUT_LIFE_CYCLE_VERSION,
+    WITHOUT_BONDS_VERSION, WITHOUT_LIFE_CYCLE_VERSION,
 };
 
 use bytes::{ReadResult, Reader, Writer};
@@ -81,6 +84,7 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
         floes,
         contacts,
         broken,
+        bonds,
         time_s,
         steps,
         dt_s,
@@ -110,7 +114,7 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
     stress_controls::write(w, stress_controls);
     // A state without the life cycle is written as version 7, byte for
     // byte what floe wrote before the life cycle existed.
-    if stress_filter.is_none() && *next_floe_id == 0 {
+    if stress_filter.is_none() && *next_floe_id == 0 && bonds.is_empty() {
         return header::write(&w.bytes, WITHOUT_LIFE_CYCLE_VERSION);
     }
     let life = life_cycle::LifeCycle {
@@ -119,6 +123,10 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
         next_floe_id: *next_floe_id,
     };
     life_cycle::write(w, &life);
+    if bonds.is_empty() {
+        return header::write(&w.bytes, WITHOUT_BONDS_VERSION);
+    }
+    bonds::write(w, bonds);
     header::write(&w.bytes, FORMAT_VERSION)
 }
 
@@ -131,6 +139,7 @@ pub fn estimate_len(state: &WorldState) -> usize {
         + state.contacts.len() * 176
         + state.broken.len() * 48
         + state.floe_stress.len() * 24
+        + state.bonds.len() * 200
 }
 
 /// The state and counts of checkpoint `bytes`, after checking the header,
@@ -160,6 +169,7 @@ pub fn decode(
         floes,
         contacts,
         broken,
+        bonds: Vec::new(),
         time_s,
         steps,
         dt_s,
@@ -179,6 +189,7 @@ pub fn decode(
     let life = life_cycle::read(r)?;
     (state.stress_filter, state.floe_stress, state.next_floe_id) =
         (life.stress_filter, life.floe_stress, life.next_floe_id);
+    state.bonds = bonds::read(r)?;
     if r.unread() != 0 {
         return Err(format!("{} unread bytes after the state", r.unread()));
     }

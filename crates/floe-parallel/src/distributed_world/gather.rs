@@ -32,6 +32,12 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             .filter(|c| self.owned[c.a as usize])
             .map(|c| ([id(c.a), id(c.b)], *c))
             .collect();
+        part.bonds = state
+            .bonds
+            .iter()
+            .filter(|b| self.owned[b.a as usize])
+            .map(|b| ([id(b.a), id(b.b)], *b))
+            .collect();
         // A parked memory is counted by the owner of its lower id, if
         // it is still remembered.
         let memory_s = world.model().memory_s;
@@ -50,7 +56,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let stress_filter = state.stress_filter;
         let mut floe_stress = vec![[0.0; 3]; if stress_filter.is_some() { n } else { 0 }];
         let mut seen = vec![false; n];
-        let (mut contacts, mut broken) = (Vec::new(), Vec::new());
+        let (mut contacts, mut broken, mut bonds) = (Vec::new(), Vec::new(), Vec::new());
         for bytes in parts {
             let p: WholePart = decode(&bytes)?;
             for row in p.rows.chunks_exact(ROW_BYTES) {
@@ -87,6 +93,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             }
             contacts.extend(p.contacts);
             broken.extend(p.broken);
+            bonds.extend(p.bonds);
         }
         if let Some(h) = seen.iter().position(|s| !s) {
             return Err(ParallelError::Wire(format!(
@@ -96,6 +103,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         }
         contacts.sort_unstable_by_key(|(k, _)| *k);
         broken.sort_unstable_by_key(|(k, _)| *k);
+        bonds.sort_unstable_by_key(|(k, _)| *k);
         let rehandle = |[x, y]: [u64; 2]| -> Result<(u32, u32), ParallelError> {
             match (template.handle_of(x), template.handle_of(y)) {
                 (Some(a), Some(b)) => Ok((a as u32, b as u32)),
@@ -118,11 +126,19 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
                 Ok(c)
             })
             .collect::<Result<Vec<_>, ParallelError>>()?;
+        let bonds = bonds
+            .into_iter()
+            .map(|(pair, mut b)| {
+                (b.a, b.b) = rehandle(pair)?;
+                Ok(b)
+            })
+            .collect::<Result<Vec<_>, ParallelError>>()?;
         let d = &self.drivers;
         Ok(Some(WorldState {
             floes: Floes::from_columns(columns)?,
             contacts,
             broken,
+            bonds,
             time_s: state.time_s,
             steps: state.steps,
             dt_s: state.dt_s,
@@ -201,6 +217,7 @@ struct WholePart {
     rows: Vec<u8>,
     contacts: Vec<([u64; 2], ContactRecord)>,
     broken: Vec<([u64; 2], BrokenContact)>,
+    bonds: Vec<([u64; 2], Bond)>,
 }
 
 /// Floe `h`'s row: id, position, angle, velocity, angular velocity,

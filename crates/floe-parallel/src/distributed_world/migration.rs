@@ -1,5 +1,5 @@
 //! Migration: every owned floe handed to the processes that hold it from
-//! now on, with its contacts and its broken contacts' memory, each
+//! now on, with its contacts, its broken contacts' memory and its bonds, each
 //! process's world rebuilt from what it receives, and a new cut of the
 //! domain when the work is out of balance.
 
@@ -20,10 +20,12 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let mut migrants: Vec<Migrant> = Vec::new();
         let mut contacts = Vec::new();
         let mut broken = Vec::new();
+        let mut bonds = Vec::new();
         for p in incoming {
             migrants.extend(p.floes);
             contacts.extend(p.contacts);
             broken.extend(p.broken);
+            bonds.extend(p.bonds);
         }
         migrants.sort_by_key(|m| m.floe.id);
         migrants.dedup_by_key(|m| m.floe.id);
@@ -41,6 +43,16 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             .collect();
         local_contacts.sort_by_key(|c| (c.a, c.b));
         local_contacts.dedup_by_key(|c| (c.a, c.b));
+        // Bonds of floes both here, by pair, as the contacts.
+        let mut local_bonds: Vec<Bond> = bonds
+            .into_iter()
+            .filter_map(|([x, y], mut b)| {
+                (b.a, b.b) = (handle(x)? as u32, handle(y)? as u32);
+                Some(b)
+            })
+            .collect();
+        local_bonds.sort_by_key(|b| (b.a, b.b));
+        local_bonds.dedup_by_key(|b| (b.a, b.b));
         // Broken contacts: here if both floes are, kept aside for an owned
         // floe whose partner is elsewhere, dropped once forgotten.
         let remembered = |c: &BrokenContact| clock.time_s - c.broke_at_s <= model.memory_s;
@@ -121,6 +133,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let state = WorldState {
             contacts: local_contacts,
             broken: local_broken,
+            bonds: local_bonds,
             time_s: clock.time_s,
             steps: clock.steps,
             dt_s: clock.dt_s,
@@ -151,6 +164,9 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         self.reference = (0..f.len()).map(|h| (f.position[h], f.angle[h])).collect();
         let mut world = World::resume(state, model, forcing, periodicity)?;
         world.set_ghosts(owned.iter().map(|&o| !o).collect())?;
+        if self.cohesion.is_some() {
+            world.set_cohesion(self.cohesion)?;
+        }
         let f = world.floes();
         let free = |h: &usize| f.is_free(*h);
         self.stats.owned = (0..owned.len()).filter(free).filter(|&h| owned[h]).count();
@@ -207,6 +223,13 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             for end in [c.a, c.b].into_iter().filter(|&e| self.owned[e as usize]) {
                 for &r in &holders_of[end as usize] {
                     packets[r].broken.push(([id(c.a), id(c.b)], *c));
+                }
+            }
+        }
+        for b in &state.bonds {
+            for end in [b.a, b.b].into_iter().filter(|&e| self.owned[e as usize]) {
+                for &r in &holders_of[end as usize] {
+                    packets[r].bonds.push(([id(b.a), id(b.b)], *b));
                 }
             }
         }

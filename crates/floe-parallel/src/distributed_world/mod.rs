@@ -21,6 +21,8 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use floe_dem::bonds::Bond;
+use floe_dem::cohesion::Cohesion;
 use floe_dem::contact_model::ContactModel;
 use floe_dem::contacts::{BrokenContact, ContactRecord};
 use floe_dem::decomposition::Decomposition;
@@ -270,6 +272,8 @@ pub struct DistributedWorld<F: ExternalForces, C: Communicator> {
     /// Fracture after every step, if on (kept here: each migration
     /// rebuilds the local world).
     fracturing: Option<Fracturing>,
+    /// Bonds form and break, if on (kept here for the same reason).
+    cohesion: Option<Cohesion>,
 }
 
 impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
@@ -326,6 +330,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             whole_floes: None,
             stats: DecompositionStats::default(),
             fracturing: None,
+            cohesion: None,
         };
         let packets = match &whole {
             Some(state) => this.scatter_packets(state),
@@ -364,6 +369,11 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
                 packets[r].contacts.push(([id(c.a), id(c.b)], *c));
             }
         }
+        for b in &state.bonds {
+            for r in both(b.a, b.b) {
+                packets[r].bonds.push(([id(b.a), id(b.b)], *b));
+            }
+        }
         for c in &state.broken {
             let mut ranks: Vec<usize> = both(c.a, c.b).collect();
             ranks.extend([placed[c.a as usize].0, placed[c.b as usize].0]);
@@ -379,6 +389,14 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
     /// The halo's skin the settings ask for, m.
     fn base_skin_m(&self) -> f64 {
         self.settings.skin_fraction * self.largest_radius_m
+    }
+
+    /// Bonds form and break from the next step on, as
+    /// [`World::set_cohesion`], on every process (`None` drops them).
+    pub fn set_cohesion(&mut self, cohesion: Option<Cohesion>) -> Result<(), ParallelError> {
+        self.local_mut().set_cohesion(cohesion)?;
+        self.cohesion = cohesion;
+        Ok(())
     }
 
     /// This process's part of the world: its floes and their ghosts.

@@ -1,0 +1,207 @@
+//! The cohesion stage (when on): bonds formed from contacts that stayed
+//! quiet long enough, every bond's forces at the drifted positions and
+//! half-step velocities, and the bonds whose load exceeds the strength of
+//! their age broken, their stored energy counted as released. Runs after
+//! the narrow phase; the force gathering then adds the bonds' forces in
+//! bond order ([`add_bond_forces`]), after each floe's contacts, so the
+//! sums are the same for any thread count and any split over processes.
+
+use rayon::prelude::*;
+
+use crate::bond_kernel::{evaluate_bond, form_bond, BondEnd};
+use crate::bonds::Bond;
+use crate::cohesion::Cohesion;
+use crate::contact_kernel::Body;
+use crate::contact_model::ContactModel;
+use crate::contacts::ContactRecord;
+use crate::exact_sum::ExactSum;
+use crate::floes::FloeColumns;
+use crate::geometry::rotate;
+use crate::periodicity::Periodicity;
+use crate::Vec2;
+
+use super::energy_accounting::counted_here;
+
+/// What the cohesion stage reads.
+pub(crate) struct CohesionInput<'a> {
+    pub(crate) cohesion: &'a Cohesion,
+    pub(crate) model: &'a ContactModel,
+    pub(crate) damping_ratio: f64,
+    pub(crate) floes: &'a FloeColumns,
+    pub(crate) trig: &'a [(f64, f64)],
+    pub(crate) periodicity: Periodicity,
+    pub(crate) contacts: &'a [ContactRecord],
+    /// Simulated time at the end of the step, s.
+    pub(crate) time_s: f64,
+    /// Per floe, whether it is another process's (empty: none is).
+    pub(crate) ghost: &'a [bool],
+}
+
+/// This process's energy sums of the bonds over a step.
+#[derive(Debug, Default, Clone)]
+pub(crate) struct BondPower {
+    /// Dissipated by the bonds' dashpots, W.
+    pub(crate) damping_w: ExactSum,
+    /// Put in by prescribed floes (land, walls) through bonds, W.
+    pub(crate) boundary_w: ExactSum,
+    /// Stored in the bonds that broke this step, J.
+    pub(crate) released_j: ExactSum,
+}
+
+/// Floe `h` as the bond kernel sees it, at `offset` (an image of it).
+fn end(f: &FloeColumns, trig: &[(f64, f64)], h: usize, offset: Vec2) -> BondEnd {
+    BondEnd {
+        body: Body {
+            position: f.position[h] + offset,
+            velocity: f.velocity[h],
+            angular_velocity: f.angular_velocity[h],
+            mass_kg: f.mass_kg[h],
+            thickness_m: f.thickness_m[h],
+            area_m2: f.area_m2[h],
+            free: f.is_free(h),
+        },
+        angle_rad: f.angle[h],
+        sin_cos: trig[h],
+        inertia_kg_m2: f.inertia_kg_m2[h],
+    }
+}
+
+/// The relative speed of `c`'s floes at its contact point, m/s.
+fn contact_speed(f: &FloeColumns, c: &ContactRecord) -> f64 {
+    let (a, b) = (c.a as usize, c.b as usize);
+    let at = |h: usize, centroid: Vec2| {
+        f.velocity[h] + crate::geometry::perp(c.point - centroid) * f.angular_velocity[h]
+    };
+    (at(b, f.position[b] + c.image_offset) - at(a, f.position[a])).length()
+}
+
+/// Updates `bonds` for the step: candidates from the quiet contacts,
+/// bonds formed, every bond evaluated, the overloaded broken. Returns the
+/// number broken; adds the step's energies to `power`.
+pub(crate) fn update_bonds(
+    input: &CohesionInput<'_>,
+    bonds: &mut Vec<Bond>,
+    scratch: &mut Vec<Bond>,
+    power: &mut BondPower,
+) -> usize {
+    let f = input.floes;
+    let cohesion = input.cohesion;
+    let t = input.time_s;
+    // Candidates and formations: a walk over the contacts and the bonds,
+    // both sorted by pair.
+    scratch.clear();
+    let mut old = bonds.iter().peekable();
+    for c in input.contacts {
+        let key = (c.a, c.b);
+        while let Some(b) = old.next_if(|b| (b.a, b.b) < key) {
+            if b.formed {
+                scratch.push(*b);
+            }
+        }
+        let previous = old.next_if(|b| (b.a, b.b) == key).copied();
+        if let Some(b) = previous.filter(|b| b.formed) {
+            scratch.push(b);
+            continue;
+        }
+        let (ha, hb) = (c.a as usize, c.b as usize);
+        if !(f.is_free(ha) || f.is_free(hb)) || contact_speed(f, c) >= cohesion.quiet_speed_m_per_s
+        {
+            continue;
+        }
+        let candidate = previous.unwrap_or(Bond::candidate(c.a, c.b, t));
+        if t - candidate.quiet_since_s >= cohesion.bond_after_s {
+            let (ea, eb) = (
+                end(f, input.trig, ha, Vec2::ZERO),
+                end(f, input.trig, hb, c.image_offset),
+            );
+            scratch.push(form_bond(input.model, &candidate, c, &ea, &eb, t));
+        } else {
+            scratch.push(candidate);
+        }
+    }
+    scratch.extend(old.filter(|b| b.formed));
+    std::mem::swap(bonds, scratch);
+
+    // Every bond's forces, then the breaks.
+    bonds.par_iter_mut().filter(|b| b.formed).for_each(|bond| {
+        let (ha, hb) = (bond.a as usize, bond.b as usize);
+        let offset = input
+            .periodicity
+            .nearest_image(f.position[ha], f.position[hb]);
+        let (ea, eb) = (
+            end(f, input.trig, ha, Vec2::ZERO),
+            end(f, input.trig, hb, offset),
+        );
+        evaluate_bond(input.model, input.damping_ratio, &ea, &eb, bond);
+    });
+    let before = bonds.len();
+    bonds.retain(|bond| {
+        if !bond.formed {
+            return true;
+        }
+        let counted = counted_here(input.ghost, bond.a);
+        let strength = cohesion.strength_fraction(bond.age_s(t));
+        let broken = bond.tension_n_per_m > strength * cohesion.tensile_strength_n_per_m
+            || bond.shear_n_per_m > strength * cohesion.shear_strength_n_per_m;
+        if counted {
+            if broken {
+                power.released_j.add(bond.energy_j);
+            } else {
+                power.damping_w.add(bond.damping_power_w);
+                add_boundary_power(f, bond, &mut power.boundary_w);
+            }
+        }
+        !broken
+    });
+    before - bonds.len()
+}
+
+/// The power a prescribed floe puts into the ice through `bond`, W:
+/// minus the power of the bond's force and torque on it.
+fn add_boundary_power(f: &FloeColumns, bond: &Bond, sum: &mut ExactSum) {
+    let (a, b) = (bond.a as usize, bond.b as usize);
+    if !f.is_free(a) {
+        sum.add(bond.force_on_b.dot(f.velocity[a]) - bond.torque_on_a * f.angular_velocity[a]);
+    }
+    if !f.is_free(b) {
+        sum.add(-bond.force_on_b.dot(f.velocity[b]) - bond.torque_on_b * f.angular_velocity[b]);
+    }
+}
+
+/// Adds every formed bond's force and torques to its floes', in bond order.
+pub(crate) fn add_bond_forces(bonds: &[Bond], force: &mut [Vec2], torque: &mut [f64]) {
+    for bond in bonds.iter().filter(|b| b.formed) {
+        let (a, b) = (bond.a as usize, bond.b as usize);
+        force[a] -= bond.force_on_b;
+        force[b] += bond.force_on_b;
+        torque[a] += bond.torque_on_a;
+        torque[b] += bond.torque_on_b;
+    }
+}
+
+/// Adds every formed bond's Love-Weber moment (its force on the floe
+/// times the arm from the centroid to its anchor, unnormalised, `[xx, xy
+/// + yx, yy]` as [`super::floe_stress`] sums them) to its free floes'
+/// entries of `moments`, in bond order.
+pub(crate) fn add_bond_moments(
+    f: &FloeColumns,
+    trig: &[(f64, f64)],
+    bonds: &[Bond],
+    moments: &mut [[f64; 3]],
+) {
+    for bond in bonds.iter().filter(|b| b.formed) {
+        let (a, b) = (bond.a as usize, bond.b as usize);
+        let arm = |h: usize, anchor: Vec2| rotate(anchor, trig[h].1, trig[h].0);
+        for (h, force, arm) in [
+            (a, -bond.force_on_b, arm(a, bond.anchor_a)),
+            (b, bond.force_on_b, arm(b, bond.anchor_b)),
+        ] {
+            if f.is_free(h) {
+                let m = &mut moments[h];
+                m[0] += force.x * arm.x;
+                m[1] += force.x * arm.y + force.y * arm.x;
+                m[2] += force.y * arm.y;
+            }
+        }
+    }
+}
