@@ -99,6 +99,13 @@ fn floes_break_on_two_and_three_processes_as_on_one_and_resume_across_counts() {
         .unwrap()
         .len();
     assert!(broke > 30, "floes broke ({broke})");
+    // And froze together: bonds migrate and are gathered with their floes.
+    let bonds = RunFile::open(Path::new(&case.path("alone.h5")))
+        .unwrap()
+        .observable("bonds")
+        .unwrap()
+        .value;
+    assert!(bonds.iter().any(|&b| b > 100.0), "bonds: {bonds:?}");
     for np in [2, 3] {
         let name = format!("np{np}.h5");
         let out = case.run_with(Launch::Mpi(np), &name, &["--threads", "1"]);

@@ -178,6 +178,10 @@ fn a_run_with_floe_stress_writes_it_with_every_snapshot_and_resumes_bitwise() {
     plain.run_ok("plain.h5", &["--max-steps", "20"]);
     let plain = RunFile::open(Path::new(&plain.path("plain.h5"))).unwrap();
     assert!(!plain.has_floe_stress() && plain.floe_stress(0).unwrap().is_none());
+    assert!(
+        plain.observable("bonds").is_err(),
+        "no bonds without cohesion"
+    );
 }
 
 #[test]
@@ -236,6 +240,12 @@ fn floes_break_keeping_their_mass_and_a_paused_run_resumes_bitwise() {
             );
         }
     }
+    // Floes froze together too (cohesion), and bonds count in the file.
+    let bonds = f.observable("bonds").unwrap().value;
+    assert!(
+        bonds.iter().copied().fold(0.0, f64::max) > 100.0,
+        "bonds: {bonds:?}"
+    );
     let last = f.floes_at(n - 1).unwrap();
     let mut born: Vec<u64> = log.iter().flat_map(|e| e.piece_ids.clone()).collect();
     born.retain(|id| !log.iter().any(|e| e.parent_id == *id));

@@ -1464,6 +1464,65 @@ fn floe_stress_takes_a_positive_time_scale_and_nothing_else() {
 }
 
 #[test]
+fn cohesion_tables_are_checked_key_by_key() {
+    let with = |table: &str| format!("{BASE}\n[cohesion]\n{table}\n");
+    check(
+        &with("quiet_speed_m_per_s = 0.0"),
+        "quiet_speed_m_per_s = 0.0",
+        22,
+        "cohesion.quiet_speed_m_per_s",
+        &["> 0"],
+    );
+    for key in [
+        "bond_after_s",
+        "tensile_strength_n_per_m",
+        "shear_strength_n_per_m",
+        "growth_time_s",
+    ] {
+        let text = with(&format!("{key} = -1.0"));
+        check(&text, "-1.0", 0, &format!("cohesion.{key}"), &[">= 0"]);
+        let text = with(&format!("{key} = nan"));
+        check(&text, "nan", 0, &format!("cohesion.{key}"), &[]);
+    }
+    check(
+        &with("tensile_strength = 1e4"),
+        "tensile_strength",
+        0,
+        "tensile_strength",
+        &["unknown field"],
+    );
+    check(
+        &with("bond_after_s = \"1 h\""),
+        "\"1 h\"",
+        0,
+        "bond_after_s",
+        &[],
+    );
+    // The table alone: the defaults, reported.
+    let setup = Scenario::from_text(&with(""), Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert_eq!(
+        setup.world.cohesion(),
+        Some(floe_dem::cohesion::Cohesion::default())
+    );
+    assert!(
+        setup
+            .report
+            .iter()
+            .any(|l| l.contains("cohesion: contacts slower than 1e-4 m/s for 3600 s")),
+        "{:?}",
+        setup.report
+    );
+    let plain = Scenario::from_text(BASE, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert!(plain.world.cohesion().is_none());
+}
+
+#[test]
 fn fracture_tables_are_checked_key_by_key() {
     let with = |table: &str| format!("{BASE}\n[fracture]\n{table}\n");
     check(

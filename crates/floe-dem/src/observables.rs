@@ -36,6 +36,9 @@ pub struct Observables {
     /// zero without load points): the force a spring-driven block is
     /// pushed with.
     pub load_point_force_n: [f64; 2],
+    /// Number of bonds (floes frozen together; quiet pairs not yet bonded
+    /// not counted).
+    pub bonds: usize,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -84,6 +87,7 @@ impl<F: ExternalForces> World<F> {
             normal_sum += c.normal_force_n;
         }
         for b in self.bonds().iter().filter(|b| b.formed) {
+            o.bonds += 1;
             o.contact_energy_j += b.energy_j;
             // A bond's force acts at its anchors.
             let arm = |h: usize, anchor| {

@@ -106,6 +106,10 @@ pub fn observable_samples(
     ]
 }
 
+/// The observable written beside [`observable_samples`]'s when the run
+/// has cohesion: the number of bonds.
+pub const BONDS_OBSERVABLE: &str = "bonds";
+
 /// `/parameters` attribute: FNV-1a 64 checksum of `scenario_toml` as
 /// written at creation, checked on resume.
 pub const SCENARIO_CHECKSUM: &str = "scenario_checksum";

@@ -61,6 +61,9 @@ pub struct OutputOptions {
     /// Write each floe's time-averaged stress with every snapshot
     /// (`/particles/floes/stress`); the world must compute it. Default false.
     pub floe_stress: bool,
+    /// Write the number of bonds (floes frozen together) with the
+    /// observables (`/observables/bonds`). Default false.
+    pub bonds: bool,
 }
 
 impl Default for OutputOptions {
@@ -69,6 +72,7 @@ impl Default for OutputOptions {
             deflate_level: 4,
             shuffle: true,
             floe_stress: false,
+            bonds: false,
         }
     }
 }

@@ -70,7 +70,8 @@ pub struct RunWriter {
     /// The fracture event log, from the first event on.
     fractures: Option<FractureLog>,
     contacts: ContactTables,
-    /// In [`layout::observable_samples`] order.
+    /// In [`layout::observable_samples`] order, then
+    /// [`layout::BONDS_OBSERVABLE`] if the run has cohesion.
     observables: Vec<(String, Element)>,
     next_slot: usize,
     /// Observable samples not yet written.
@@ -264,6 +265,10 @@ impl RunWriter {
                     name.to_string(),
                     create_observable(&g, name, unit, values.len())?,
                 ));
+            }
+            if opts.bonds {
+                let name = layout::BONDS_OBSERVABLE;
+                v.push((name.to_string(), create_observable(&g, name, "1", 1)?));
             }
             Ok(v)
         })()
@@ -486,10 +491,14 @@ impl RunWriter {
             .map(|(_, o)| layout::observable_samples(o))
             .collect();
         for (k, (name, el)) in self.observables.iter_mut().enumerate() {
-            let values: Vec<f64> = samples
-                .iter()
-                .flat_map(|s| s[k].2.iter().copied())
-                .collect();
+            let values: Vec<f64> = if name == layout::BONDS_OBSERVABLE {
+                self.pending.iter().map(|(_, o)| o.bonds as f64).collect()
+            } else {
+                samples
+                    .iter()
+                    .flat_map(|s| s[k].2.iter().copied())
+                    .collect()
+            };
             (|| -> hdf5::Result<()> {
                 el.step.append(&steps)?;
                 el.time.append(&times)?;
@@ -664,6 +673,7 @@ impl RunWriter {
         })()
         .at(path, what)?;
         let og = file.group(layout::OBSERVABLES).at(path, what)?;
+        let og_has_bonds = og.link_exists(layout::BONDS_OBSERVABLE);
         let mut observables = Vec::new();
         for (name, unit, values) in layout::observable_samples(&Observables::default()) {
             // A file from a floe without this observable gets it now: its
@@ -674,6 +684,10 @@ impl RunWriter {
                 create_observable(&og, name, unit, values.len())
             };
             observables.push((name.to_string(), el.at(path, what)?));
+        }
+        if og_has_bonds {
+            let el = Element::open(&og, layout::BONDS_OBSERVABLE).at(path, what)?;
+            observables.push((layout::BONDS_OBSERVABLE.to_string(), el));
         }
         // Truncate to the checkpoint's counts; refuse counts the file does
         // not reach (the checkpoint would describe output that is not there).
@@ -763,6 +777,7 @@ impl RunWriter {
                     deflate_level: if contacts.pad { 4 } else { 0 },
                     shuffle: contacts.pad,
                     floe_stress: state.stress_filter.is_some(),
+                    bonds: og_has_bonds,
                 },
                 land_ids,
                 fractures,

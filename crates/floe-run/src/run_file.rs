@@ -198,6 +198,7 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         let (mut writer, state) = reopen(args, &scenario, hooks)?;
         let mut world = World::resume(state, parts.model, parts.forcing, parts.periodicity)?;
         world.set_fracturing(scenario.fracturing(world.dt_s()))?;
+        world.set_cohesion(scenario.cohesion())?;
         advance(
             &scenario,
             &mut world,
@@ -270,6 +271,7 @@ pub(crate) fn create_writer(
         setup.world.floes(),
         &OutputOptions {
             floe_stress: setup.world.stress_filter().is_some(),
+            bonds: setup.world.cohesion().is_some(),
             ..OutputOptions::default()
         },
     )?;

@@ -59,6 +59,22 @@ pub(crate) fn describe_forcing(fo: &Forcing) -> String {
     )
 }
 
+/// The cohesion line of the build report.
+pub(crate) fn describe_cohesion(c: &floe_dem::cohesion::Cohesion) -> String {
+    let growth = if c.growth_time_s > 0.0 {
+        format!(", growing as 1 - exp(-age / {} s)", sig(c.growth_time_s))
+    } else {
+        ", at full strength at once".into()
+    };
+    format!(
+        "  cohesion: contacts slower than {} m/s for {} s freeze into bonds of up to {} N/m in tension and {} N/m in shear{growth}",
+        sig(c.quiet_speed_m_per_s),
+        sig(c.bond_after_s),
+        sig(c.tensile_strength_n_per_m),
+        sig(c.shear_strength_n_per_m),
+    )
+}
+
 /// The fracture line of the build report.
 pub(crate) fn describe_fracture(f: &Fracturing, dt_s: f64) -> String {
     use floe_dem::fracture::criteria::FractureCriterion;

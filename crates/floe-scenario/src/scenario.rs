@@ -20,7 +20,9 @@ use floe_friction::LawRegistry;
 
 use crate::build;
 use crate::checks;
-use crate::describe::{describe_contact, describe_forcing, describe_fracture, describe_thickness};
+use crate::describe::{
+    describe_cohesion, describe_contact, describe_forcing, describe_fracture, describe_thickness,
+};
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
 use crate::gridded_inputs::InputFile;
@@ -299,6 +301,10 @@ impl Scenario {
             world.set_fracturing(Some(fracturing))?;
             report.push(describe_fracture(&fracturing, dt_s));
         }
+        if let Some(cohesion) = r.cohesion {
+            world.set_cohesion(Some(cohesion))?;
+            report.push(describe_cohesion(&cohesion));
+        }
         if let Some(filter) = world.stress_filter() {
             report.push(format!(
                 "  floe stress: each floe's, from its contacts, averaged over {} s",
@@ -354,6 +360,11 @@ impl Scenario {
             forcing: r.forcing.clone(),
             periodicity: r.domain.periodicity(),
         }
+    }
+
+    /// Cohesion as the run applies it (`[cohesion]`; `None` without).
+    pub fn cohesion(&self) -> Option<floe_dem::cohesion::Cohesion> {
+        self.resolved.cohesion
     }
 
     /// Fracture as the run applies it at time step `dt_s` (`[fracture]`;

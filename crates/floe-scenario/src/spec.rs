@@ -55,6 +55,19 @@ pub(crate) struct RawScenario {
     pub floe_stress: Option<Spanned<RawFloeStress>>,
     /// `[fracture]`: floes that break when their stress leaves a criterion.
     pub fracture: Option<Spanned<RawFracture>>,
+    /// `[cohesion]`: floes that freeze together.
+    pub cohesion: Option<Spanned<RawCohesion>>,
+}
+
+/// `[cohesion]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawCohesion {
+    pub quiet_speed_m_per_s: Num,
+    pub bond_after_s: Num,
+    pub tensile_strength_n_per_m: Num,
+    pub shear_strength_n_per_m: Num,
+    pub growth_time_s: Num,
 }
 
 /// `[fracture]`: which keys apply depends on `criterion`.

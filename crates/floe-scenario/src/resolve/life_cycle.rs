@@ -1,5 +1,7 @@
-//! `[floe_stress]` and `[fracture]`: the floe life cycle's settings.
+//! `[floe_stress]`, `[fracture]` and `[cohesion]`: the floe life cycle's
+//! settings.
 
+use floe_dem::cohesion::Cohesion;
 use floe_dem::fracture::criteria::{FractureCriterion, HiblerEllipse, MohrCoulomb};
 use floe_dem::fracture::rule::StrengthThickness;
 use floe_dem::pipeline::floe_stress::StressFilter;
@@ -8,7 +10,7 @@ use toml::Spanned;
 use crate::error::ScenarioError;
 use crate::resolve::limits::{count, refuse_given, span_of};
 use crate::source_file::SourceFile;
-use crate::spec::{RawFloeStress, RawFracture};
+use crate::spec::{RawCohesion, RawFloeStress, RawFracture};
 
 /// Smallest floe that breaks unless given, m^2: the anchors' smallest
 /// floe (Subzero.jl `FloeSettings.min_floe_area`).
@@ -62,6 +64,41 @@ pub(crate) fn resolve_floe_stress(
             time_scale_s: f.positive(t, "floe_stress.time_scale_s")?,
         },
         None => StressFilter::default(),
+    }))
+}
+
+/// `[cohesion]`, if given: each value checked (the quiet speed > 0, the
+/// others >= 0), the rest [`Cohesion::default`]'s.
+pub(crate) fn resolve_cohesion(
+    f: &SourceFile,
+    raw: Option<&Spanned<RawCohesion>>,
+) -> Result<Option<Cohesion>, ScenarioError> {
+    let Some(raw) = raw else {
+        return Ok(None);
+    };
+    let r = raw.get_ref();
+    let d = Cohesion::default();
+    let non_negative = |v: &Option<Spanned<f64>>, key: &str, default: f64| match v {
+        Some(x) => f.non_negative(x, &format!("cohesion.{key}")),
+        None => Ok(default),
+    };
+    Ok(Some(Cohesion {
+        quiet_speed_m_per_s: match &r.quiet_speed_m_per_s {
+            Some(x) => f.positive(x, "cohesion.quiet_speed_m_per_s")?,
+            None => d.quiet_speed_m_per_s,
+        },
+        bond_after_s: non_negative(&r.bond_after_s, "bond_after_s", d.bond_after_s)?,
+        tensile_strength_n_per_m: non_negative(
+            &r.tensile_strength_n_per_m,
+            "tensile_strength_n_per_m",
+            d.tensile_strength_n_per_m,
+        )?,
+        shear_strength_n_per_m: non_negative(
+            &r.shear_strength_n_per_m,
+            "shear_strength_n_per_m",
+            d.shear_strength_n_per_m,
+        )?,
+        growth_time_s: non_negative(&r.growth_time_s, "growth_time_s", d.growth_time_s)?,
     }))
 }
 
