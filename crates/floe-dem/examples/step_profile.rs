@@ -1,7 +1,8 @@
 //! Where a DEM step's time goes (docs/performance.md):
-//! `cargo run --release -p floe-dem --example step_profile -- 10000 [amontons|rate-state] [threads] [steps] [stress]`
+//! `cargo run --release -p floe-dem --example step_profile -- 10000 [amontons|rate-state] [threads] [steps] [stress|cohesion]`
 //! prints the time per step and a fingerprint of the final state (`stress`:
-//! with floe stress on, the default average);
+//! with floe stress on, the default average; `cohesion`: every contact
+//! bonded at once, none breaking);
 //! `... --example step_profile -- full [threads]` only the fingerprint of a
 //! run with walls, forcing and contact memory (see `full_scenario`).
 use floe_fixtures::channel as channel_pack;
@@ -22,8 +23,20 @@ fn main() {
         };
         eprintln!("rayon threads in use: {}", rayon::current_num_threads());
         let mut w = channel_pack::sheared_channel_with(n, model);
-        if std::env::args().nth(5).as_deref() == Some("stress") {
-            w.set_stress_filter(Some(Default::default()));
+        match std::env::args().nth(5).as_deref() {
+            Some("stress") => w.set_stress_filter(Some(Default::default())),
+            // Every contact bonds at once and no bond breaks: cohesion's
+            // most work per contact.
+            Some("cohesion") => w
+                .set_cohesion(Some(floe_dem::cohesion::Cohesion {
+                    quiet_speed_m_per_s: 1e3,
+                    bond_after_s: 0.0,
+                    tensile_strength_n_per_m: 1e15,
+                    shear_strength_n_per_m: 1e15,
+                    growth_time_s: 0.0,
+                }))
+                .expect("valid cohesion"),
+            _ => {}
         }
         let r0 = w.broad_phase().rebuilds;
         let t = std::time::Instant::now();
