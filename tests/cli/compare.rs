@@ -356,3 +356,34 @@ fn a_sweep_over_a_bad_key_names_it() {
         assert!(!err.contains("panicked"));
     }
 }
+
+/// A scenario whose floes break: the report gives each law's floe count
+/// and sizes at the start and the end (the fitted exponent when one fits),
+/// and only then.
+#[test]
+fn compare_reports_the_floe_sizes_when_floes_break() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenario = dir.path().join("breaks.toml");
+    std::fs::write(&scenario, include_str!("../data/run_fracture.toml")).unwrap();
+    let out = dir.path().join("cmp");
+    let (s, o) = (scenario.display().to_string(), out.display().to_string());
+    ok(&["compare", &s, "-o", &o, "--quiet"]);
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let sizes = report.split("## Floe sizes").nth(1).expect("a size section");
+    for law in ["amontons", "rate", "rate-state"] {
+        let f = RunFile::open(&out.join(format!("{law}.h5"))).unwrap();
+        let n = f.snapshot_count().unwrap();
+        let free = |k: usize| {
+            let floes = f.floes_at(k).unwrap();
+            floes.prescribed.iter().filter(|p| !**p).count()
+        };
+        let row = format!("| {law} | {} -> {} |", free(0), free(n - 1));
+        assert!(free(n - 1) > free(0) && sizes.contains(&row), "{row}\n{sizes}");
+    }
+    // Floes that never break: no such section.
+    let (dir2, small) = setup();
+    let o2 = dir2.path().join("cmp").display().to_string();
+    ok(&["compare", &small, "-o", &o2, "--quiet"]);
+    let plain = std::fs::read_to_string(dir2.path().join("cmp/report.md")).unwrap();
+    assert!(!plain.contains("## Floe sizes"));
+}

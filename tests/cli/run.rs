@@ -263,12 +263,22 @@ fn floes_break_keeping_their_mass_and_a_paused_run_resumes_bitwise() {
         "{}",
         text(&info.stdout)
     );
-    let out = Launch::Alone
-        .command()
-        .args(["render", &case.path("whole.h5"), "-o", &case.path("frames")])
-        .output()
-        .unwrap();
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let info = text(&info.stdout);
+    assert!(
+        info.contains("floe sizes")
+            && info.contains("at the last snapshot: ")
+            && info.contains("fractures"),
+        "{info}"
+    );
+    for colour in ["speed", "generation"] {
+        let out = Launch::Alone
+            .command()
+            .args(["render", &case.path("whole.h5"), "-o", &case.path("frames")])
+            .args(["--color", colour, "--force"])
+            .output()
+            .unwrap();
+        assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    }
 }
 
 #[test]

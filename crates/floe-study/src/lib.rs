@@ -12,6 +12,7 @@ pub mod cadence;
 mod cell_study;
 pub mod compare;
 pub mod double_shear_protocol;
+pub mod floe_sizes;
 pub mod grid_output;
 pub mod pack_friction;
 pub mod partial_file;

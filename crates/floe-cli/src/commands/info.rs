@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use floe_io::RunFile;
 use floe_scenario::numbers::{parameter, significant};
+use floe_study::floe_sizes;
 
 use crate::CliError;
 use floe_dem::run::format_sim_time;
@@ -71,7 +72,7 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
         0 => None,
         k => Some(run.floes_at(k - 1)?).filter(|last| last.id != floes.id),
     };
-    let broke = now.map_or(String::new(), |last| {
+    let broke = now.as_ref().map_or(String::new(), |last| {
         format!("; {} at the last snapshot (floes broke)", last.len())
     });
     line(
@@ -128,6 +129,33 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
                 c.pair.len()
             ),
         );
+        // The size distribution, at the start and (if floes broke) at the end.
+        let sizes = |k: usize| -> Result<Option<String>, floe_io::IoError> {
+            let (floes, time_s) = (run.floes_at(k)?, run.snapshot(k)?.time_s);
+            let areas: Vec<f64> = (0..floes.id.len())
+                .filter(|&i| !floes.prescribed[i])
+                .map(|i| floes.area_m2[i])
+                .collect();
+            Ok(floe_sizes::of_areas(time_s, &areas).map(|s| floe_sizes::describe(&s)))
+        };
+        if let Some(first) = sizes(0)? {
+            line("floe sizes", first);
+        }
+        if now.is_some() {
+            if let Some(last) = sizes(snapshots - 1)? {
+                line("", format!("at the last snapshot: {last}"));
+            }
+            let log = run.fractures()?;
+            let splits = log.iter().filter(|e| !e.piece_ids.is_empty()).count();
+            line(
+                "fractures",
+                format!(
+                    "{splits} floes broke into {} pieces; {} stayed whole (no split fitted)",
+                    log.iter().map(|e| e.piece_ids.len()).sum::<usize>(),
+                    log.len() - splits
+                ),
+            );
+        }
     } else {
         line("snapshots", "none".into());
     }

@@ -58,6 +58,8 @@ pub enum Colour {
     Theta,
     /// Floe pressure from its contact forces, N/m (compression positive).
     Stress,
+    /// How many times the floe's ancestry broke (0: a floe of the start).
+    Generation,
 }
 
 impl From<Colour> for ColourBy {
@@ -66,6 +68,7 @@ impl From<Colour> for ColourBy {
             Colour::Speed => ColourBy::Speed,
             Colour::Theta => ColourBy::Theta,
             Colour::Stress => ColourBy::Stress,
+            Colour::Generation => ColourBy::Generation,
         }
     }
 }

@@ -20,7 +20,7 @@ use crate::geometry::rotate;
 use crate::periodicity::Periodicity;
 use crate::Vec2;
 
-use super::energy_accounting::counted_here;
+use super::energy_accounting::{counted_here, BondPower};
 
 /// What the cohesion stage reads.
 pub(crate) struct CohesionInput<'a> {
@@ -35,17 +35,6 @@ pub(crate) struct CohesionInput<'a> {
     pub(crate) time_s: f64,
     /// Per floe, whether it is another process's (empty: none is).
     pub(crate) ghost: &'a [bool],
-}
-
-/// This process's energy sums of the bonds over a step.
-#[derive(Debug, Default, Clone)]
-pub(crate) struct BondPower {
-    /// Dissipated by the bonds' dashpots, W.
-    pub(crate) damping_w: ExactSum,
-    /// Put in by prescribed floes (land, walls) through bonds, W.
-    pub(crate) boundary_w: ExactSum,
-    /// Stored in the bonds that broke this step, J.
-    pub(crate) released_j: ExactSum,
 }
 
 /// Floe `h` as the bond kernel sees it, at `offset` (an image of it).

@@ -75,6 +75,18 @@ impl ContactPower {
     }
 }
 
+/// This process's energy sums of the bonds over a step (the cohesion
+/// stage adds to them).
+#[derive(Debug, Default, Clone)]
+pub(crate) struct BondPower {
+    /// Dissipated by the bonds' dashpots, W.
+    pub(crate) damping_w: ExactSum,
+    /// Put in by prescribed floes (land, walls) through bonds, W.
+    pub(crate) boundary_w: ExactSum,
+    /// Stored in the bonds that broke this step, J.
+    pub(crate) released_j: ExactSum,
+}
+
 /// The sums of a step that go into the energy ledger, exact, so that
 /// partial sums from several processes combine into the same bits
 /// ([`StepSums::to_words`], an integer sum of which is the sum of the
@@ -145,7 +157,7 @@ pub(crate) struct EnergyAccounting {
     /// The step's energy released at break (the narrow phase adds to it).
     pub(crate) released_j: ExactSum,
     /// The bonds' sums of the step (the cohesion stage adds to them).
-    pub(crate) bonds: super::cohesion::BondPower,
+    pub(crate) bonds: BondPower,
     /// The external forces at the start of the step, N, for the work
     /// integral (trapezoidal in the force).
     pub(crate) previous_external_force: Vec<Vec2>,

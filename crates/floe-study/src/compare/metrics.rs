@@ -67,6 +67,9 @@ pub struct RunMetrics {
     pub peak_to_steady: Option<PeakToSteady>,
     /// Snapshots read.
     pub snapshots: usize,
+    /// The floe size distribution at the first and the last snapshot
+    /// (they differ when floes broke).
+    pub sizes: [Option<crate::floe_sizes::FloeSizes>; 2],
 }
 
 impl RunMetrics {
@@ -169,5 +172,9 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
         slip_events: detector.finish(),
         peak_to_steady,
         snapshots,
+        sizes: [
+            crate::floe_sizes::at_snapshot(&run, 0)?,
+            crate::floe_sizes::at_snapshot(&run, snapshots - 1)?,
+        ],
     })
 }

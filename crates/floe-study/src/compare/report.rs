@@ -214,6 +214,35 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
         s,
         "\n![histories](histories.png)\n\n![velocity profile](profile.png)\n\n![slip events](slip_events.png)\n"
     );
+    let broke = |m: &RunMetrics| match &m.sizes {
+        [Some(a), Some(b)] => a.floes != b.floes,
+        _ => false,
+    };
+    if variants.iter().any(|v| broke(&v.metrics)) {
+        let _ = writeln!(
+            s,
+            "## Floe sizes\n\nFree floes and their sizes `d = sqrt(area)` at the first and the last snapshot; the exponent of `N(>d) ~ d^-a` fitted by maximum likelihood between the smallest and the largest size (- where the sizes pile up at the large end).\n\n| law | floes | median size (m) | exponent a at the end |\n|---|---|---|---|"
+        );
+        for v in variants {
+            if let [Some(a), Some(b)] = &v.metrics.sizes {
+                let _ = writeln!(
+                    s,
+                    "| {} | {} -> {} | {} -> {} | {} |",
+                    v.name,
+                    a.floes,
+                    b.floes,
+                    sig(a.median_m),
+                    sig(b.median_m),
+                    or_dash(b.fit.map(|f| f.exponent), |x| format!(
+                        "{} +- {}",
+                        sig(x),
+                        sig(b.fit.map_or(0.0, |f| f.std_error))
+                    )),
+                );
+            }
+        }
+        let _ = writeln!(s);
+    }
     let _ = writeln!(
         s,
         "## Variants\n\nNumbers in the tables below are shown to six significant digits; each variant's scenario file (`NAME.toml`, also stored in its output) holds them exactly.\n"

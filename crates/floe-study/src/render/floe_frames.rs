@@ -137,6 +137,21 @@ impl FloeFrames {
     }
 }
 
+/// Each piece's generation (its parent's plus one; floes of the start,
+/// absent, are 0), from the fracture log in the order it was written.
+pub(crate) fn generations(
+    log: &[floe_dem::world::FractureEvent],
+) -> std::collections::HashMap<u64, u32> {
+    let mut generation = std::collections::HashMap::new();
+    for e in log {
+        let g = generation.get(&e.parent_id).copied().unwrap_or(0) + 1;
+        for &piece in &e.piece_ids {
+            generation.insert(piece, g);
+        }
+    }
+    generation
+}
+
 /// The periods of the domain's periodic axes.
 fn period(domain: &floe_io::DomainBox) -> [Option<f64>; 2] {
     [0, 1].map(|d| domain.periodic[d].then_some(domain.size_m[d]))
@@ -152,6 +167,14 @@ fn frame_values(
     let snap = run.snapshot(k)?;
     let floes = run.floes_at(k)?;
     let values = match colour {
+        ColourBy::Generation => {
+            let generation = generations(&run.fractures()?);
+            floes
+                .id
+                .iter()
+                .map(|id| Some(generation.get(id).copied().unwrap_or(0) as f64))
+                .collect()
+        }
         ColourBy::Speed => snap
             .velocity
             .iter()
@@ -178,4 +201,39 @@ fn frame_values(
         }
     };
     Ok((snap, floes, values))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use floe_dem::world::FractureEvent;
+
+    fn event(parent_id: u64, piece_ids: Vec<u64>) -> FractureEvent {
+        FractureEvent {
+            step: 10,
+            time_s: 1.0,
+            parent_id,
+            principal_pa: (0.0, -1e5),
+            area_m2: 1e6,
+            piece_ids,
+            whole_because: None,
+        }
+    }
+
+    #[test]
+    fn a_piece_is_one_generation_past_its_parent() {
+        let log = [
+            event(1, vec![10, 11, 12]),
+            // A floe that stayed whole makes no generation.
+            event(2, vec![]),
+            event(11, vec![13, 14]),
+            event(14, vec![15, 16]),
+        ];
+        let g = generations(&log);
+        let of = |id: u64| g.get(&id).copied().unwrap_or(0);
+        assert_eq!(
+            [1, 2, 10, 11, 12, 13, 14, 15, 16].map(of),
+            [0, 0, 1, 1, 1, 2, 2, 3, 3]
+        );
+    }
 }

@@ -40,6 +40,9 @@ pub enum ColourBy {
     Theta,
     /// Floe pressure from its contact forces, N/m (compression positive).
     Stress,
+    /// How many times the floe's ancestry broke (0: a floe of the start),
+    /// from the run's fracture log.
+    Generation,
 }
 
 impl ColourBy {
@@ -48,6 +51,7 @@ impl ColourBy {
             ColourBy::Speed => "speed",
             ColourBy::Theta => "theta",
             ColourBy::Stress => "stress",
+            ColourBy::Generation => "generation",
         }
     }
 
@@ -56,6 +60,7 @@ impl ColourBy {
             ColourBy::Speed => "speed (m/s)",
             ColourBy::Theta => "theta (mean over contacts)",
             ColourBy::Stress => "pressure (kN/m)",
+            ColourBy::Generation => "generation (breaks since the start)",
         }
     }
 }
