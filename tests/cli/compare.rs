@@ -369,7 +369,10 @@ fn compare_reports_the_floe_sizes_when_floes_break() {
     let (s, o) = (scenario.display().to_string(), out.display().to_string());
     ok(&["compare", &s, "-o", &o, "--quiet"]);
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
-    let sizes = report.split("## Floe sizes").nth(1).expect("a size section");
+    let sizes = report
+        .split("## Floe sizes")
+        .nth(1)
+        .expect("a size section");
     for law in ["amontons", "rate", "rate-state"] {
         let f = RunFile::open(&out.join(format!("{law}.h5"))).unwrap();
         let n = f.snapshot_count().unwrap();
@@ -378,7 +381,10 @@ fn compare_reports_the_floe_sizes_when_floes_break() {
             floes.prescribed.iter().filter(|p| !**p).count()
         };
         let row = format!("| {law} | {} -> {} |", free(0), free(n - 1));
-        assert!(free(n - 1) > free(0) && sizes.contains(&row), "{row}\n{sizes}");
+        assert!(
+            free(n - 1) > free(0) && sizes.contains(&row),
+            "{row}\n{sizes}"
+        );
     }
     // Floes that never break: no such section.
     let (dir2, small) = setup();

@@ -132,6 +132,19 @@ pub struct Series {
 pub struct RunFile {
     path: PathBuf,
     file: hdf5::File,
+    /// The floe groups before the last, read once per handle: a writer
+    /// appends to the last group only, so the earlier ones never change
+    /// (reading every group for every snapshot made a render of a file
+    /// with S groups cost S^2 group reads).
+    sealed: std::sync::Mutex<SealedSegments>,
+}
+
+/// Floe groups that a later group follows: their snapshot ranges
+/// (index, first snapshot, rows) and, once read, their floes.
+#[derive(Debug, Default)]
+struct SealedSegments {
+    segments: Vec<(usize, usize, usize)>,
+    floes: Vec<Option<StaticFloes>>,
 }
 
 fn pairs<T: Copy>(flat: &[T]) -> Vec<[T; 2]> {
@@ -149,6 +162,7 @@ impl RunFile {
         Self {
             path: path.to_path_buf(),
             file,
+            sealed: Default::default(),
         }
     }
 
@@ -158,6 +172,7 @@ impl RunFile {
         Ok(Self {
             path: path.to_path_buf(),
             file: h5::open_run(path, false)?,
+            sealed: Default::default(),
         })
     }
 
@@ -301,7 +316,23 @@ impl RunFile {
     /// The floe groups (segments) of the file: each one's index, first
     /// snapshot and complete snapshots.
     fn segments(&self) -> Result<Vec<(usize, usize, usize)>, IoError> {
-        let mut out = Vec::new();
+        let mut sealed = self.sealed.lock().unwrap_or_else(|e| e.into_inner());
+        let out = self.segments_after(sealed.segments.clone())?;
+        // All but the last are followed by another: sealed.
+        let keep = out.len().saturating_sub(1);
+        if keep > sealed.segments.len() {
+            sealed.segments = out[..keep].to_vec();
+            sealed.floes.resize(keep, None);
+        }
+        Ok(out)
+    }
+
+    /// `known` (the sealed segments) and the segments after them.
+    fn segments_after(
+        &self,
+        known: Vec<(usize, usize, usize)>,
+    ) -> Result<Vec<(usize, usize, usize)>, IoError> {
+        let mut out = known;
         loop {
             let index = out.len();
             let name = layout::floe_segment(index);
@@ -353,8 +384,26 @@ impl RunFile {
         Ok((index, k - first))
     }
 
-    /// Segment `index`'s floes' fixed properties.
+    /// Segment `index`'s floes' fixed properties (read once if sealed).
     fn segment_floes(&self, index: usize) -> Result<StaticFloes, IoError> {
+        let cached = {
+            let sealed = self.sealed.lock().unwrap_or_else(|e| e.into_inner());
+            sealed.floes.get(index).cloned()
+        };
+        match cached {
+            Some(Some(floes)) => Ok(floes),
+            Some(None) => {
+                let floes = self.read_segment_floes(index)?;
+                let mut sealed = self.sealed.lock().unwrap_or_else(|e| e.into_inner());
+                sealed.floes[index] = Some(floes.clone());
+                Ok(floes)
+            }
+            None => self.read_segment_floes(index),
+        }
+    }
+
+    /// Segment `index`'s floes' fixed properties, from the file.
+    fn read_segment_floes(&self, index: usize) -> Result<StaticFloes, IoError> {
         let group = layout::floe_segment(index);
         let p = |name: &str| format!("{group}/{name}");
         let id: Vec<u64> = self.read_all(&p("id"))?;
