@@ -127,10 +127,24 @@ pub fn measure(path: &Path, options: &MetricOptions) -> Result<RunMetrics, Error
     let late_weights = time_weights(&times[late_from..]);
     let (mut y, mut u, mut w) = (Vec::new(), Vec::new(), Vec::new());
     let mut detector = SlipEventDetector::new(options.slip).map_err(Error::analysis)?;
+    // Contacts are followed by their floes' ids (a floe's index changes
+    // when floes break), as dense keys given in id order: new pieces have
+    // the largest ids, so the keys keep the contacts' sorted order.
+    let mut key_of: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
     for k in 0..snapshots {
         let contacts = run.contacts(k)?;
+        let ids = run.floes_at(k)?.id;
+        for &id in &ids {
+            let next = key_of.len() as u32;
+            key_of.entry(id).or_insert(next);
+        }
+        let pair: Vec<[u32; 2]> = contacts
+            .pair
+            .iter()
+            .map(|p| p.map(|h| key_of[&ids[h as usize]]))
+            .collect();
         detector
-            .push(contacts.time_s, &contacts.pair, &contacts.slip_rate_m_per_s)
+            .push(contacts.time_s, &pair, &contacts.slip_rate_m_per_s)
             .map_err(Error::analysis)?;
         if k >= late_from {
             let snap = run.snapshot(k)?;
