@@ -240,6 +240,23 @@ fn floes_break_keeping_their_mass_and_a_paused_run_resumes_bitwise() {
             );
         }
     }
+    // Each later segment names every floe's parent: a piece's is the floe
+    // the log says it broke from, a floe of the start has none.
+    let start_ids = f.floes_at(0).unwrap().id;
+    for k in 0..n {
+        let ids = f.floes_at(k).unwrap().id;
+        for (id, parent) in ids.iter().zip(f.parent_ids_at(k).unwrap()) {
+            match parent {
+                Some(p) => assert!(
+                    log.iter()
+                        .any(|e| e.parent_id == p && e.piece_ids.contains(id)),
+                    "snapshot {k}: floe {id} from {p}"
+                ),
+                None => assert!(start_ids.contains(id), "snapshot {k}: floe {id}"),
+            }
+        }
+    }
+    assert!(f.parent_ids_at(n - 1).unwrap().iter().any(Option::is_some));
     // Floes froze together too (cohesion), and bonds count in the file.
     let bonds = f.observable("bonds").unwrap().value;
     assert!(

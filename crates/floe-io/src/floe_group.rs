@@ -30,14 +30,16 @@ impl FloeGroup {
     /// Creates segment `index` for `floes` (all of them, in handle order),
     /// starting at snapshot `first_snapshot` (`None` for the first
     /// segment, which records none); `land` marks land floes by id in a
-    /// later segment (the first gets them from `RunWriter::mark_land`).
+    /// later segment (the first gets them from `RunWriter::mark_land`),
+    /// `parents` gives each floe's parent id there (-1: none).
+    #[allow(clippy::type_complexity)] // the later segment's three records
     pub(crate) fn create(
         file: &File,
         index: usize,
         domain: &DomainBox,
         floes: &Floes,
         opts: &OutputOptions,
-        later: Option<(usize, &[u64])>,
+        later: Option<(usize, &[u64], &[i64])>,
     ) -> hdf5::Result<Self> {
         let n = floes.len();
         let name = layout::floe_segment(index);
@@ -86,8 +88,11 @@ impl FloeGroup {
             .with_data(&prescribed[..])
             .create("prescribed")?;
         let first_snapshot = match later {
-            Some((first, land)) => {
+            Some((first, land, parents)) => {
                 h5::write_scalar(&g, layout::FIRST_SNAPSHOT, first as u64)?;
+                g.new_dataset_builder()
+                    .with_data(parents)
+                    .create(layout::PARENT_ID)?;
                 if !land.is_empty() {
                     let flags: Vec<u8> = floes.id[..n]
                         .iter()

@@ -32,6 +32,9 @@ pub const BOX: &str = "particles/floes/box";
 /// Inside [`FLOES`]: uint8 per floe, 1 for land pieces (optional: files
 /// without it have no land).
 pub const LAND: &str = "land";
+/// Inside a later segment: int64 per floe, the id of the floe it broke
+/// from, -1 for a floe of the start.
+pub const PARENT_ID: &str = "parent_id";
 /// The time-dependent floe elements, inside [`FLOES`], with their units.
 pub const FLOE_ELEMENTS: [(&str, &str, usize); 4] = [
     ("position", "m", 2),

@@ -551,6 +551,19 @@ impl RunFile {
             .at(&self.path, || format!("reading /{}", layout::FRACTURE))
     }
 
+    /// Each floe of snapshot `k`'s parent: the id of the floe it broke
+    /// from, `None` for a floe of the start (and for every floe of the
+    /// first segment, or of a file written before parents were recorded).
+    pub fn parent_ids_at(&self, k: usize) -> Result<Vec<Option<u64>>, IoError> {
+        let (segment, _) = self.locate(k)?;
+        let name = format!("{}/{}", layout::floe_segment(segment), layout::PARENT_ID);
+        if !self.file.link_exists(&name) {
+            return Ok(vec![None; self.floes_at(k)?.id.len()]);
+        }
+        let parents: Vec<i64> = self.read_all(&name)?;
+        Ok(parents.into_iter().map(|p| u64::try_from(p).ok()).collect())
+    }
+
     /// The contacts of snapshot `k`.
     pub fn contacts(&self, k: usize) -> Result<ContactSnapshot, IoError> {
         self.check_snapshot(k)?;

@@ -448,13 +448,25 @@ impl RunWriter {
             floe_stress: world.stress_filter().is_some(),
             ..self.opts
         };
+        // Each floe's parent, from the fracture log so far.
+        let log = crate::fracture_log::read(&self.file)
+            .at(&self.path, || format!("reading /{}", layout::FRACTURE))?;
+        let mut parent_of = std::collections::HashMap::new();
+        for e in &log {
+            for &piece in &e.piece_ids {
+                parent_of.insert(piece, e.parent_id as i64);
+            }
+        }
+        let parents: Vec<i64> = (floes.id.iter())
+            .map(|id| parent_of.get(id).copied().unwrap_or(-1))
+            .collect();
         self.segment = FloeGroup::create(
             &self.file,
             index,
             &self.domain,
             floes,
             &opts,
-            Some((first, &self.land_ids)),
+            Some((first, &self.land_ids, &parents)),
         )
         .at(&self.path, || {
             format!("writing /{}", layout::floe_segment(index))
