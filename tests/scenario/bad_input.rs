@@ -1520,6 +1520,19 @@ fn cohesion_tables_are_checked_key_by_key() {
         .build()
         .unwrap();
     assert!(plain.world.cohesion().is_none());
+    // With Hibler's ellipse (no tensile strength) the report says what
+    // bonds will do; not with the cone.
+    let note = "no tensile strength, so a bond that pulls breaks";
+    for (criterion, noted) in [("hibler", true), ("mohr_coulomb", false)] {
+        let text = format!(
+            "{BASE}\n[cohesion]\n\n[fracture]\ncriterion = \"{criterion}\"\nmin_floe_area_m2 = 1e5\n"
+        );
+        let setup = Scenario::from_text(&text, Path::new("ok.toml"))
+            .unwrap()
+            .build()
+            .unwrap();
+        assert_eq!(setup.report.iter().any(|l| l.contains(note)), noted, "{criterion}");
+    }
 }
 
 #[test]

@@ -304,6 +304,17 @@ impl Scenario {
         if let Some(cohesion) = r.cohesion {
             world.set_cohesion(Some(cohesion))?;
             report.push(describe_cohesion(&cohesion));
+            let hibler = r.fracture.is_some_and(|f| {
+                matches!(
+                    f.criterion,
+                    floe_dem::fracture::criteria::FractureCriterion::Hibler(_)
+                )
+            });
+            if hibler && cohesion.tensile_strength_n_per_m > 0.0 {
+                report.push(
+                    "  note: Hibler's ellipse gives a floe no tensile strength, so a bond that pulls breaks the floes it holds; the Mohr-Coulomb cone's tensile strength is sigma_c / (q - 1)".into(),
+                );
+            }
         }
         if let Some(filter) = world.stress_filter() {
             report.push(format!(
