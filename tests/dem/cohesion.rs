@@ -1,5 +1,6 @@
 //! Cohesion: a floe frozen to a wall holds until the pull per unit length
 //! reaches the bond's strength (and, without cohesion, leaves at no pull);
+//! a split that would leave a bond on a piece too small for it is refused;
 //! bonds form only after the quiet time; a bonded pair conserves linear
 //! and angular momentum to round-off and its energy is in the ledger; a
 //! split floe's bond goes on from the piece holding its anchor with the
@@ -38,8 +39,16 @@ fn square(x0: f64, y0: f64, side: f64) -> Vec<Vec2> {
 /// overlap force's equilibrium, which after `HOLD_S` pulls it away at 1
 /// mm/s.
 fn pulled_off(cohesion: Option<Cohesion>) -> World<NoForcing> {
+    pulled_off_turned(cohesion, 0.0)
+}
+
+/// [`pulled_off`] with everything turned by `angle` about the origin.
+fn pulled_off_turned(cohesion: Option<Cohesion>, angle: f64) -> World<NoForcing> {
     let overlap = 0.01;
-    let polys = [square(-SIDE_M, 0.0, SIDE_M), square(-overlap, 0.0, SIDE_M)];
+    let (sin, cos) = angle.sin_cos();
+    let turn = |p: Vec2| Vec2::new(cos * p.x - sin * p.y, sin * p.x + cos * p.y);
+    let polys = [square(-SIDE_M, 0.0, SIDE_M), square(-overlap, 0.0, SIDE_M)]
+        .map(|p| p.into_iter().map(turn).collect::<Vec<_>>());
     let mut floes = Floes::from_polygons(&polys, &[1.0, 1.0], 917.0).unwrap();
     floes.set_motion(
         0,
@@ -55,10 +64,10 @@ fn pulled_off(cohesion: Option<Cohesion>) -> World<NoForcing> {
     let push = 6e6 / SIDE_M * SIDE_M * overlap;
     let schedule = MotionSchedule::new(vec![
         MotionSegment::constant(HOLD_S, Vec2::ZERO),
-        MotionSegment::constant(1e9, Vec2::new(PULL_M_PER_S, 0.0)),
+        MotionSegment::constant(1e9, turn(Vec2::new(PULL_M_PER_S, 0.0))),
     ])
     .unwrap();
-    let anchor = centroid - Vec2::new(push / LOAD_STIFFNESS, 0.0);
+    let anchor = centroid - turn(Vec2::new(push / LOAD_STIFFNESS, 0.0));
     let id = w.floes().id[1];
     w.set_load_point(LoadPoint::new(id, LOAD_STIFFNESS, anchor, schedule).unwrap())
         .unwrap();
@@ -207,9 +216,14 @@ fn a_bond_forms_only_after_the_quiet_time_and_strength_grows_with_age() {
 /// Two free squares frozen together at once (strong bond), the second
 /// moving and spinning relative to the first.
 fn bonded_pair(dt_fraction: f64, restitution: f64) -> World<NoForcing> {
+    bonded_pair_of(SIDE_M, dt_fraction, restitution)
+}
+
+/// [`bonded_pair`] of squares of side `side` (the second offset by a fifth).
+fn bonded_pair_of(side: f64, dt_fraction: f64, restitution: f64) -> World<NoForcing> {
     let polys = [
-        square(0.0, 0.0, SIDE_M),
-        square(SIDE_M - 1e-3, 20.0, SIDE_M),
+        square(0.0, 0.0, side),
+        square(side - 1e-3, 0.2 * side, side),
     ];
     let floes = Floes::from_polygons(&polys, &[1.0, 1.5], 917.0).unwrap();
     let model = ContactModel {
@@ -435,4 +449,77 @@ fn cohesion_is_bitwise_the_same_for_any_thread_count_and_across_a_resume() {
     );
     assert_eq!(run(2, None).0, one);
     assert_eq!(run(2, Some(300)).0, one);
+}
+
+#[test]
+fn a_bond_in_a_turned_frame_forms_and_lasts_the_hold() {
+    // The floe held against the wall, all turned by 0.3 rad: the bond forms
+    // at the quiet time and lasts the hold with its strength still growing
+    // (growth time 1 day), as in the unturned frame. (A bond is not judged
+    // in the step it forms: its loads are then the round-off of its
+    // anchors' rotation, its strength zero.)
+    let cohesion = Cohesion {
+        growth_time_s: 86_400.0,
+        ..frozen_at_once_after(QUIET_S)
+    };
+    let mut w = pulled_off_turned(Some(cohesion), 0.3);
+    while w.time_s() < HOLD_S {
+        w.step();
+    }
+    assert_eq!(w.bonds_broken(), 0);
+    assert!(w.bonds().iter().any(|b| b.formed));
+}
+
+#[test]
+fn a_split_that_would_leave_a_bond_on_a_piece_too_small_for_it_is_refused() {
+    // 1 km floes: a bond along most of an edge is far stiffer in turning
+    // than a 25 m piece of the floe can carry at the pieces' own step.
+    let side = 1000.0;
+    let mut w = bonded_pair_of(side, 0.25, 0.5);
+    for _ in 0..50 {
+        w.step();
+    }
+    let bond = *w.bonds().iter().find(|b| b.formed).unwrap();
+    // Floe 0's anchor is on its right edge; a 25 m square piece holds it.
+    let h = bond.a as usize;
+    let f = w.floes();
+    let (s, c) = f.angle[h].sin_cos();
+    let at = Vec2::new(
+        c * bond.anchor_a.x - s * bond.anchor_a.y,
+        s * bond.anchor_a.x + c * bond.anchor_a.y,
+    );
+    let world = |x: f64, y: f64| Vec2::new(c * x - s * y, s * x + c * y);
+    let local = Vec2::new(c * at.x + s * at.y, -s * at.x + c * at.y);
+    let (y0, y1) = (local.y - 12.5, local.y + 12.5);
+    let rect = |x0: f64, x1: f64, ya: f64, yb: f64| {
+        vec![world(x0, ya), world(x1, ya), world(x1, yb), world(x0, yb)]
+    };
+    let half = side / 2.0;
+    let pieces = vec![
+        rect(half - 25.0, half, y0, y1),
+        rect(half - 25.0, half, y1, half),
+        rect(half - 25.0, half, -half, y0),
+        rect(-half, half - 25.0, -half, half),
+    ];
+    // The piece's own contacts' limit, and the bond's on it (0.3 x 2/omega).
+    let piece = Floes::from_polygons(&[pieces[0].clone()], &[1.0], 917.0).unwrap();
+    let contact_limit = stable_time_step(&piece, w.model()).0;
+    let (m, inertia) = (piece.mass_kg[0], piece.inertia_kg_m2[0]);
+    let arm = (local - Vec2::new(half - 12.5, 0.5 * (y0 + y1))).length();
+    let k = bond.stiffness_n_per_m;
+    let turn = k * (bond.length_m.powi(2) / 12.0 + arm * arm);
+    let bond_limit = 0.6 / (k / m).max(turn / inertia).sqrt();
+    assert!(bond_limit < contact_limit, "{bond_limit} {contact_limit}");
+    // A world at a step between the two: the pieces alone would do.
+    let (state, model, forcing, periodicity) = w.into_parts();
+    let mut state = state;
+    state.dt_s = 0.5 * (bond_limit + contact_limit);
+    let mut w = World::resume(state, model, forcing, periodicity).unwrap();
+    w.set_cohesion(bonded_pair(0.25, 0.5).cohesion()).unwrap();
+    let before = w.state().clone();
+    let e = w
+        .split_floe(w.floes().id[h], &pieces, &[100, 101, 102, 103])
+        .unwrap_err();
+    assert!(e.to_string().contains("a bond"), "{e}");
+    assert_eq!(w.state(), &before, "the world unchanged");
 }

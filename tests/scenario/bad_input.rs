@@ -1531,7 +1531,11 @@ fn cohesion_tables_are_checked_key_by_key() {
             .unwrap()
             .build()
             .unwrap();
-        assert_eq!(setup.report.iter().any(|l| l.contains(note)), noted, "{criterion}");
+        assert_eq!(
+            setup.report.iter().any(|l| l.contains(note)),
+            noted,
+            "{criterion}"
+        );
     }
 }
 

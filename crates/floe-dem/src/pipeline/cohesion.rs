@@ -129,9 +129,14 @@ pub(crate) fn update_bonds(
             return true;
         }
         let counted = counted_here(input.ghost, bond.a);
-        let strength = cohesion.strength_fraction(bond.age_s(t));
-        let broken = bond.tension_n_per_m > strength * cohesion.tensile_strength_n_per_m
-            || bond.shear_n_per_m > strength * cohesion.shear_strength_n_per_m;
+        let age = bond.age_s(t);
+        let strength = cohesion.strength_fraction(age);
+        // A bond formed this step carries only the round-off of its
+        // anchors' rotation (about 1e-13 m), against a strength of zero
+        // at age zero: it is judged from its next step on.
+        let broken = age > 0.0
+            && (bond.tension_n_per_m > strength * cohesion.tensile_strength_n_per_m
+                || bond.shear_n_per_m > strength * cohesion.shear_strength_n_per_m);
         if counted {
             if broken {
                 power.released_j.add(bond.energy_j);

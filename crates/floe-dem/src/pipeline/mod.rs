@@ -7,8 +7,8 @@
 //! | broad phase | [`broad_phase`] | positions, angles, radii | candidate pairs (rebuilt when stale) |
 //! | narrow phase | [`narrow_phase`] | candidate pairs, floes | contact list: overlaps, normal forces; contacts formed, continued, ended; contact memory; the contacts' power sums |
 //! | friction | [`friction`] | each contact's load | its tangential spring and friction state (the one call of the law) |
-//! | force gathering | [`force_gathering`] | contacts, forcing | per-floe force and torque |
 //! | cohesion (when on) | [`cohesion`] | contacts, floes | bonds formed, their forces, broken bonds |
+//! | force gathering | [`force_gathering`] | contacts, forcing | per-floe force and torque |
 //! | floe stress (when on) | [`floe_stress`] | contacts, per-floe contact index | each free floe's time-averaged stress |
 //! | kick | [`integrator`] | forces and their rates with velocity | velocities; external forces at the new velocities |
 //! | energy accounting | [`energy_accounting`] | the contacts' power sums, forces, velocities | the energy ledger |

@@ -31,7 +31,9 @@ impl<F: ExternalForces> World<F> {
         &self.state.bonds
     }
 
-    /// Bonds broken since the world was made or resumed.
+    /// Bonds broken since the world was made or resumed (a diagnostic, not
+    /// state: a distributed run's processes each count their own, from
+    /// their last migration).
     pub fn bonds_broken(&self) -> u64 {
         self.pipeline.bonds_broken
     }

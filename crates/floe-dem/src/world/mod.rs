@@ -391,7 +391,9 @@ impl<F: ExternalForces> World<F> {
         };
         p.gathering
             .gather(floes, contacts, &self.forcing, s.time_s, out);
-        crate::pipeline::cohesion::add_bond_forces(&s.bonds, &mut s.force, &mut s.torque);
+        if self.cohesion.is_some() {
+            crate::pipeline::cohesion::add_bond_forces(&s.bonds, &mut s.force, &mut s.torque);
+        }
         boundary_motion::add_load_point_forces(
             &s.floes,
             &s.load_points,

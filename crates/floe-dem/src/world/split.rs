@@ -67,7 +67,10 @@ impl<F: ExternalForces> World<F> {
             return refuse("the pieces need new ids, distinct and unused".into());
         }
         let (shapes, mut floes) = piece_floes(&parent, pieces, piece_ids, self.periodicity)?;
-        if let Some(why) = self.unstable_piece(&floes) {
+        if let Some(why) = self
+            .unstable_piece(&floes)
+            .or_else(|| self.unstable_bond(h, pieces, &shapes, &floes))
+        {
             return refuse(why);
         }
         let detached = self.remove_floe(id)?;
@@ -116,7 +119,9 @@ impl<F: ExternalForces> World<F> {
         // The pieces' last forces: their contacts' and bonds', and the parent's
         // external force shared by mass.
         let share = |f: &Floe| f.mass_kg / parent.mass_kg;
-        for ((floe, contacts), bonds) in floes.drain(..).zip(moved).zip(bonded) {
+        for (((floe, contacts), bonds), (_, offset)) in
+            floes.drain(..).zip(moved).zip(bonded).zip(&shapes)
+        {
             let (mut force, mut torque) = (detached.external_force * share(&floe), 0.0);
             let external_torque = detached.external_torque * share(&floe);
             torque += external_torque;
@@ -129,14 +134,16 @@ impl<F: ExternalForces> World<F> {
                 force += on_this;
                 torque += cross(c.point - arm_origin, on_this);
             }
+            // A bond's torque was taken about the parent's centroid: moved
+            // to the piece's, `offset` from it, it loses `offset x F`.
             for ([a, _], bond) in &bonds {
-                let (on_this, anchor) = if *a == floe.id {
-                    (-bond.force_on_b, bond.anchor_a)
+                let (on_this, about_parent) = if *a == floe.id {
+                    (-bond.force_on_b, bond.torque_on_a)
                 } else {
-                    (bond.force_on_b, bond.anchor_b)
+                    (bond.force_on_b, bond.torque_on_b)
                 };
                 force += on_this;
-                torque += cross(anchor, on_this);
+                torque += about_parent - cross(*offset, on_this);
             }
             self.insert_detached(DetachedFloe {
                 external_force: detached.external_force * share(&floe),
@@ -283,9 +290,50 @@ impl<F: ExternalForces> World<F> {
         let parent = self.state.floes.get(h);
         let ids: Vec<u64> = (0..pieces.len() as u64).collect();
         match piece_floes(&parent, pieces, &ids, self.periodicity) {
-            Ok((_, floes)) => self.unstable_piece(&floes),
+            Ok((shapes, floes)) => self
+                .unstable_piece(&floes)
+                .or_else(|| self.unstable_bond(h, pieces, &shapes, &floes)),
             Err(e) => Some(e.to_string()),
         }
+    }
+
+    /// Why a bond of floe `h` (the parent) would need a shorter time step
+    /// than the world's on the piece of `pieces` that holds its anchor: a
+    /// bond keeps the stiffness it formed with, which a small piece may not
+    /// carry (`0.3 x 2/omega` as for contacts, `omega^2` the larger of the
+    /// normal spring over the piece's mass and the bending and normal
+    /// springs' turning stiffness over its moment of inertia).
+    fn unstable_bond(
+        &self,
+        h: usize,
+        pieces: &[Vec<Vec2>],
+        shapes: &[PlacedShape],
+        floes: &[Floe],
+    ) -> Option<String> {
+        let s = &self.state;
+        let (sin, cos) = s.floes.angle[h].sin_cos();
+        let factor = crate::pipeline::integrator::damping_step_factor(&self.model)
+            * crate::pipeline::integrator::STABILITY_SAFETY
+            * 2.0;
+        s.bonds
+            .iter()
+            .filter(|b| b.formed && (b.a as usize == h || b.b as usize == h))
+            .find_map(|b| {
+                let anchor = if b.a as usize == h { b.anchor_a } else { b.anchor_b };
+                let at = rotate(anchor, cos, sin);
+                let k = holder(pieces, at);
+                let arm = (at - shapes[k].1).length();
+                let k_n = b.stiffness_n_per_m;
+                let k_turn = k_n * b.length_m * b.length_m / 12.0 + k_n * arm * arm;
+                let omega2 = (k_n / floes[k].mass_kg).max(k_turn / floes[k].inertia_kg_m2);
+                let limit = factor / omega2.sqrt();
+                (s.dt_s > limit).then(|| {
+                    format!(
+                        "a bond of {} N/m on a piece of {:.4e} m^2 needs a time step of at most {limit:.4e} s, not {:.4e} s",
+                        k_n, floes[k].area_m2, s.dt_s
+                    )
+                })
+            })
     }
 
     /// Why one of `floes` needs a shorter time step than the world's.
