@@ -457,7 +457,20 @@ impl Scenario {
         let f = &self.source;
         let r = &self.resolved;
         let built = build::build_floes(f, r)?;
-        Ok(build::time_step(f, r, &built, f64::INFINITY)?.0)
+        let dt_s = build::time_step(f, r, &built, f64::INFINITY)?.0;
+        // As the build shortens an automatic step for fracture's pieces.
+        let fraction = match r.dt {
+            resolve::DtChoice::Auto => Some(resolve::AUTO_DT_FRACTION),
+            resolve::DtChoice::Fraction(x, _) => Some(x),
+            resolve::DtChoice::Given(..) => None,
+        };
+        Ok(match (fraction, r.fracture) {
+            (Some(fraction), Some(piece)) => {
+                let thin = thinnest_free(&built.floes);
+                dt_s.min(fraction * square_piece_step(thin, &r.model, piece.min_piece_area_m2))
+            }
+            _ => dt_s,
+        })
     }
 }
 
