@@ -9,7 +9,6 @@
 
 use floe_dem::bond_kernel::{evaluate_bond, BondEnd};
 use floe_dem::cohesion::Cohesion;
-use floe_dem::contact_kernel::Body;
 use floe_dem::contact_model::ContactModel;
 use floe_dem::floes::{Floes, Motion};
 use floe_dem::forcing::NoForcing;
@@ -291,23 +290,10 @@ fn a_bonded_pair_conserves_momentum_and_angular_momentum_and_the_ledger_balances
     );
 }
 
-/// Floe `h` of `w` as the bond kernel sees it (at `offset`).
+/// Floe `h` of `w` as the bond kernel sees it.
 fn end(w: &World<NoForcing>, h: usize) -> BondEnd {
     let f = w.floes();
-    BondEnd {
-        body: Body {
-            position: f.position[h],
-            velocity: f.velocity[h],
-            angular_velocity: f.angular_velocity[h],
-            mass_kg: f.mass_kg[h],
-            thickness_m: f.thickness_m[h],
-            area_m2: f.area_m2[h],
-            free: f.is_free(h),
-        },
-        angle_rad: f.angle[h],
-        sin_cos: f.angle[h].sin_cos(),
-        inertia_kg_m2: f.inertia_kg_m2[h],
-    }
+    BondEnd::of(f, h, Vec2::ZERO, f.angle[h].sin_cos())
 }
 
 /// [`bonded_pair`] with floe ids `ids` (taken out before the first step

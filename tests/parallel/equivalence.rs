@@ -558,16 +558,18 @@ fn fracturing_parallel(
     results.into_iter().next().unwrap()
 }
 
-#[test]
-fn fracture_over_one_to_four_processes_is_bitwise_as_one() {
-    let (states, events) = fracturing_single(None);
-    let splits = events.iter().filter(|e| !e.piece_ids.is_empty()).count();
-    assert!(splits >= 3, "floes broke ({splits})");
+/// The fracturing layer with `cohesion` on 1-4 processes gives `states`
+/// and `events`, one process's, bitwise.
+fn fracturing_on_one_to_four_processes_is(
+    states: &[String],
+    events: &[FractureEvent],
+    cohesion: Option<Cohesion>,
+) {
     for processes in [1, 2, 3, 4] {
-        let (p_states, p_events) = fracturing_parallel(processes, None);
+        let (p_states, p_events) = fracturing_parallel(processes, cohesion);
         assert_eq!(p_events, events, "{processes} processes: the events");
         assert_eq!(p_states.len(), states.len());
-        for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {
+        for (k, (a, b)) in p_states.iter().zip(states).enumerate() {
             assert!(
                 a == b,
                 "{processes} processes: the state at step {} differs",
@@ -575,6 +577,14 @@ fn fracture_over_one_to_four_processes_is_bitwise_as_one() {
             );
         }
     }
+}
+
+#[test]
+fn fracture_over_one_to_four_processes_is_bitwise_as_one() {
+    let (states, events) = fracturing_single(None);
+    let splits = events.iter().filter(|e| !e.piece_ids.is_empty()).count();
+    assert!(splits >= 3, "floes broke ({splits})");
+    fracturing_on_one_to_four_processes_is(&states, &events, None);
 }
 
 /// Floes of the fracturing layer freeze together where they rest against
@@ -613,16 +623,5 @@ fn cohesion_with_fracture_over_one_to_four_processes_is_bitwise_as_one() {
     assert!(most_bonds >= 5 && w.bonds_broken() >= 5 && splits >= 1);
 
     let (states, events) = fracturing_single(Some(weak_cohesion()));
-    for processes in [1, 2, 3, 4] {
-        let (p_states, p_events) = fracturing_parallel(processes, Some(weak_cohesion()));
-        assert_eq!(p_events, events, "{processes} processes: the events");
-        assert_eq!(p_states.len(), states.len());
-        for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {
-            assert!(
-                a == b,
-                "{processes} processes: the state at step {} differs",
-                k as u64 * EVERY
-            );
-        }
-    }
+    fracturing_on_one_to_four_processes_is(&states, &events, Some(weak_cohesion()));
 }

@@ -48,6 +48,18 @@ pub struct BondEnd {
 }
 
 impl BondEnd {
+    /// Floe `h` of `f` at `offset` (an image), whose angle's `(sin, cos)`
+    /// is `sin_cos`.
+    #[inline]
+    pub fn of(f: &crate::floes::FloeColumns, h: usize, offset: Vec2, sin_cos: (f64, f64)) -> Self {
+        BondEnd {
+            body: Body::of(f, h, offset),
+            angle_rad: f.angle[h],
+            sin_cos,
+            inertia_kg_m2: f.inertia_kg_m2[h],
+        }
+    }
+
     /// `v` from the floe's body frame to the world's orientation.
     #[inline]
     fn to_world(self, v: Vec2) -> Vec2 {

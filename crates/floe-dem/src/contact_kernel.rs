@@ -43,6 +43,23 @@ pub struct Body {
     pub free: bool,
 }
 
+impl Body {
+    /// Floe `h` of `f`, at `offset` from its stored position (an image
+    /// across a periodic boundary).
+    #[inline]
+    pub fn of(f: &crate::floes::FloeColumns, h: usize, offset: Vec2) -> Self {
+        Body {
+            position: f.position[h] + offset,
+            velocity: f.velocity[h],
+            angular_velocity: f.angular_velocity[h],
+            mass_kg: f.mass_kg[h],
+            thickness_m: f.thickness_m[h],
+            area_m2: f.area_m2[h],
+            free: f.is_free(h),
+        }
+    }
+}
+
 /// Normal force per unit overlap area, `kappa`, Pa, for two floes.
 #[inline]
 pub fn overlap_stiffness(model: &ContactModel, a: &Body, b: &Body) -> f64 {

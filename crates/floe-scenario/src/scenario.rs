@@ -241,21 +241,14 @@ impl Scenario {
         let (mut dt_s, stable_limit_s, mut dt_line) =
             build::time_step(f, r, &built, self.max_steps)?;
         // An automatic step also carries fracture's smallest pieces.
-        let fraction = match r.dt {
-            resolve::DtChoice::Auto => Some(resolve::AUTO_DT_FRACTION),
-            resolve::DtChoice::Fraction(x, _) => Some(x),
-            resolve::DtChoice::Given(..) => None,
-        };
-        if let (Some(fraction), Some(piece)) = (fraction, r.fracture) {
-            let thin = thinnest_free(&built.floes);
-            let piece_step = square_piece_step(thin, &r.model, piece.min_piece_area_m2);
-            if fraction * piece_step < dt_s {
-                dt_s = fraction * piece_step;
+        if let Some((fraction, cap, piece_m2)) = piece_step_cap(r, &built.floes) {
+            if cap < dt_s {
+                dt_s = cap;
                 dt_line = format!(
                     "{dt_line}; shortened to {} s ({} x the stable step of fracture's smallest piece, a square of {} m^2)",
                     sig(dt_s),
                     sig(fraction),
-                    sig(piece.min_piece_area_m2)
+                    sig(piece_m2)
                 );
             }
         }
@@ -459,19 +452,29 @@ impl Scenario {
         let built = build::build_floes(f, r)?;
         let dt_s = build::time_step(f, r, &built, f64::INFINITY)?.0;
         // As the build shortens an automatic step for fracture's pieces.
-        let fraction = match r.dt {
-            resolve::DtChoice::Auto => Some(resolve::AUTO_DT_FRACTION),
-            resolve::DtChoice::Fraction(x, _) => Some(x),
-            resolve::DtChoice::Given(..) => None,
-        };
-        Ok(match (fraction, r.fracture) {
-            (Some(fraction), Some(piece)) => {
-                let thin = thinnest_free(&built.floes);
-                dt_s.min(fraction * square_piece_step(thin, &r.model, piece.min_piece_area_m2))
-            }
-            _ => dt_s,
+        Ok(match piece_step_cap(r, &built.floes) {
+            Some((_, cap, _)) => dt_s.min(cap),
+            None => dt_s,
         })
     }
+}
+
+/// For an automatic step (`dt_fraction` or none) with `[fracture]`: the
+/// step fracture's smallest piece allows, `fraction x` the stable step of a
+/// square piece of `min_piece_area_m2` as thin as the thinnest free floe
+/// of `floes`, as `(fraction, step, piece area)`; `None` otherwise.
+fn piece_step_cap(
+    r: &resolve::Resolved,
+    floes: &floe_dem::floes::Floes,
+) -> Option<(f64, f64, f64)> {
+    let fraction = match r.dt {
+        resolve::DtChoice::Auto => resolve::AUTO_DT_FRACTION,
+        resolve::DtChoice::Fraction(x, _) => x,
+        resolve::DtChoice::Given(..) => return None,
+    };
+    let piece_m2 = r.fracture?.min_piece_area_m2;
+    let step = square_piece_step(thinnest_free(floes), &r.model, piece_m2);
+    Some((fraction, fraction * step, piece_m2))
 }
 
 /// The thinnest free floe's thickness (m) and its density (kg/m^3).

@@ -5,8 +5,7 @@
 //! draws from). What fracture changes over a run.
 
 use floe_dem::tessellation::{fit_power_law, PowerLawFit};
-use floe_io::RunFile;
-use floe_run::Error;
+use floe_io::{IoError, RunFile};
 
 /// The free floes' sizes at one snapshot.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,7 +49,7 @@ pub fn of_areas(time_s: f64, areas_m2: &[f64]) -> Option<FloeSizes> {
 }
 
 /// The free floes' size distribution at snapshot `k` of `run`.
-pub fn at_snapshot(run: &RunFile, k: usize) -> Result<Option<FloeSizes>, Error> {
+pub fn at_snapshot(run: &RunFile, k: usize) -> Result<Option<FloeSizes>, IoError> {
     let floes = run.floes_at(k)?;
     let time_s = run.snapshot(k)?.time_s;
     let areas: Vec<f64> = (0..floes.id.len())

@@ -131,12 +131,7 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
         );
         // The size distribution, at the start and (if floes broke) at the end.
         let sizes = |k: usize| -> Result<Option<String>, floe_io::IoError> {
-            let (floes, time_s) = (run.floes_at(k)?, run.snapshot(k)?.time_s);
-            let areas: Vec<f64> = (0..floes.id.len())
-                .filter(|&i| !floes.prescribed[i])
-                .map(|i| floes.area_m2[i])
-                .collect();
-            Ok(floe_sizes::of_areas(time_s, &areas).map(|s| floe_sizes::describe(&s)))
+            Ok(floe_sizes::at_snapshot(run, k)?.map(|s| floe_sizes::describe(&s)))
         };
         if let Some(first) = sizes(0)? {
             line("floe sizes", first);

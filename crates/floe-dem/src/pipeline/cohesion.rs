@@ -11,7 +11,6 @@ use rayon::prelude::*;
 use crate::bond_kernel::{evaluate_bond, form_bond, BondEnd};
 use crate::bonds::Bond;
 use crate::cohesion::Cohesion;
-use crate::contact_kernel::Body;
 use crate::contact_model::ContactModel;
 use crate::contacts::ContactRecord;
 use crate::exact_sum::ExactSum;
@@ -39,20 +38,7 @@ pub(crate) struct CohesionInput<'a> {
 
 /// Floe `h` as the bond kernel sees it, at `offset` (an image of it).
 fn end(f: &FloeColumns, trig: &[(f64, f64)], h: usize, offset: Vec2) -> BondEnd {
-    BondEnd {
-        body: Body {
-            position: f.position[h] + offset,
-            velocity: f.velocity[h],
-            angular_velocity: f.angular_velocity[h],
-            mass_kg: f.mass_kg[h],
-            thickness_m: f.thickness_m[h],
-            area_m2: f.area_m2[h],
-            free: f.is_free(h),
-        },
-        angle_rad: f.angle[h],
-        sin_cos: trig[h],
-        inertia_kg_m2: f.inertia_kg_m2[h],
-    }
+    BondEnd::of(f, h, offset, trig[h])
 }
 
 /// The relative speed of `c`'s floes at its contact point, m/s.

@@ -155,15 +155,7 @@ impl NarrowPhase {
         let periodicity = input.periodicity;
         let trig = input.trig;
         let broken = &*set.broken;
-        let body = |i: usize, offset: Vec2| Body {
-            position: f.position[i] + offset,
-            velocity: f.velocity[i],
-            angular_velocity: f.angular_velocity[i],
-            mass_kg: f.mass_kg[i],
-            thickness_m: f.thickness_m[i],
-            area_m2: f.area_m2[i],
-            free: f.is_free(i),
-        };
+        let body = |i: usize, offset: Vec2| Body::of(f, i, offset);
         let placed = |i: usize, offset: Vec2| f.placed(i, offset, trig[i]);
         // The overlap of a candidate pair, and the offset of the image of `b`
         // that touches `a`.
