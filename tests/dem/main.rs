@@ -21,6 +21,7 @@ mod physics;
 mod power_law_floes;
 #[path = "../support/proptest_settings.rs"]
 mod proptest_settings;
+mod ridging;
 #[path = "../support/shape.rs"]
 mod shape_support;
 mod tessellation;

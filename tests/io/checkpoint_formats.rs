@@ -9,6 +9,7 @@ use floe_dem::floes::{FloeColumns, Floes, Motion};
 use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::{MotionSchedule, MotionSegment, ScheduledMotion};
 use floe_dem::pipeline::floe_stress::StressFilter;
+use floe_dem::ridging::RidgingLedger;
 use floe_dem::state::WorldState;
 use floe_dem::stress_control::{ControlLaw, ServoWall, StressControl};
 use floe_dem::Vec2;
@@ -177,6 +178,7 @@ pub fn rich_state() -> WorldState {
         stress_filter: None,
         floe_stress: Vec::new(),
         next_floe_id: 0,
+        ridging: Default::default(),
     };
     state.validate().unwrap();
     assert!(state
@@ -234,6 +236,7 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         stress_filter,
         floe_stress,
         next_floe_id,
+        ridging,
     } = expected;
     macro_rules! same {
         ($($field:ident),*) => {$(
@@ -259,7 +262,8 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         stress_controls,
         stress_filter,
         floe_stress,
-        next_floe_id
+        next_floe_id,
+        ridging
     );
 }
 
@@ -464,6 +468,66 @@ fn version_9_is_version_8_with_the_bonds() {
     wrong.bonds[1].b = 4;
     let e = decode(&encode(&wrong, &counts(), 3), || None, Some(3)).expect_err("floe 4 of 4");
     assert!(e.contains("bonds are not sorted pairs"), "{e}");
+}
+
+/// [`bonded_state`] after ridging: every field of the ledger distinct.
+pub fn ridged_state() -> WorldState {
+    let mut state = bonded_state();
+    state.ridging = RidgingLedger {
+        events: 1234,
+        volume_to_floes_m3: 5.0e3 / 3.0,
+        volume_to_coast_m3: 0.125,
+        momentum_to_coast_n_s: Vec2::new(-2.5e6, 1.0 / 7.0),
+        angular_momentum_to_coast: 3.0e9,
+        kinetic_energy_lost_j: 4.4e4,
+        contact_energy_released_j: 1e-3,
+    };
+    state
+}
+
+/// Bytes of the ridging ledger in format 10.
+const LEDGER_BYTES: usize = 8 + 7 * 8;
+
+/// Version 10 is version 9 with the ridging ledger after everything else
+/// (the event count, then its seven `f64`). It reads back to the state;
+/// the encoder writes its frozen bytes exactly, still writes version 9 for
+/// a state with bonds that has not ridged, and for a state that has
+/// ridged without bonds an empty bond list before the ledger.
+#[test]
+fn version_10_is_version_9_with_the_ridging_ledger() {
+    use floe_io::checkpoint::{decode, encode, HEADER_LEN};
+    let (v9, v10) = (fixture("format_v9.bin"), fixture("format_v10.bin"));
+    let ridged = ridged_state();
+    assert_eq!(v10.len(), v9.len() + LEDGER_BYTES);
+    assert_eq!(&v10[8..12], &10u32.to_le_bytes());
+    assert_eq!(
+        &v10[HEADER_LEN..v9.len()],
+        &v9[HEADER_LEN..],
+        "the payload of 9 first"
+    );
+    let (back, back_counts) = decode(&v10, || None, Some(3)).unwrap();
+    assert_same(&back, &ridged, "version 10");
+    assert_eq!(back_counts, counts());
+    assert!(encode(&ridged, &counts(), 3) == v10);
+    assert!(encode(&bonded_state(), &counts(), 3) == v9);
+    let mut unbonded = ridged.clone();
+    unbonded.bonds.clear();
+    let bytes = encode(&unbonded, &counts(), 3);
+    let v8 = fixture("format_v8.bin");
+    assert_eq!(bytes.len(), v8.len() + 8 + LEDGER_BYTES);
+    assert_same(
+        &decode(&bytes, || None, Some(3)).unwrap().0,
+        &unbonded,
+        "ridged without bonds",
+    );
+}
+
+/// Writes `format_v10.bin` (run once, by hand, when the format was made).
+#[test]
+#[ignore]
+fn write_format_10_fixture() {
+    let bytes = floe_io::checkpoint::encode(&ridged_state(), &counts(), 3);
+    std::fs::write(fixture_dir().join("format_v10.bin"), bytes).unwrap();
 }
 
 /// The encoder writes the frozen bytes of the current format exactly.

@@ -11,7 +11,9 @@ use floe_dem::fracture::criteria::{FractureCriterion, MohrCoulomb};
 use floe_dem::fracture::rule::{FractureRule, StrengthThickness};
 use floe_dem::fracture::split::SplitRule;
 use floe_dem::pipeline::floe_stress::StressFilter;
+use floe_dem::ridging::Ridging;
 use floe_dem::world::FractureEvent;
+use floe_dem::world::PlannedRidge;
 use std::sync::atomic::AtomicBool;
 
 use floe_dem::contact_model::ContactModel;
@@ -624,4 +626,83 @@ fn cohesion_with_fracture_over_one_to_four_processes_is_bitwise_as_one() {
 
     let (states, events) = fracturing_single(Some(weak_cohesion()));
     fracturing_on_one_to_four_processes_is(&states, &events, Some(weak_cohesion()));
+}
+
+/// Ridging weak enough that the lid's press cuts floes within the run.
+fn weak_ridging() -> Ridging {
+    Ridging {
+        strength_n_per_m: 3e4,
+        ..Ridging::default()
+    }
+}
+
+/// The sheared layer ridging: its states every `EVERY` steps and its
+/// ridging events, on `processes` processes (0: one world, no
+/// communicator).
+fn ridging_run(processes: usize) -> (Vec<String>, Vec<PlannedRidge>) {
+    if processes == 0 {
+        let mut w = sheared_layer(3);
+        w.set_ridging(Some(weak_ridging())).unwrap();
+        let (mut states, mut events) = (vec![bits(w.state())], Vec::new());
+        while w.steps() < STEPS {
+            w.step();
+            events.extend(w.ridge().unwrap());
+            if w.steps().is_multiple_of(EVERY) {
+                states.push(bits(w.state()));
+            }
+        }
+        return (states, events);
+    }
+    let never = AtomicBool::new(false);
+    let results = ThreadComm::run(processes, |comm| {
+        let (state, model, forcing, periodicity) = sheared_layer(3).into_parts();
+        let settings = Settings {
+            skin_fraction: 0.1,
+            rebalance_threshold: 0.2,
+        };
+        let mut d =
+            DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
+                .unwrap();
+        d.set_ridging(Some(weak_ridging())).unwrap();
+        let (mut states, mut events) = (Vec::new(), Vec::new());
+        if let Some(s) = d.gather_whole().unwrap() {
+            states.push(bits(&s));
+        }
+        while d.steps() < STEPS {
+            let report = d.step(&never);
+            assert!(report.blow_up.is_none() && report.forcing_failure.is_none());
+            events.extend(report.ridges);
+            if d.steps().is_multiple_of(EVERY) {
+                if let Some(s) = d.gather_whole().unwrap() {
+                    states.push(bits(&s));
+                }
+            }
+        }
+        (states, events)
+    });
+    let events = results[0].1.clone();
+    for (_, theirs) in &results {
+        assert_eq!(theirs, &events, "every process returns every event");
+    }
+    results.into_iter().next().unwrap()
+}
+
+#[test]
+fn ridging_over_one_to_four_processes_is_bitwise_as_one() {
+    let (states, events) = ridging_run(0);
+    let gains = events.iter().filter(|e| e.gainer_free).count();
+    eprintln!("{} ridging events, {gains} onto floes", events.len());
+    assert!(events.len() >= 20 && gains >= 5, "an eventful run");
+    for processes in [1, 2, 3, 4] {
+        let (p_states, p_events) = ridging_run(processes);
+        assert_eq!(p_events, events, "{processes} processes: the events");
+        assert_eq!(p_states.len(), states.len());
+        for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {
+            assert!(
+                a == b,
+                "{processes} processes: the state at step {} differs",
+                k as u64 * EVERY
+            );
+        }
+    }
 }

@@ -32,6 +32,7 @@ pub mod motion_schedule;
 pub mod observables;
 pub mod periodicity;
 pub mod pipeline;
+pub mod ridging;
 pub mod run;
 pub mod state;
 pub mod stress_control;

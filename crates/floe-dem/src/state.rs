@@ -70,6 +70,9 @@ pub struct WorldState {
     /// No floe has had an id at or above this (0: none counted yet):
     /// fracture numbers its pieces from here, so no id is used twice.
     pub next_floe_id: u64,
+    /// What ridging moved since the start ([`crate::ridging`]; zero
+    /// without it).
+    pub ridging: crate::ridging::RidgingLedger,
 }
 
 impl WorldState {
@@ -95,6 +98,7 @@ impl WorldState {
             stress_filter: None,
             floe_stress: Vec::new(),
             next_floe_id: 0,
+            ridging: Default::default(),
         }
     }
 

@@ -5,7 +5,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::forcing::ExternalForces;
-use crate::world::{FractureEvent, World};
+use crate::world::{FractureEvent, PlannedRidge, World};
 
 use super::health::{check_health, BlowUp};
 
@@ -21,6 +21,9 @@ pub struct StepReport {
     /// Floes the fracture after the step broke (every process's, by
     /// parent id; empty without fracture).
     pub fractures: Vec<FractureEvent>,
+    /// Floes ridging after the step cut (every process's, by loser id;
+    /// empty without ridging).
+    pub ridges: Vec<PlannedRidge>,
 }
 
 /// A simulation the loop can step and write.
@@ -52,7 +55,13 @@ impl<F: ExternalForces> Stepper for World<F> {
             blow_up: check_health(self),
             interrupted: interrupt.load(Ordering::SeqCst),
             fractures: Vec::new(),
+            ridges: Vec::new(),
         };
+        if let (None, None) = (&report.forcing_failure, &report.blow_up) {
+            report.ridges = self
+                .ridge()
+                .unwrap_or_else(|e| panic!("ridging after step {}: {e}", self.steps()));
+        }
         if let (Some(f), None, None) = (self.fracturing(), &report.forcing_failure, &report.blow_up)
         {
             report.fractures = self

@@ -217,7 +217,7 @@ impl<F: ExternalForces> World<F> {
     }
 
     /// Whether floe `h` is another process's (a ghost).
-    fn is_ghost(&self, h: usize) -> bool {
+    pub(super) fn is_ghost(&self, h: usize) -> bool {
         self.pipeline.ghost.get(h).copied().unwrap_or(false)
     }
 }

@@ -83,6 +83,7 @@ mod edits;
 mod fracture;
 mod ghosts;
 mod life_cycle;
+mod ridging;
 mod split;
 #[cfg(test)]
 mod tests;
@@ -91,6 +92,7 @@ pub use crate::pipeline::integrator::{stable_time_step, STABILITY_SAFETY};
 pub use edits::DetachedFloe;
 pub use fracture::{FractureEvent, PackSums, PlannedSplit};
 pub use ghosts::Kinematics;
+pub use ridging::{PlannedRidge, RidgedIce, RidgingTally};
 
 /// The simulation state and what steps it.
 pub struct World<F: ExternalForces> {
@@ -107,6 +109,8 @@ pub struct World<F: ExternalForces> {
     fracturing: Option<crate::fracture::rule::Fracturing>,
     /// Bonds form and break, if on.
     cohesion: Option<crate::cohesion::Cohesion>,
+    /// Floes ridge after every step (through `Stepper::step`), if on.
+    ridging: Option<crate::ridging::Ridging>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -201,6 +205,7 @@ impl<F: ExternalForces> World<F> {
             forcing_failure: None,
             fracturing: None,
             cohesion: None,
+            ridging: None,
         })
     }
 

@@ -122,31 +122,17 @@ impl<F: ExternalForces> World<F> {
         for (((floe, contacts), bonds), (_, offset)) in
             floes.drain(..).zip(moved).zip(bonded).zip(&shapes)
         {
-            let (mut force, mut torque) = (detached.external_force * share(&floe), 0.0);
             let external_torque = detached.external_torque * share(&floe);
-            torque += external_torque;
-            for ([_, b], c) in &contacts {
-                let (on_this, arm_origin) = if *b == floe.id {
-                    (contact_force_on_b(c), floe.position + c.image_offset)
-                } else {
-                    (-contact_force_on_b(c), floe.position)
-                };
-                force += on_this;
-                torque += cross(c.point - arm_origin, on_this);
-            }
-            // A bond's torque was taken about the parent's centroid: moved
-            // to the piece's, `offset` from it, it loses `offset x F`.
-            for ([a, _], bond) in &bonds {
-                let (on_this, about_parent) = if *a == floe.id {
-                    (-bond.force_on_b, bond.torque_on_a)
-                } else {
-                    (bond.force_on_b, bond.torque_on_b)
-                };
-                force += on_this;
-                torque += about_parent - cross(*offset, on_this);
-            }
+            let external_force = detached.external_force * share(&floe);
+            let (force, torque) = piece_forces(
+                &floe,
+                &contacts,
+                &bonds,
+                *offset,
+                (external_force, external_torque),
+            );
             self.insert_detached(DetachedFloe {
-                external_force: detached.external_force * share(&floe),
+                external_force,
                 external_torque,
                 force,
                 torque,
@@ -159,6 +145,39 @@ impl<F: ExternalForces> World<F> {
         }
         Ok(())
     }
+}
+
+/// A piece's last forces for its next half kick: `external` (force,
+/// torque), its contacts' and its bonds' (the bonds' torques, taken about
+/// the parent's centroid, moved to the piece's, `offset` from it).
+pub(super) fn piece_forces(
+    floe: &Floe,
+    contacts: &[([u64; 2], ContactRecord)],
+    bonds: &[([u64; 2], Bond)],
+    offset: Vec2,
+    (external_force, external_torque): (Vec2, f64),
+) -> (Vec2, f64) {
+    // `0.0 +`: a torque of -0.0 starts at +0.0, as it always has.
+    let (mut force, mut torque) = (external_force, 0.0 + external_torque);
+    for ([_, b], c) in contacts {
+        let (on_this, arm_origin) = if *b == floe.id {
+            (contact_force_on_b(c), floe.position + c.image_offset)
+        } else {
+            (-contact_force_on_b(c), floe.position)
+        };
+        force += on_this;
+        torque += cross(c.point - arm_origin, on_this);
+    }
+    for ([a, _], bond) in bonds {
+        let (on_this, about_parent) = if *a == floe.id {
+            (-bond.force_on_b, bond.torque_on_a)
+        } else {
+            (bond.force_on_b, bond.torque_on_b)
+        };
+        force += on_this;
+        torque += about_parent - cross(offset, on_this);
+    }
+    (force, torque)
 }
 
 /// The piece containing `at` (relative to the parent's centroid), or the
@@ -186,7 +205,7 @@ fn holder(pieces: &[Vec<Vec2>], at: Vec2) -> usize {
 /// and image offset are moved to the piece's frame: the piece is stored at
 /// `piece.position`, which is `piece_offset` from the parent's centroid up
 /// to a period. The next detection recomputes its geometry.
-fn rekey(
+pub(super) fn rekey(
     mut record: ContactRecord,
     parent_was_b: bool,
     other: u64,
@@ -226,7 +245,7 @@ fn rekey(
 /// relative rotation: its energy and loads keep their values), only
 /// expressed in the piece's frame, with the roles swapped when the piece's
 /// id is above `other`.
-fn rekey_bond(
+pub(super) fn rekey_bond(
     mut bond: Bond,
     (parent_was_b, parent_angle): (bool, f64),
     (piece_id, piece_anchor): (u64, Vec2),

@@ -5,8 +5,11 @@ use super::bytes::ReadResult;
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
-/// Version of the encoding written for a state with bonds.
-pub const FORMAT_VERSION: u32 = 9;
+/// Version of the encoding written for a state with a ridging ledger.
+pub const FORMAT_VERSION: u32 = 10;
+/// Version written for a state with bonds but no ridging: 10 without its
+/// last section.
+pub const WITHOUT_RIDGING_VERSION: u32 = 9;
 /// Version written for a state with the life cycle (floe stress or a next
 /// floe id) but no bonds: 9 without its last section.
 pub const WITHOUT_BONDS_VERSION: u32 = 8;

@@ -22,9 +22,10 @@
 //! samples per observable), `floes` (the columns), `contacts` (touching
 //! and broken, with their friction states), `clock_and_energy`,
 //! `schedules` (motion schedules and load points), `stress_controls` and
-//! `life_cycle` (floe stress, the next floe id) and `bonds`. [`encode`]
-//! writes the current format ([`FORMAT_VERSION`]) for a state with bonds,
-//! version 8 for one with floe stress or a next floe id but no bonds, and
+//! `life_cycle` (floe stress, the next floe id), `bonds` and `ridging`
+//! (its ledger). [`encode`] writes the current format ([`FORMAT_VERSION`])
+//! for a state that has ridged, version 9 for one with bonds, version 8
+//! for one with floe stress or a next floe id but no bonds, and
 //! version 7 for one with neither (the same bytes as before the life cycle
 //! existed); the readers branch on the version
 //! where an older format differs, and read a state without what the format
@@ -32,6 +33,7 @@
 //!
 //! | version | differs from the next by |
 //! | --- | --- |
+//! | 9 | no ridging ledger |
 //! | 8 | no bonds |
 //! | 7 | no life cycle (floe stress, next floe id) |
 //! | 6 | a stress-controlled wall's law is its proportional gain alone (no tag, no servo) |
@@ -52,13 +54,14 @@ mod counts;
 mod floes;
 mod header;
 mod life_cycle;
+mod ridging;
 mod schedules;
 mod stress_controls;
 
 pub use counts::OutputCounts;
 pub use header::{
     fnv1a64, verify, FORMAT_VERSION, HEADER_LEN, MAGIC, OLDEST_READABLE_VERSION,
-    WITHOUT_BONDS_VERSION, WITHOUT_LIFE_CYCLE_VERSION,
+    WITHOUT_BONDS_VERSION, WITHOUT_LIFE_CYCLE_VERSION, WITHOUT_RIDGING_VERSION,
 };
 
 use bytes::{ReadResult, Reader, Writer};
@@ -99,6 +102,7 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
         stress_filter,
         floe_stress,
         next_floe_id,
+        ridging,
     } = state;
     floes::write(w, floes);
     contacts::write_touching(w, contacts);
@@ -114,7 +118,8 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
     stress_controls::write(w, stress_controls);
     // A state without the life cycle is written as version 7, byte for
     // byte what floe wrote before the life cycle existed.
-    if stress_filter.is_none() && *next_floe_id == 0 && bonds.is_empty() {
+    let ridged = *ridging != Default::default();
+    if stress_filter.is_none() && *next_floe_id == 0 && bonds.is_empty() && !ridged {
         return header::write(&w.bytes, WITHOUT_LIFE_CYCLE_VERSION);
     }
     let life = life_cycle::LifeCycle {
@@ -123,10 +128,14 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
         next_floe_id: *next_floe_id,
     };
     life_cycle::write(w, &life);
-    if bonds.is_empty() {
+    if bonds.is_empty() && !ridged {
         return header::write(&w.bytes, WITHOUT_BONDS_VERSION);
     }
     bonds::write(w, bonds);
+    if !ridged {
+        return header::write(&w.bytes, WITHOUT_RIDGING_VERSION);
+    }
+    ridging::write(w, ridging);
     header::write(&w.bytes, FORMAT_VERSION)
 }
 
@@ -184,12 +193,14 @@ pub fn decode(
         stress_filter: None,
         floe_stress: Vec::new(),
         next_floe_id: 0,
+        ridging: Default::default(),
     };
     let mut state = state;
     let life = life_cycle::read(r)?;
     (state.stress_filter, state.floe_stress, state.next_floe_id) =
         (life.stress_filter, life.floe_stress, life.next_floe_id);
     state.bonds = bonds::read(r)?;
+    state.ridging = ridging::read(r)?;
     if r.unread() != 0 {
         return Err(format!("{} unread bytes after the state", r.unread()));
     }

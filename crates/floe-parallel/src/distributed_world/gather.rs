@@ -154,6 +154,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             stress_filter,
             floe_stress,
             next_floe_id: state.next_floe_id,
+            ridging: state.ridging,
         }))
     }
 

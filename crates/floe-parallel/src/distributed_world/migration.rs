@@ -158,6 +158,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             stress_filter,
             floe_stress,
             next_floe_id: clock.next_floe_id,
+            ridging: clock.ridging,
             floes,
         };
         let f = state.floes.columns();
@@ -332,6 +333,8 @@ pub(super) struct Clock {
     stress_time_scale_s: Option<f64>,
     /// Where fracture numbers new floes from.
     next_floe_id: u64,
+    /// What ridging moved (the same on every process).
+    ridging: floe_dem::ridging::RidgingLedger,
 }
 
 impl Clock {
@@ -343,6 +346,7 @@ impl Clock {
             energy: state.energy,
             stress_time_scale_s: state.stress_filter.map(|f| f.time_scale_s),
             next_floe_id: state.next_floe_id,
+            ridging: state.ridging,
         }
     }
 }

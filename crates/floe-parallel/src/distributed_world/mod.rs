@@ -33,6 +33,7 @@ use floe_dem::load_point::LoadPoint;
 use floe_dem::motion_schedule::ScheduledMotion;
 use floe_dem::periodicity::Periodicity;
 use floe_dem::pipeline::energy_accounting::StepSums;
+use floe_dem::ridging::Ridging;
 use floe_dem::run::{check_health, BlowUp, StepReport, Stepper};
 use floe_dem::state::WorldState;
 use floe_dem::stress_control::StressControl;
@@ -50,6 +51,7 @@ mod gather;
 mod halo;
 mod migration;
 mod placement;
+mod ridging;
 
 use halo::KINEMATICS_BYTES;
 use migration::{migrant, Clock};
@@ -274,6 +276,8 @@ pub struct DistributedWorld<F: ExternalForces, C: Communicator> {
     fracturing: Option<Fracturing>,
     /// Bonds form and break, if on (kept here for the same reason).
     cohesion: Option<Cohesion>,
+    /// Floes ridge after every step, if on (kept here for the same reason).
+    ridging: Option<Ridging>,
 }
 
 impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
@@ -331,6 +335,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             stats: DecompositionStats::default(),
             fracturing: None,
             cohesion: None,
+            ridging: None,
         };
         let packets = match &whole {
             Some(state) => this.scatter_packets(state),
@@ -464,6 +469,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
                 self.skin_m = self.base_skin_m().max(4.0 * v[4]);
                 self.migrate()?;
             }
+            report.ridges = self.ridge()?;
             if let Some(f) = self.fracturing {
                 report.fractures = self.fracture(&f.rule, f.domain_area_m2)?;
             }

@@ -1,0 +1,479 @@
+//! Ridging between steps ([`crate::ridging`]): each floe pressed past its
+//! ridging strength loses the ice behind the cut to the thicker floe, or
+//! to the coast. Planned from the state after a step, carried out in
+//! loser id order: every loser first (its kept part, its id kept), then
+//! every gainer (each taking its ridged ice in turn), so that a floe that
+//! both loses and gains in one step ends the same on any process.
+
+use super::split::{piece_forces, rekey, rekey_bond};
+use super::World;
+use crate::contact_kernel::{overlap_stiffness, Body};
+use crate::error::DemError;
+use crate::exact_sum::ExactSum;
+use crate::floes::{Floe, Motion};
+use crate::forcing::ExternalForces;
+use crate::geometry::shape::{area_and_centroid, polar_moment, FloeShape};
+use crate::geometry::{cross, perp, rotate};
+use crate::ridging::cut::{ridge_cut, RidgingContact};
+use crate::ridging::{Ridging, RidgingLedger};
+use crate::Vec2;
+
+/// The ice a loser gives up to the ridge.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct RidgedIce {
+    /// Mass, kg.
+    pub mass_kg: f64,
+    /// Volume, m^3.
+    pub volume_m3: f64,
+    /// Its centroid from the gainer's (the gainer's touching image), m.
+    pub arm_m: Vec2,
+    /// Its centroid in the world (from the loser's stored position), m.
+    pub position_m: Vec2,
+    /// Its centroid's velocity (the loser's rigid motion there), m/s.
+    pub velocity_m_per_s: Vec2,
+    /// Its moment of inertia about its centroid, kg m^2.
+    pub inertia_kg_m2: f64,
+    /// Its angular velocity (the loser's), rad/s.
+    pub angular_velocity: f64,
+}
+
+/// A ridging event: a loser cut against a gainer, planned by
+/// [`World::plan_ridging`] and made by [`World::apply_ridging`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PlannedRidge {
+    /// The step after which it ridged.
+    pub step: u64,
+    /// The floe that loses ice.
+    pub loser_id: u64,
+    /// The thicker floe, or the wall, that takes it.
+    pub gainer_id: u64,
+    /// Whether the gainer moves under forces (else the ice goes to the coast).
+    pub gainer_free: bool,
+    /// The loser's part kept: vertices about its centroid, world
+    /// orientation.
+    pub kept: Vec<Vec2>,
+    /// The loser's area before the cut, m^2.
+    pub loser_area_m2: f64,
+    /// The ridged part's area, m^2.
+    pub removed_area_m2: f64,
+    /// The ice ridged.
+    pub ice: RidgedIce,
+    /// The contact's elastic force before the cut, N.
+    pub elastic_before_n: f64,
+    /// The contact's elastic force after it (the cap), N.
+    pub elastic_after_n: f64,
+}
+
+/// Ridging's sums over one step's events, exact so that processes add
+/// theirs in any order.
+#[derive(Debug, Clone, Default)]
+pub struct RidgingTally {
+    /// Events.
+    pub events: u64,
+    /// `[volume to floes, volume to coast, momentum x, momentum y,
+    /// angular momentum, kinetic energy lost, contact energy released]`.
+    pub sums: [ExactSum; 7],
+}
+
+impl RidgingTally {
+    /// Adds the tally to `ledger`.
+    pub fn book(&self, ledger: &mut RidgingLedger) {
+        let v = |k: usize| self.sums[k].value();
+        ledger.events += self.events;
+        ledger.volume_to_floes_m3 += v(0);
+        ledger.volume_to_coast_m3 += v(1);
+        ledger.momentum_to_coast_n_s += Vec2::new(v(2), v(3));
+        ledger.angular_momentum_to_coast += v(4);
+        ledger.kinetic_energy_lost_j += v(5);
+        ledger.contact_energy_released_j += v(6);
+    }
+}
+
+impl<F: ExternalForces> World<F> {
+    /// Ridges from the next step on (`Some`; [`Ridging::check`]ed), or
+    /// stops (`None`). The ledger is kept either way.
+    pub fn set_ridging(&mut self, ridging: Option<Ridging>) -> Result<(), DemError> {
+        if let Some(r) = &ridging {
+            r.check()?;
+        }
+        self.ridging = ridging;
+        Ok(())
+    }
+
+    /// The ridging parameters, if on.
+    pub fn ridging(&self) -> Option<Ridging> {
+        self.ridging
+    }
+
+    /// What ridging has moved since the start of the run.
+    pub fn ridging_ledger(&self) -> &RidgingLedger {
+        &self.state.ridging
+    }
+
+    /// Ridging after a step, if on: plans and makes this step's events and
+    /// books them in the ledger.
+    pub fn ridge(&mut self) -> Result<Vec<PlannedRidge>, DemError> {
+        let Some(ridging) = self.ridging else {
+            return Ok(Vec::new());
+        };
+        let plans = self.plan_ridging(&ridging)?;
+        let tally = self.apply_ridging(&plans)?;
+        self.book_ridging(&tally);
+        Ok(plans)
+    }
+
+    /// Adds `tally` (a distributed run's: every process's) to the ledger.
+    pub fn book_ridging(&mut self, tally: &RidgingTally) {
+        tally.book(&mut self.state.ridging);
+    }
+
+    /// The events `ridging` makes now, by loser id: for each of this
+    /// world's own free floes (not ghosts, not on a load point, at most
+    /// `max_thickness_m` thick) the contact most over its cap (elastic
+    /// force over strength times contact length) whose other floe is
+    /// thicker (or as thick and larger, or as large with a smaller id) or a
+    /// wall, cut by [`ridge_cut`]. A cut whose kept part would be under
+    /// `min_floe_area_m2`, not a valid floe or need a shorter time step is
+    /// not made (the contact stays elastic this step). Nothing changes.
+    pub fn plan_ridging(&self, ridging: &Ridging) -> Result<Vec<PlannedRidge>, DemError> {
+        if self.pipeline.next != crate::pipeline::Stage::Drift {
+            return Err(DemError::InvalidModel {
+                reason: "ridging runs between steps".into(),
+            });
+        }
+        let f = self.state.floes.columns();
+        let driven: Vec<u64> = self.state.load_points.iter().map(|l| l.floe_id).collect();
+        // Per loser handle: (over the cap by, partner id, contact index).
+        let mut worst: Vec<Option<(f64, u64, usize)>> = vec![None; f.len()];
+        for (k, c) in self.state.contacts.iter().enumerate() {
+            let (a, b) = (c.a as usize, c.b as usize);
+            let loser = match (f.is_free(a), f.is_free(b)) {
+                (true, true) => {
+                    let key =
+                        |h: usize| (f.thickness_m[h], f.area_m2[h], std::cmp::Reverse(f.id[h]));
+                    if key(a).partial_cmp(&key(b)) == Some(std::cmp::Ordering::Greater) {
+                        b
+                    } else {
+                        a
+                    }
+                }
+                (true, false) => a,
+                (false, true) => b,
+                (false, false) => continue,
+            };
+            if self.is_ghost(loser)
+                || f.thickness_m[loser] > ridging.max_thickness_m
+                || driven.contains(&f.id[loser])
+            {
+                continue;
+            }
+            let cap = ridging.strength_at(f.thickness_m[loser]) * c.length_m;
+            if c.elastic_force_n.partial_cmp(&cap) != Some(std::cmp::Ordering::Greater) {
+                continue;
+            }
+            let over = c.elastic_force_n / cap;
+            let partner = f.id[if loser == a { b } else { a }];
+            let better = match worst[loser] {
+                None => true,
+                Some((o, p, _)) => over > o || (over == o && partner < p),
+            };
+            if better {
+                worst[loser] = Some((over, partner, k));
+            }
+        }
+        let mut plans = Vec::new();
+        for (loser, found) in worst.iter().enumerate() {
+            if let Some((_, _, k)) = *found {
+                if let Some(plan) = self.plan_cut(ridging, loser, k) {
+                    plans.push(plan);
+                }
+            }
+        }
+        Ok(plans)
+    }
+
+    /// The cut of floe `loser` at contact `k`, if one can be made.
+    fn plan_cut(&self, ridging: &Ridging, loser: usize, k: usize) -> Option<PlannedRidge> {
+        let f = self.state.floes.columns();
+        let c = &self.state.contacts[k];
+        let loser_is_a = c.a as usize == loser;
+        let gainer = if loser_is_a { c.b } else { c.a } as usize;
+        let (gainer_offset, normal) = if loser_is_a {
+            (
+                f.position[gainer] + c.image_offset - f.position[loser],
+                c.normal,
+            )
+        } else {
+            (
+                f.position[gainer] - f.position[loser] - c.image_offset,
+                -c.normal,
+            )
+        };
+        let oriented = |h: usize| -> Vec<Vec2> {
+            let (sin, cos) = f.angle[h].sin_cos();
+            f.local_vertices(h)
+                .iter()
+                .map(|&v| rotate(v, cos, sin))
+                .collect()
+        };
+        let (loser_poly, gainer_poly) = (oriented(loser), oriented(gainer));
+        let (l_body, g_body) = (
+            Body::of(f, loser, Vec2::ZERO),
+            Body::of(f, gainer, Vec2::ZERO),
+        );
+        let model = &self.model;
+        let stiffness = |area: f64| {
+            let l = Body {
+                area_m2: area,
+                ..l_body
+            };
+            overlap_stiffness(model, &l, &g_body)
+        };
+        let contact = RidgingContact {
+            loser: &loser_poly,
+            gainer: &gainer_poly,
+            gainer_offset,
+            normal,
+            strength_n_per_m: ridging.strength_at(f.thickness_m[loser]),
+        };
+        let cut = ridge_cut(&contact, stiffness)?;
+        let (kept_shape, _) = FloeShape::from_world(0, &cut.kept).ok()?;
+        if kept_shape.area_m2 < ridging.min_floe_area_m2 {
+            return None;
+        }
+        let (removed_area, removed_centroid) = area_and_centroid(&cut.removed);
+        if removed_area.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+            return None;
+        }
+        let total = kept_shape.area_m2 + removed_area;
+        let mass = f.mass_kg[loser];
+        let kept_floe = Floe {
+            mass_kg: mass * (kept_shape.area_m2 / total),
+            inertia_kg_m2: mass * (kept_shape.area_m2 / total) / kept_shape.area_m2
+                * kept_shape.polar_moment_m4,
+            area_m2: kept_shape.area_m2,
+            radius_m: kept_shape.radius_m,
+            ..self.state.floes.get(loser)
+        };
+        if self.state.dt_s > self.stable_step_of(&kept_floe) {
+            return None;
+        }
+        let removed_mass = mass * (removed_area / total);
+        let about: Vec<Vec2> = cut.removed.iter().map(|&v| v - removed_centroid).collect();
+        let (v, w) = (f.velocity[loser], f.angular_velocity[loser]);
+        Some(PlannedRidge {
+            step: self.state.steps,
+            loser_id: f.id[loser],
+            gainer_id: f.id[gainer],
+            gainer_free: f.is_free(gainer),
+            kept: cut.kept,
+            loser_area_m2: f.area_m2[loser],
+            removed_area_m2: removed_area,
+            ice: RidgedIce {
+                mass_kg: removed_mass,
+                volume_m3: removed_area * f.thickness_m[loser],
+                arm_m: removed_centroid - gainer_offset,
+                position_m: f.position[loser] + removed_centroid,
+                velocity_m_per_s: v + perp(removed_centroid) * w,
+                inertia_kg_m2: removed_mass / removed_area * polar_moment(&about),
+                angular_velocity: w,
+            },
+            elastic_before_n: c.elastic_force_n,
+            elastic_after_n: cut.elastic_after_n,
+        })
+    }
+
+    /// Makes `plans` (sorted by loser id, each loser once) on the floes this
+    /// world holds: every loser's cut, then every gainer's gain, in that
+    /// order. The tally counts the events of this world's own floes (the
+    /// loser's, or for the kinetic energy of a merge the gainer's).
+    pub fn apply_ridging(&mut self, plans: &[PlannedRidge]) -> Result<RidgingTally, DemError> {
+        let mut tally = RidgingTally::default();
+        if plans.is_empty() {
+            return Ok(tally);
+        }
+        // Who is whose, before the edits clear the ghost marks.
+        let own = |w: &Self, id: u64| w.state.floes.handle_of(id).is_some_and(|h| !w.is_ghost(h));
+        let owned: Vec<(bool, bool)> = plans
+            .iter()
+            .map(|p| (own(self, p.loser_id), own(self, p.gainer_id)))
+            .collect();
+        for (p, &(loser_own, _)) in plans.iter().zip(&owned) {
+            if self.state.floes.handle_of(p.loser_id).is_none() {
+                continue;
+            }
+            self.reshape(p)?;
+            let released = self.cut_contact_energy(p);
+            if !loser_own {
+                continue;
+            }
+            tally.events += 1;
+            tally.sums[6].add(released);
+            let ice = &p.ice;
+            if p.gainer_free {
+                tally.sums[0].add(ice.volume_m3);
+            } else {
+                let momentum = ice.velocity_m_per_s * ice.mass_kg;
+                tally.sums[1].add(ice.volume_m3);
+                tally.sums[2].add(momentum.x);
+                tally.sums[3].add(momentum.y);
+                tally.sums[4].add(
+                    cross(ice.position_m, momentum) + ice.inertia_kg_m2 * ice.angular_velocity,
+                );
+                tally.sums[5].add(kinetic(
+                    ice.mass_kg,
+                    ice.velocity_m_per_s,
+                    ice.inertia_kg_m2,
+                    ice.angular_velocity,
+                ));
+            }
+        }
+        for (p, &(_, gainer_own)) in plans.iter().zip(&owned) {
+            if !p.gainer_free {
+                continue;
+            }
+            if let Some(h) = self.state.floes.handle_of(p.gainer_id) {
+                let lost = self.gain(h, &p.ice);
+                if gainer_own {
+                    tally.sums[5].add(lost);
+                }
+            }
+        }
+        self.pipeline.floes_changed();
+        Ok(tally)
+    }
+
+    /// Replaces the loser by its kept part (its id, thickness and rigid
+    /// motion; mass by area), with its contacts and bonds in the new frame.
+    fn reshape(&mut self, p: &PlannedRidge) -> Result<(), DemError> {
+        let h = self.handle(p.loser_id)?;
+        let parent = self.state.floes.get(h);
+        let (shape, offset) = FloeShape::from_world(0, &p.kept)?;
+        let mass = parent.mass_kg * (shape.area_m2 / (shape.area_m2 + p.removed_area_m2));
+        let floe = Floe {
+            id: parent.id,
+            position: self.periodicity.wrap(parent.position + offset),
+            angle: 0.0,
+            velocity: parent.velocity + perp(offset) * parent.angular_velocity,
+            angular_velocity: parent.angular_velocity,
+            thickness_m: parent.thickness_m,
+            mass_kg: mass,
+            inertia_kg_m2: mass / shape.area_m2 * shape.polar_moment_m4,
+            area_m2: shape.area_m2,
+            radius_m: shape.radius_m,
+            r3_moment_m5: crate::geometry::polygon_r3_moment(&shape.vertices),
+            motion: Motion::Free,
+            vertices: shape.vertices,
+        };
+        let detached = self.remove_floe(p.loser_id)?;
+        let contacts: Vec<_> = detached
+            .contacts
+            .into_iter()
+            .map(|([x, y], record)| {
+                let parent_is_b = y == parent.id;
+                let other = if parent_is_b { x } else { y };
+                rekey(record, parent_is_b, other, &floe, parent.position, offset)
+            })
+            .collect();
+        let (sin, cos) = parent.angle.sin_cos();
+        let mut bonds = Vec::with_capacity(detached.bonds.len());
+        for ([x, y], bond) in detached.bonds {
+            if !bond.formed {
+                continue;
+            }
+            let parent_is_b = y == parent.id;
+            let other = if parent_is_b { x } else { y };
+            let anchor = if parent_is_b {
+                bond.anchor_b
+            } else {
+                bond.anchor_a
+            };
+            let at = rotate(anchor, cos, sin);
+            let other_angle = self.state.floes.angle[self.handle(other)?];
+            bonds.push(rekey_bond(
+                bond,
+                (parent_is_b, parent.angle),
+                (parent.id, at - offset),
+                (other, other_angle),
+            ));
+        }
+        let share = mass / parent.mass_kg;
+        let external = (
+            detached.external_force * share,
+            detached.external_torque * share,
+        );
+        let (force, torque) = piece_forces(&floe, &contacts, &bonds, offset, external);
+        self.insert_detached(super::DetachedFloe {
+            floe,
+            force,
+            torque,
+            external_force: external.0,
+            external_torque: external.1,
+            contacts,
+            broken: detached.broken,
+            bonds,
+            stress: detached.stress,
+        })
+    }
+
+    /// The ridging contact's stored normal energy after the cut (that of
+    /// the force left, `F^2 / 2k` scaled from the force before), its
+    /// elastic force the cap; the energy it no longer holds, J.
+    fn cut_contact_energy(&mut self, p: &PlannedRidge) -> f64 {
+        let (Some(x), Some(y)) = (
+            self.state.floes.handle_of(p.loser_id.min(p.gainer_id)),
+            self.state.floes.handle_of(p.loser_id.max(p.gainer_id)),
+        ) else {
+            return 0.0;
+        };
+        let pair = (x as u32, y as u32);
+        let contacts = &mut self.state.contacts;
+        let Ok(k) = contacts.binary_search_by(|c| (c.a, c.b).cmp(&pair)) else {
+            return 0.0;
+        };
+        let c = &mut contacts[k];
+        let ratio = p.elastic_after_n / p.elastic_before_n;
+        let before = c.normal_energy_j;
+        c.normal_energy_j = before * ratio * ratio;
+        c.elastic_force_n = p.elastic_after_n;
+        before - c.normal_energy_j
+    }
+
+    /// Floe `h` takes the ridged ice: its volume spread over the floe as
+    /// thickness (centroid unchanged), momentum and angular momentum
+    /// conserved; the kinetic energy lost in the merge, J.
+    fn gain(&mut self, h: usize, ice: &RidgedIce) -> f64 {
+        let f = self.state.floes.columns_mut();
+        let (m, i, v, w) = (
+            f.mass_kg[h],
+            f.inertia_kg_m2[h],
+            f.velocity[h],
+            f.angular_velocity[h],
+        );
+        let mass = m + ice.mass_kg;
+        let inertia = i * (mass / m);
+        let velocity = (v * m + ice.velocity_m_per_s * ice.mass_kg) / mass;
+        let spin = i * w
+            + ice.inertia_kg_m2 * ice.angular_velocity
+            + ice.mass_kg * cross(ice.arm_m, ice.velocity_m_per_s);
+        let angular_velocity = spin / inertia;
+        let before = kinetic(m, v, i, w)
+            + kinetic(
+                ice.mass_kg,
+                ice.velocity_m_per_s,
+                ice.inertia_kg_m2,
+                ice.angular_velocity,
+            );
+        f.thickness_m[h] += ice.volume_m3 / f.area_m2[h];
+        f.mass_kg[h] = mass;
+        f.inertia_kg_m2[h] = inertia;
+        f.velocity[h] = velocity;
+        f.angular_velocity[h] = angular_velocity;
+        before - kinetic(mass, velocity, inertia, angular_velocity)
+    }
+}
+
+/// Kinetic energy of a rigid body, J.
+fn kinetic(mass: f64, v: Vec2, inertia: f64, w: f64) -> f64 {
+    0.5 * (mass * v.length_squared() + inertia * w * w)
+}
