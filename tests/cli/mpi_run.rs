@@ -29,6 +29,8 @@ const BLOW_UP: &str = include_str!("../data/run_blow_up.toml");
 
 /// The small channel, its floes breaking against the bottom wall.
 const FRACTURE: &str = include_str!("../data/run_fracture.toml");
+/// Small channel pressed by a closing wall: floes ridge.
+const RIDGING: &str = include_str!("../data/run_ridging.toml");
 
 /// Free floes whose x moved by more than half the 6 km period between the
 /// first and the last snapshot: they crossed the periodic seam.
@@ -116,6 +118,29 @@ fn floes_break_on_two_and_three_processes_as_on_one_and_resume_across_counts() {
         );
     }
     let out = case.run_with(Launch::Mpi(2), "parts.h5", &["--max-steps", "1371"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let out = case.resume_with(Launch::Mpi(3), "parts.h5", &[]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("alone.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+}
+
+#[test]
+fn floes_ridge_on_two_and_three_processes_as_on_one() {
+    let case = Case::new(RIDGING);
+    case.run_ok("alone.h5", &["--threads", "1"]);
+    for np in [2, 3] {
+        let name = format!("np{np}.h5");
+        let out = case.run_with(Launch::Mpi(np), &name, &["--threads", "1"]);
+        assert_eq!(code(&out), 0, "-np {np}: {}", text(&out.stderr));
+        assert_same_run(
+            Path::new(&case.path("alone.h5")),
+            Path::new(&case.path(&name)),
+        );
+    }
+    let out = case.run_with(Launch::Mpi(2), "parts.h5", &["--max-steps", "137"]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
     let out = case.resume_with(Launch::Mpi(3), "parts.h5", &[]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));

@@ -28,6 +28,8 @@ const BLOW_UP: &str = include_str!("../data/run_blow_up.toml");
 
 /// The small channel, its floes breaking against the bottom wall.
 const FRACTURE: &str = include_str!("../data/run_fracture.toml");
+/// Small channel pressed by a closing wall: floes ridge.
+const RIDGING: &str = include_str!("../data/run_ridging.toml");
 
 fn floe() -> Command {
     Launch::Alone.command()
@@ -788,4 +790,60 @@ fn ctrl_c_inside_a_window_then_resume_is_bitwise() {
     let out = case.resume("parts.h5", &["--threads", "1"]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
     assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
+fn floes_ridge_keeping_their_volume_and_a_paused_run_resumes_bitwise() {
+    let case = Case::new(RIDGING);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    let out = case.resume("parts.h5", &["--threads", "2"]);
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    assert_same_run(
+        Path::new(&case.path("whole.h5")),
+        Path::new(&case.path("parts.h5")),
+    );
+    let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
+    let n = f.snapshot_count().unwrap();
+    let volume = f.observable("ridged_volume").unwrap();
+    let events = f.observable("ridging_events").unwrap();
+    // Free ice volume at each snapshot and the volume lost to the coast by
+    // then (an observable sample at the snapshot's step) add up to the
+    // start's; the floes' shapes and thicknesses follow the ridging.
+    let free_volume = |k: usize| {
+        let s = f.floes_at(k).unwrap();
+        (0..s.len())
+            .filter(|&i| !s.prescribed[i])
+            .map(|i| s.area_m2[i] * s.thickness_m[i])
+            .sum::<f64>()
+    };
+    let thickest = |k: usize| {
+        let s = f.floes_at(k).unwrap();
+        (0..s.len())
+            .filter(|&i| !s.prescribed[i])
+            .map(|i| s.thickness_m[i])
+            .fold(0.0, f64::max)
+    };
+    let v0 = free_volume(0);
+    for k in 0..n {
+        let step = f.snapshot(k).unwrap().step;
+        let j = volume
+            .step
+            .iter()
+            .position(|&s| s == step)
+            .expect("a sample");
+        let to_coast = volume.value[2 * j + 1];
+        let v = free_volume(k) + to_coast;
+        assert!((v - v0).abs() < 1e-12 * v0, "snapshot {k}: {v} vs {v0}");
+    }
+    let last_events = *events.value.last().unwrap();
+    let (to_floes, to_coast) = (
+        volume.value[volume.value.len() - 2],
+        volume.value[volume.value.len() - 1],
+    );
+    eprintln!("{last_events} events, {to_floes:.4e} m^3 to floes, {to_coast:.4e} m^3 to the coast");
+    assert!(last_events > 100.0 && to_floes > 0.0 && to_coast > 0.0);
+    assert!(thickest(n - 1) > thickest(0) + 0.1, "floes thickened");
+    let areas = |k: usize| f.floes_at(k).unwrap().area_m2;
+    assert_ne!(areas(0), areas(n - 1), "the losers' shapes follow");
 }

@@ -1464,6 +1464,54 @@ fn floe_stress_takes_a_positive_time_scale_and_nothing_else() {
 }
 
 #[test]
+fn ridging_tables_are_checked_key_by_key() {
+    let with = |table: &str| format!("{BASE}\n[ridging]\n{table}\n");
+    for key in ["strength_n_per_m", "max_thickness_m", "min_floe_area_m2"] {
+        let text = with(&format!("{key} = -2.5"));
+        check(&text, "-2.5", 0, &format!("ridging.{key}"), &["> 0"]);
+        let text = with(&format!("{key} = nan"));
+        check(&text, "nan", 0, &format!("ridging.{key}"), &[]);
+    }
+    check(
+        &with("thickness_exponent = -0.5"),
+        "-0.5",
+        0,
+        "ridging.thickness_exponent",
+        &[">= 0"],
+    );
+    check(
+        &with("strength = 1e5"),
+        "strength",
+        0,
+        "strength",
+        &["unknown field"],
+    );
+    // The table alone: the defaults, reported.
+    let setup = Scenario::from_text(&with(""), Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert_eq!(
+        setup.world.ridging(),
+        Some(floe_dem::ridging::Ridging::default())
+    );
+    assert!(
+        setup
+            .report
+            .iter()
+            .any(|l| l
+                .contains("ridging: a floe up to 5 m thick bears at most 100000 h^1.5 N per m")),
+        "{:?}",
+        setup.report
+    );
+    let plain = Scenario::from_text(BASE, Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert!(plain.world.ridging().is_none());
+}
+
+#[test]
 fn cohesion_tables_are_checked_key_by_key() {
     let with = |table: &str| format!("{BASE}\n[cohesion]\n{table}\n");
     check(

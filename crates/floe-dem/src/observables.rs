@@ -39,6 +39,8 @@ pub struct Observables {
     /// Number of bonds (floes frozen together; quiet pairs not yet bonded
     /// not counted).
     pub bonds: usize,
+    /// What ridging has moved since the start (zero without it).
+    pub ridging: crate::ridging::RidgingLedger,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -49,6 +51,7 @@ impl<F: ExternalForces> World<F> {
         let mut o = Observables {
             time_s: self.time_s(),
             ledger: *self.energy(),
+            ridging: *self.ridging_ledger(),
             contacts: contacts.len(),
             ..Default::default()
         };

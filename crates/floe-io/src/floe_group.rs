@@ -1,8 +1,9 @@
 //! One H5MD particle group of a fixed set of floes: its box, the floes'
 //! fixed properties and the snapshot elements. A run whose floes never
 //! change has one, `/particles/floes`; each change of the floe set
-//! (fracture) starts the next, `/particles/floes_1`, ... (a segment), from
-//! the snapshot its `first_snapshot` attribute names.
+//! (fracture), or of its shapes and masses (ridging), starts the next,
+//! `/particles/floes_1`, ... (a segment), from the snapshot its
+//! `first_snapshot` attribute names.
 
 use hdf5::File;
 
@@ -22,6 +23,8 @@ pub(crate) struct FloeGroup {
     pub first_snapshot: usize,
     /// Its floes' ids, in row order.
     pub ids: Vec<u64>,
+    /// The run's ridging events when its shapes and masses were written.
+    pub ridging_events: u64,
     /// In [`layout::FLOE_ELEMENTS`] order, then the stress if written.
     pub elements: Vec<Element>,
 }
@@ -31,7 +34,8 @@ impl FloeGroup {
     /// starting at snapshot `first_snapshot` (`None` for the first
     /// segment, which records none); `land` marks land floes by id in a
     /// later segment (the first gets them from `RunWriter::mark_land`),
-    /// `parents` gives each floe's parent id there (-1: none).
+    /// `parents` gives each floe's parent id there (-1: none);
+    /// `ridging_events`, the run's so far, is recorded when not zero.
     #[allow(clippy::type_complexity)] // the later segment's three records
     pub(crate) fn create(
         file: &File,
@@ -40,6 +44,7 @@ impl FloeGroup {
         floes: &Floes,
         opts: &OutputOptions,
         later: Option<(usize, &[u64], &[i64])>,
+        ridging_events: u64,
     ) -> hdf5::Result<Self> {
         let n = floes.len();
         let name = layout::floe_segment(index);
@@ -87,6 +92,9 @@ impl FloeGroup {
         g.new_dataset_builder()
             .with_data(&prescribed[..])
             .create("prescribed")?;
+        if ridging_events > 0 {
+            h5::write_scalar(&g, layout::RIDGING_EVENTS, ridging_events)?;
+        }
         let first_snapshot = match later {
             Some((first, land, parents)) => {
                 h5::write_scalar(&g, layout::FIRST_SNAPSHOT, first as u64)?;
@@ -138,6 +146,7 @@ impl FloeGroup {
             index,
             first_snapshot,
             ids: floes.id[..n].to_vec(),
+            ridging_events,
             elements,
         })
     }
@@ -155,6 +164,11 @@ impl FloeGroup {
             h5::read_scalar::<u64>(&g, layout::FIRST_SNAPSHOT)? as usize
         };
         let ids: Vec<u64> = g.dataset("id")?.read_raw()?;
+        let ridging_events = if g.attr_names()?.iter().any(|a| a == layout::RIDGING_EVENTS) {
+            h5::read_scalar::<u64>(&g, layout::RIDGING_EVENTS)?
+        } else {
+            0
+        };
         let mut elements = Vec::new();
         for (name, _, _) in layout::FLOE_ELEMENTS {
             elements.push(Element::open(&g, name)?);
@@ -166,6 +180,7 @@ impl FloeGroup {
             index,
             first_snapshot,
             ids,
+            ridging_events,
             elements,
         }))
     }

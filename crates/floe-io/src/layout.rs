@@ -16,6 +16,9 @@ pub const FLOES: &str = "particles/floes";
 /// Attribute of a later segment: the snapshot (over the whole file) of
 /// its first row.
 pub const FIRST_SNAPSHOT: &str = "first_snapshot";
+/// Floe group attribute (only once floes have ridged): the ridging events
+/// the run had made when the group's shapes and masses were written.
+pub const RIDGING_EVENTS: &str = "ridging_events";
 
 /// The particle group of segment `k`: [`FLOES`] for the first, then
 /// `particles/floes_1`, `particles/floes_2`, ...: a run whose floe set
@@ -112,6 +115,41 @@ pub fn observable_samples(
 /// The observable written beside [`observable_samples`]'s when the run
 /// has cohesion: the number of bonds.
 pub const BONDS_OBSERVABLE: &str = "bonds";
+
+/// The observables written beside [`observable_samples`]'s when the run
+/// ridges: name, unit and values of ridging's ledger (the volume moved to
+/// floes and lost to the coast; the kinetic energy lost and the contacts'
+/// energy released; the events).
+pub fn ridging_samples(
+    o: &floe_dem::observables::Observables,
+) -> [(&'static str, &'static str, Vec<f64>); 3] {
+    let r = &o.ridging;
+    [
+        (
+            "ridged_volume",
+            "m3",
+            vec![r.volume_to_floes_m3, r.volume_to_coast_m3],
+        ),
+        (
+            "ridging_energy_lost",
+            "J",
+            vec![r.kinetic_energy_lost_j, r.contact_energy_released_j],
+        ),
+        ("ridging_events", "1", vec![r.events as f64]),
+    ]
+}
+
+/// The values of optional observable `name` ([`BONDS_OBSERVABLE`] or one
+/// of [`ridging_samples`]) in `o`.
+pub fn optional_sample(name: &str, o: &floe_dem::observables::Observables) -> Option<Vec<f64>> {
+    if name == BONDS_OBSERVABLE {
+        return Some(vec![o.bonds as f64]);
+    }
+    ridging_samples(o)
+        .into_iter()
+        .find(|(n, _, _)| *n == name)
+        .map(|(_, _, v)| v)
+}
 
 /// `/parameters` attribute: FNV-1a 64 checksum of `scenario_toml` as
 /// written at creation, checked on resume.

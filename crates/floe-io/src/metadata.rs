@@ -64,6 +64,9 @@ pub struct OutputOptions {
     /// Write the number of bonds (floes frozen together) with the
     /// observables (`/observables/bonds`). Default false.
     pub bonds: bool,
+    /// Write ridging's ledger with the observables (`/observables/ridged_volume`,
+    /// `ridging_energy_lost`, `ridging_events`). Default false.
+    pub ridging: bool,
 }
 
 impl Default for OutputOptions {
@@ -73,6 +76,7 @@ impl Default for OutputOptions {
             shuffle: true,
             floe_stress: false,
             bonds: false,
+            ridging: false,
         }
     }
 }

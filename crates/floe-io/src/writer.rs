@@ -71,7 +71,8 @@ pub struct RunWriter {
     fractures: Option<FractureLog>,
     contacts: ContactTables,
     /// In [`layout::observable_samples`] order, then
-    /// [`layout::BONDS_OBSERVABLE`] if the run has cohesion.
+    /// [`layout::BONDS_OBSERVABLE`] if the run has cohesion and
+    /// [`layout::ridging_samples`]'s if it ridges.
     observables: Vec<(String, Element)>,
     next_slot: usize,
     /// Observable samples not yet written.
@@ -219,7 +220,7 @@ impl RunWriter {
         })()
         .at(path, at("/parameters"))?;
         // /particles/floes: box, fixed properties, snapshot elements.
-        let segment = FloeGroup::create(&file, 0, &meta.domain, floes, opts, None)
+        let segment = FloeGroup::create(&file, 0, &meta.domain, floes, opts, None, 0)
             .at(path, at("/particles/floes"))?;
         // Contacts: compressed, each snapshot starts a chunk (padded with
         // fill values) so that each compressed chunk is written once.
@@ -269,6 +270,14 @@ impl RunWriter {
             if opts.bonds {
                 let name = layout::BONDS_OBSERVABLE;
                 v.push((name.to_string(), create_observable(&g, name, "1", 1)?));
+            }
+            if opts.ridging {
+                for (name, unit, values) in layout::ridging_samples(&Observables::default()) {
+                    v.push((
+                        name.to_string(),
+                        create_observable(&g, name, unit, values.len())?,
+                    ));
+                }
             }
             Ok(v)
         })()
@@ -351,7 +360,9 @@ impl RunWriter {
     pub fn write_snapshot<F: ExternalForces>(&mut self, world: &World<F>) -> Result<(), IoError> {
         let f = world.floes();
         let n = f.len();
-        if f.id != self.segment.ids {
+        // A new floe set (fracture) or new shapes and masses (ridging).
+        if f.id != self.segment.ids || world.ridging_ledger().events != self.segment.ridging_events
+        {
             self.start_segment(world)?;
         }
         let (step, time) = (world.steps(), world.time_s());
@@ -438,7 +449,8 @@ impl RunWriter {
     }
 
     /// Starts the next segment for the world's floes (their set changed:
-    /// fracture), from the next snapshot on.
+    /// fracture; or their shapes and masses: ridging), from the next
+    /// snapshot on.
     fn start_segment<F: ExternalForces>(&mut self, world: &World<F>) -> Result<(), IoError> {
         let floes = world.floes();
         self.claim(floes.len() as u64 * 512 + floes.vertices.len() as u64 * 16)?;
@@ -467,6 +479,7 @@ impl RunWriter {
             floes,
             &opts,
             Some((first, &self.land_ids, &parents)),
+            world.ridging_ledger().events,
         )
         .at(&self.path, || {
             format!("writing /{}", layout::floe_segment(index))
@@ -503,13 +516,16 @@ impl RunWriter {
             .map(|(_, o)| layout::observable_samples(o))
             .collect();
         for (k, (name, el)) in self.observables.iter_mut().enumerate() {
-            let values: Vec<f64> = if name == layout::BONDS_OBSERVABLE {
-                self.pending.iter().map(|(_, o)| o.bonds as f64).collect()
-            } else {
-                samples
+            let values: Vec<f64> = match samples.first().and_then(|s| s.get(k)) {
+                Some(_) => samples
                     .iter()
                     .flat_map(|s| s[k].2.iter().copied())
-                    .collect()
+                    .collect(),
+                None => self
+                    .pending
+                    .iter()
+                    .flat_map(|(_, o)| layout::optional_sample(name, o).unwrap_or_default())
+                    .collect(),
             };
             (|| -> hdf5::Result<()> {
                 el.step.append(&steps)?;
@@ -701,6 +717,14 @@ impl RunWriter {
             let el = Element::open(&og, layout::BONDS_OBSERVABLE).at(path, what)?;
             observables.push((layout::BONDS_OBSERVABLE.to_string(), el));
         }
+        let ridging_names = layout::ridging_samples(&Observables::default()).map(|(n, _, _)| n);
+        let og_has_ridging = og.link_exists(ridging_names[0]);
+        if og_has_ridging {
+            for name in ridging_names {
+                let el = Element::open(&og, name).at(path, what)?;
+                observables.push((name.to_string(), el));
+            }
+        }
         // Truncate to the checkpoint's counts; refuse counts the file does
         // not reach (the checkpoint would describe output that is not there).
         let snapshots = counts.snapshots as usize;
@@ -790,6 +814,7 @@ impl RunWriter {
                     shuffle: contacts.pad,
                     floe_stress: state.stress_filter.is_some(),
                     bonds: og_has_bonds,
+                    ridging: og_has_ridging,
                 },
                 land_ids,
                 fractures,

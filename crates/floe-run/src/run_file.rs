@@ -199,6 +199,7 @@ fn resume(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         let mut world = World::resume(state, parts.model, parts.forcing, parts.periodicity)?;
         world.set_fracturing(scenario.fracturing(world.dt_s()))?;
         world.set_cohesion(scenario.cohesion())?;
+        world.set_ridging(scenario.ridging())?;
         advance(
             &scenario,
             &mut world,
@@ -272,6 +273,7 @@ pub(crate) fn create_writer(
         &OutputOptions {
             floe_stress: setup.world.stress_filter().is_some(),
             bonds: setup.world.cohesion().is_some(),
+            ridging: setup.world.ridging().is_some(),
             ..OutputOptions::default()
         },
     )?;

@@ -125,6 +125,7 @@ fn run_inner<C: Communicator + Sync>(
         let dt_s = world.local().dt_s();
         world.set_fracturing(scenario.fracturing(dt_s))?;
         world.set_cohesion(scenario.cohesion())?;
+        world.set_ridging(scenario.ridging())?;
         let stats = world.stats();
         hooks.say(&format!(
             "{} processes x {threads} threads; process 0 owns {} floes and holds {} ghosts",

@@ -21,7 +21,8 @@ use floe_friction::LawRegistry;
 use crate::build;
 use crate::checks;
 use crate::describe::{
-    describe_cohesion, describe_contact, describe_forcing, describe_fracture, describe_thickness,
+    describe_cohesion, describe_contact, describe_forcing, describe_fracture, describe_ridging,
+    describe_thickness,
 };
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
@@ -309,6 +310,10 @@ impl Scenario {
                 );
             }
         }
+        if let Some(ridging) = r.ridging {
+            world.set_ridging(Some(ridging))?;
+            report.push(describe_ridging(&ridging));
+        }
         if let Some(filter) = world.stress_filter() {
             report.push(format!(
                 "  floe stress: each floe's, from its contacts, averaged over {} s",
@@ -364,6 +369,11 @@ impl Scenario {
             forcing: r.forcing.clone(),
             periodicity: r.domain.periodicity(),
         }
+    }
+
+    /// Ridging as the run applies it (`[ridging]`; `None` without).
+    pub fn ridging(&self) -> Option<floe_dem::ridging::Ridging> {
+        self.resolved.ridging
     }
 
     /// Cohesion as the run applies it (`[cohesion]`; `None` without).

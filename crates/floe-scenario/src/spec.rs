@@ -57,6 +57,18 @@ pub(crate) struct RawScenario {
     pub fracture: Option<Spanned<RawFracture>>,
     /// `[cohesion]`: floes that freeze together.
     pub cohesion: Option<Spanned<RawCohesion>>,
+    /// `[ridging]`: floes that ridge under pressure.
+    pub ridging: Option<Spanned<RawRidging>>,
+}
+
+/// `[ridging]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawRidging {
+    pub strength_n_per_m: Num,
+    pub thickness_exponent: Num,
+    pub max_thickness_m: Num,
+    pub min_floe_area_m2: Num,
 }
 
 /// `[cohesion]`

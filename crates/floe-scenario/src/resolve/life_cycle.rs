@@ -1,16 +1,17 @@
-//! `[floe_stress]`, `[fracture]` and `[cohesion]`: the floe life cycle's
-//! settings.
+//! `[floe_stress]`, `[fracture]`, `[cohesion]` and `[ridging]`: the floe
+//! life cycle's settings.
 
 use floe_dem::cohesion::Cohesion;
 use floe_dem::fracture::criteria::{FractureCriterion, HiblerEllipse, MohrCoulomb};
 use floe_dem::fracture::rule::StrengthThickness;
 use floe_dem::pipeline::floe_stress::StressFilter;
+use floe_dem::ridging::Ridging;
 use toml::Spanned;
 
 use crate::error::ScenarioError;
 use crate::resolve::limits::{count, refuse_given, span_of};
 use crate::source_file::SourceFile;
-use crate::spec::{RawCohesion, RawFloeStress, RawFracture};
+use crate::spec::{RawCohesion, RawFloeStress, RawFracture, RawRidging};
 
 /// Smallest floe that breaks unless given, m^2: the anchors' smallest
 /// floe (Subzero.jl `FloeSettings.min_floe_area`).
@@ -99,6 +100,32 @@ pub(crate) fn resolve_cohesion(
             d.shear_strength_n_per_m,
         )?,
         growth_time_s: non_negative(&r.growth_time_s, "growth_time_s", d.growth_time_s)?,
+    }))
+}
+
+/// `[ridging]`, if given: each value checked (the exponent >= 0, the
+/// others > 0), the rest [`Ridging::default`]'s.
+pub(crate) fn resolve_ridging(
+    f: &SourceFile,
+    raw: Option<&Spanned<RawRidging>>,
+) -> Result<Option<Ridging>, ScenarioError> {
+    let Some(raw) = raw else {
+        return Ok(None);
+    };
+    let r = raw.get_ref();
+    let d = Ridging::default();
+    let positive = |v: &Option<Spanned<f64>>, key: &str, default: f64| match v {
+        Some(x) => f.positive(x, &format!("ridging.{key}")),
+        None => Ok(default),
+    };
+    Ok(Some(Ridging {
+        strength_n_per_m: positive(&r.strength_n_per_m, "strength_n_per_m", d.strength_n_per_m)?,
+        thickness_exponent: match &r.thickness_exponent {
+            Some(x) => f.non_negative(x, "ridging.thickness_exponent")?,
+            None => d.thickness_exponent,
+        },
+        max_thickness_m: positive(&r.max_thickness_m, "max_thickness_m", d.max_thickness_m)?,
+        min_floe_area_m2: positive(&r.min_floe_area_m2, "min_floe_area_m2", d.min_floe_area_m2)?,
     }))
 }
 

@@ -40,7 +40,7 @@ use domain::resolve_domain;
 use floes::resolve_floes;
 use forcing::resolve_forcing;
 use ice::resolve_ice;
-use life_cycle::{resolve_cohesion, resolve_floe_stress, resolve_fracture};
+use life_cycle::{resolve_cohesion, resolve_floe_stress, resolve_fracture, resolve_ridging};
 pub use life_cycle::{FractureSettings, DEFAULT_CHECK_EVERY_S, DEFAULT_MIN_FLOE_AREA_M2};
 use limits::count;
 use output::resolve_output;
@@ -115,6 +115,8 @@ pub(crate) struct Resolved {
     pub fracture_spans: life_cycle::FractureSpans,
     /// `[cohesion]`, if floes freeze together.
     pub cohesion: Option<floe_dem::cohesion::Cohesion>,
+    /// `[ridging]`, if floes ridge.
+    pub ridging: Option<floe_dem::ridging::Ridging>,
 }
 /// Most time steps a run may take unless raised (`floe run --step-limit`):
 /// about a day at 1e4 steps/s, beyond which a step count is a typo.
@@ -228,6 +230,7 @@ pub(crate) fn resolve(
     let (output, window_spans) = resolve_output(f, raw.output.as_ref(), duration_s)?;
     let floe_stress = resolve_floe_stress(f, raw.floe_stress.as_ref())?;
     let cohesion = resolve_cohesion(f, raw.cohesion.as_ref())?;
+    let ridging = resolve_ridging(f, raw.ridging.as_ref())?;
     let (fracture, fracture_spans) = match resolve_fracture(f, raw.fracture.as_ref())? {
         Some((settings, spans)) => (Some(settings), spans),
         None => (
@@ -273,6 +276,7 @@ pub(crate) fn resolve(
         fracture,
         fracture_spans,
         cohesion,
+        ridging,
     })
 }
 
