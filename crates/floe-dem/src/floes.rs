@@ -486,6 +486,44 @@ impl Floes {
         Ok(h)
     }
 
+    /// Replaces floes in place, each `(h, floe)` keeping handle `h` and its
+    /// id (`floe.id` must be floe `h`'s): shapes, poses, motion and
+    /// masses; the vertex array is rebuilt once for all. `changes` sorted
+    /// by handle, each handle once.
+    pub(crate) fn replace_in_place(&mut self, changes: Vec<(usize, Floe)>) {
+        debug_assert!(changes.windows(2).all(|w| w[0].0 < w[1].0));
+        let c = &mut self.columns;
+        let mut vertices = Vec::with_capacity(c.vertices.len() + changes.len());
+        let mut start = Vec::with_capacity(c.vertex_start.len());
+        start.push(0u32);
+        let mut next = changes.iter().peekable();
+        for h in 0..c.id.len() {
+            match next.next_if(|(k, _)| *k == h) {
+                Some((_, f)) => {
+                    debug_assert_eq!(f.id, c.id[h]);
+                    vertices.extend_from_slice(&f.vertices);
+                    c.position[h] = f.position;
+                    c.angle[h] = f.angle;
+                    c.velocity[h] = f.velocity;
+                    c.angular_velocity[h] = f.angular_velocity;
+                    c.thickness_m[h] = f.thickness_m;
+                    c.mass_kg[h] = f.mass_kg;
+                    c.inertia_kg_m2[h] = f.inertia_kg_m2;
+                    c.area_m2[h] = f.area_m2;
+                    c.radius_m[h] = f.radius_m;
+                    c.r3_moment_m5[h] = f.r3_moment_m5;
+                    c.motion[h] = f.motion;
+                }
+                None => vertices.extend_from_slice(
+                    &c.vertices[c.vertex_start[h] as usize..c.vertex_start[h + 1] as usize],
+                ),
+            }
+            start.push(vertices.len() as u32);
+        }
+        c.vertices = vertices;
+        c.vertex_start = start;
+    }
+
     /// Floe `h` as a value.
     pub fn get(&self, h: usize) -> Floe {
         let c = &self.columns;

@@ -50,6 +50,10 @@ pub struct BroadPhase {
     pub pairs: Vec<CandidatePair>,
     positions_at_build: Vec<Vec2>,
     angles_at_build: Vec<f64>,
+    /// Per floe, how far its centroid moved in its own material since the
+    /// build (ridging cut it: the material the list was built for moved
+    /// at most this much more than the centroid shows), m; empty if none.
+    slack_m: Vec<f64>,
     /// Number of rebuilds so far (for diagnostics and tests).
     pub rebuilds: u64,
 }
@@ -82,6 +86,7 @@ impl BroadPhase {
             pairs: Vec::new(),
             positions_at_build: Vec::new(),
             angles_at_build: Vec::new(),
+            slack_m: Vec::new(),
             rebuilds: 0,
         }
     }
@@ -122,6 +127,19 @@ impl BroadPhase {
     pub fn invalidate(&mut self) {
         self.positions_at_build.clear();
         self.angles_at_build.clear();
+        self.slack_m.clear();
+    }
+
+    /// Floe `i`'s centroid moved `shift_m` within its material (a ridging
+    /// cut; the material only shrank): the list stays valid while the
+    /// centroid's displacement plus the shifts stays within half the skin.
+    pub fn add_slack(&mut self, i: usize, shift_m: f64) {
+        if self.slack_m.len() != self.positions_at_build.len() {
+            self.slack_m = vec![0.0; self.positions_at_build.len()];
+        }
+        if let Some(s) = self.slack_m.get_mut(i) {
+            *s += shift_m;
+        }
     }
 
     /// Rebuilds the candidate list if any floe moved more than half the skin
@@ -175,8 +193,12 @@ impl BroadPhase {
         let half_skin_sq = (0.5 * self.skin_m).powi(2);
         match (self.positions_at_build.get(i), self.angles_at_build.get(i)) {
             (Some(&q), Some(&turned_from)) => {
-                (position + periodic.nearest_image(q, position) - q).length_squared() > half_skin_sq
-                    || (angle - turned_from).abs() > self.max_rotation_rad
+                let moved = position + periodic.nearest_image(q, position) - q;
+                let beyond = match self.slack_m.get(i) {
+                    Some(&slack) if slack > 0.0 => (moved.length() + slack).powi(2) > half_skin_sq,
+                    _ => moved.length_squared() > half_skin_sq,
+                };
+                beyond || (angle - turned_from).abs() > self.max_rotation_rad
             }
             _ => true,
         }
@@ -201,6 +223,7 @@ impl BroadPhase {
         self.positions_at_build.extend_from_slice(position);
         self.angles_at_build.clear();
         self.angles_at_build.extend_from_slice(&floes.angle);
+        self.slack_m.clear();
         self.pairs.clear();
         let n = position.len();
         if n < 2 {

@@ -377,4 +377,18 @@ impl NarrowPhase {
     pub(crate) fn invalidate(&mut self) {
         self.separating.clear();
     }
+
+    /// The floes marked in `reshaped` changed shape (ridging): forget the
+    /// separating edges cached for their pairs of `pairs` (the candidate
+    /// list the cache follows), which name their old edges.
+    pub(crate) fn forget_shapes(&mut self, pairs: &[CandidatePair], reshaped: &[bool]) {
+        if self.separating.len() != pairs.len() {
+            return;
+        }
+        for (edge, p) in self.separating.iter_mut().zip(pairs) {
+            if reshaped[p.a as usize] || reshaped[p.b as usize] {
+                *edge = SeparatingEdge::NONE;
+            }
+        }
+    }
 }

@@ -32,13 +32,33 @@ pub struct Cut {
     pub elastic_after_n: f64,
 }
 
-/// Bisection steps: the cut line is placed to 2^-60 of the search interval.
-const BISECTIONS: usize = 60;
+/// Most evaluations of the cut: Newton steps, each kept inside the bracket
+/// (halving it when a step would leave it).
+const MOST_STEPS: usize = 60;
+
+/// The force left below the cap by at most this fraction ends the search.
+const FORCE_TOLERANCE: f64 = 1e-9;
+
+/// The loser kept behind the line at `s`, and its contact then.
+struct Trial {
+    kept: Vec<Vec2>,
+    /// Elastic force over the cap (strength times contact length), N;
+    /// `-inf` without an overlap.
+    excess_n: f64,
+    elastic_n: f64,
+    /// The cap, N.
+    cap_n: f64,
+    /// d(elastic)/ds for a strip, `kappa l`, N/m.
+    slope_n_per_m: f64,
+}
 
 /// The cut that brings the contact's elastic force `stiffness(kept area) x
 /// overlap area` down to the strength times the contact length, or `None`
 /// when it is not above that. `stiffness` is the contact's overlap
-/// stiffness with the loser's area changed to the one given (Pa).
+/// stiffness with the loser's area changed to the one given (Pa). The line
+/// is found by Newton steps on the force (for an edge-on strip the force
+/// falls by `kappa l` per metre the line moves back: one step), each
+/// safeguarded by the bracket, to `FORCE_TOLERANCE` of the cap below it.
 pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<Cut> {
     let n = c.normal;
     let mut scratch = ClipScratch::default();
@@ -49,11 +69,17 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
         sin: 0.0,
         radius_m: radius(c.gainer),
     };
-    // The elastic force over the cap of the loser kept behind the line at `s`.
-    let mut excess = |s: f64| -> (f64, Vec<Vec2>, f64) {
+    let mut trial = |s: f64| -> Trial {
         let kept = clip_half_plane(c.loser, n, s);
+        let none = |kept| Trial {
+            kept,
+            excess_n: f64::NEG_INFINITY,
+            elastic_n: 0.0,
+            cap_n: 0.0,
+            slope_n_per_m: 0.0,
+        };
         if kept.len() < 3 {
-            return (-1.0, kept, 0.0);
+            return none(kept);
         }
         let placed = Placed {
             vertices: &kept,
@@ -63,11 +89,18 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
             radius_m: radius(&kept),
         };
         match overlap(placed, gainer, &mut scratch) {
-            None => (-1.0, kept, 0.0),
+            None => none(kept),
             Some(ov) => {
-                let area = crate::geometry::shape::area_and_centroid(&kept).0;
-                let elastic = stiffness(area) * ov.area_m2;
-                (elastic - c.strength_n_per_m * ov.length_m, kept, elastic)
+                let kappa = stiffness(crate::geometry::shape::area_and_centroid(&kept).0);
+                let elastic_n = kappa * ov.area_m2;
+                let cap_n = c.strength_n_per_m * ov.length_m;
+                Trial {
+                    kept,
+                    excess_n: elastic_n - cap_n,
+                    elastic_n,
+                    cap_n,
+                    slope_n_per_m: kappa * ov.length_m,
+                }
             }
         }
     };
@@ -81,21 +114,46 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
         .iter()
         .map(|&v| (v + c.gainer_offset).dot(n))
         .fold(f64::INFINITY, f64::min);
+    let start = trial(hi);
     // NaN-safe: a NaN excess or bound makes no cut.
-    if excess(hi).0.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater)
-        || lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less)
-    {
+    let over = |t: &Trial| t.excess_n.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater);
+    if !over(&start) || lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
         return None;
     }
-    for _ in 0..BISECTIONS {
-        let mid = 0.5 * (lo + hi);
-        if excess(mid).0 > 0.0 {
-            hi = mid;
+    let width = hi - lo;
+    let (mut s, mut at) = (hi, start);
+    // The kept part and its force at `lo`, once a trial has landed there.
+    let mut below: Option<(Vec<Vec2>, f64)> = None;
+    for _ in 0..MOST_STEPS {
+        let newton = s - at.excess_n / at.slope_n_per_m;
+        let next = if at.slope_n_per_m > 0.0 && newton > lo && newton < hi {
+            newton
         } else {
-            lo = mid;
+            0.5 * (lo + hi)
+        };
+        let t = trial(next);
+        s = next;
+        if over(&t) {
+            hi = next;
+        } else {
+            lo = next;
+            below = Some((t.kept.clone(), t.elastic_n));
+            if t.excess_n >= -FORCE_TOLERANCE * t.cap_n {
+                break;
+            }
+        }
+        at = t;
+        if hi - lo <= 1e-12 * width {
+            break;
         }
     }
-    let (_, kept, elastic_after_n) = excess(lo);
+    let (kept, elastic_after_n) = match below {
+        Some(b) => b,
+        None => {
+            let t = trial(lo);
+            (t.kept, t.elastic_n)
+        }
+    };
     let removed = clip_half_plane(c.loser, -n, -lo);
     Some(Cut {
         kept,

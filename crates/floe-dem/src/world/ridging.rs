@@ -5,12 +5,11 @@
 //! every gainer (each taking its ridged ice in turn), so that a floe that
 //! both loses and gains in one step ends the same on any process.
 
-use super::split::{piece_forces, rekey, rekey_bond};
 use super::World;
 use crate::contact_kernel::{overlap_stiffness, Body};
 use crate::error::DemError;
 use crate::exact_sum::ExactSum;
-use crate::floes::{Floe, Motion};
+use crate::floes::Floe;
 use crate::forcing::ExternalForces;
 use crate::geometry::shape::{area_and_centroid, polar_moment, FloeShape};
 use crate::geometry::{cross, perp, rotate};
@@ -145,6 +144,12 @@ impl<F: ExternalForces> World<F> {
         let driven: Vec<u64> = self.state.load_points.iter().map(|l| l.floe_id).collect();
         // Per loser handle: (over the cap by, partner id, contact index).
         let mut worst: Vec<Option<(f64, u64, usize)>> = vec![None; f.len()];
+        // Each floe's strength per metre: one power per floe, not per contact.
+        let strength: Vec<f64> = f
+            .thickness_m
+            .iter()
+            .map(|&h| ridging.strength_at(h))
+            .collect();
         for (k, c) in self.state.contacts.iter().enumerate() {
             let (a, b) = (c.a as usize, c.b as usize);
             let loser = match (f.is_free(a), f.is_free(b)) {
@@ -167,7 +172,7 @@ impl<F: ExternalForces> World<F> {
             {
                 continue;
             }
-            let cap = ridging.strength_at(f.thickness_m[loser]) * c.length_m;
+            let cap = strength[loser] * c.length_m;
             if c.elastic_force_n.partial_cmp(&cap) != Some(std::cmp::Ordering::Greater) {
                 continue;
             }
@@ -292,17 +297,17 @@ impl<F: ExternalForces> World<F> {
         if plans.is_empty() {
             return Ok(tally);
         }
-        // Who is whose, before the edits clear the ghost marks.
+        // Who is whose (a distributed run marks ghosts).
         let own = |w: &Self, id: u64| w.state.floes.handle_of(id).is_some_and(|h| !w.is_ghost(h));
         let owned: Vec<(bool, bool)> = plans
             .iter()
             .map(|p| (own(self, p.loser_id), own(self, p.gainer_id)))
             .collect();
+        self.reshape_losers(plans)?;
         for (p, &(loser_own, _)) in plans.iter().zip(&owned) {
             if self.state.floes.handle_of(p.loser_id).is_none() {
                 continue;
             }
-            self.reshape(p)?;
             let released = self.cut_contact_energy(p);
             if !loser_own {
                 continue;
@@ -339,81 +344,91 @@ impl<F: ExternalForces> World<F> {
                 }
             }
         }
-        self.pipeline.floes_changed();
         Ok(tally)
     }
 
-    /// Replaces the loser by its kept part (its id, thickness and rigid
-    /// motion; mass by area), with its contacts and bonds in the new frame.
-    fn reshape(&mut self, p: &PlannedRidge) -> Result<(), DemError> {
-        let h = self.handle(p.loser_id)?;
-        let parent = self.state.floes.get(h);
-        let (shape, offset) = FloeShape::from_world(0, &p.kept)?;
-        let mass = parent.mass_kg * (shape.area_m2 / (shape.area_m2 + p.removed_area_m2));
-        let floe = Floe {
-            id: parent.id,
-            position: self.periodicity.wrap(parent.position + offset),
-            angle: 0.0,
-            velocity: parent.velocity + perp(offset) * parent.angular_velocity,
-            angular_velocity: parent.angular_velocity,
-            thickness_m: parent.thickness_m,
-            mass_kg: mass,
-            inertia_kg_m2: mass / shape.area_m2 * shape.polar_moment_m4,
-            area_m2: shape.area_m2,
-            radius_m: shape.radius_m,
-            r3_moment_m5: crate::geometry::polygon_r3_moment(&shape.vertices),
-            motion: Motion::Free,
-            vertices: shape.vertices,
-        };
-        let detached = self.remove_floe(p.loser_id)?;
-        let contacts: Vec<_> = detached
-            .contacts
-            .into_iter()
-            .map(|([x, y], record)| {
-                let parent_is_b = y == parent.id;
-                let other = if parent_is_b { x } else { y };
-                rekey(record, parent_is_b, other, &floe, parent.position, offset)
-            })
-            .collect();
-        let (sin, cos) = parent.angle.sin_cos();
-        let mut bonds = Vec::with_capacity(detached.bonds.len());
-        for ([x, y], bond) in detached.bonds {
-            if !bond.formed {
+    /// Replaces each held loser of `plans` by its kept part, in place: its
+    /// id, handle, angle, thickness and rigid motion (`v + omega x r` at
+    /// its new centroid); mass by area; its contacts (a new stored
+    /// position a period away moves their frame), bonds (anchors about the
+    /// new centroid) and last forces (torque about the new centroid, the
+    /// external share by mass) follow. The candidate list stays (the floe
+    /// only shrank; the broad phase counts the centroid's shift as
+    /// motion) but forgets the separating edges of the floes cut.
+    fn reshape_losers(&mut self, plans: &[PlannedRidge]) -> Result<(), DemError> {
+        let mut changes: Vec<(usize, Floe)> = Vec::new();
+        let mut shifts: Vec<(usize, Vec2, Vec2, f64)> = Vec::new();
+        for p in plans {
+            let Some(h) = self.state.floes.handle_of(p.loser_id) else {
                 continue;
-            }
-            let parent_is_b = y == parent.id;
-            let other = if parent_is_b { x } else { y };
-            let anchor = if parent_is_b {
-                bond.anchor_b
-            } else {
-                bond.anchor_a
             };
-            let at = rotate(anchor, cos, sin);
-            let other_angle = self.state.floes.angle[self.handle(other)?];
-            bonds.push(rekey_bond(
-                bond,
-                (parent_is_b, parent.angle),
-                (parent.id, at - offset),
-                (other, other_angle),
-            ));
+            let parent = self.state.floes.get(h);
+            let (shape, offset) = FloeShape::from_world(0, &p.kept)?;
+            let (sin, cos) = parent.angle.sin_cos();
+            let body: Vec<Vec2> = shape
+                .vertices
+                .iter()
+                .map(|&v| rotate(v, cos, -sin))
+                .collect();
+            let mass = parent.mass_kg * (shape.area_m2 / (shape.area_m2 + p.removed_area_m2));
+            let position = self.periodicity.wrap(parent.position + offset);
+            let floe = Floe {
+                position,
+                velocity: parent.velocity + perp(offset) * parent.angular_velocity,
+                mass_kg: mass,
+                inertia_kg_m2: mass / shape.area_m2 * shape.polar_moment_m4,
+                area_m2: shape.area_m2,
+                radius_m: shape.radius_m,
+                r3_moment_m5: crate::geometry::polygon_r3_moment(&body),
+                vertices: body,
+                ..parent
+            };
+            let wrap = position - (parent.position + offset);
+            shifts.push((h, offset, wrap, mass / parent.mass_kg));
+            changes.push((h, floe));
         }
-        let share = mass / parent.mass_kg;
-        let external = (
-            detached.external_force * share,
-            detached.external_torque * share,
-        );
-        let (force, torque) = piece_forces(&floe, &contacts, &bonds, offset, external);
-        self.insert_detached(super::DetachedFloe {
-            floe,
-            force,
-            torque,
-            external_force: external.0,
-            external_torque: external.1,
-            contacts,
-            broken: detached.broken,
-            bonds,
-            stress: detached.stress,
-        })
+        if changes.is_empty() {
+            return Ok(());
+        }
+        changes.sort_by_key(|(h, _)| *h);
+        self.state.floes.replace_in_place(changes);
+        let s = &mut self.state;
+        let mut reshaped = vec![false; s.floes.len()];
+        for &(h, offset, wrap, share) in &shifts {
+            reshaped[h] = true;
+            if wrap != Vec2::ZERO {
+                for c in s.contacts.iter_mut() {
+                    if c.a as usize == h {
+                        c.point += wrap;
+                        c.image_offset += wrap;
+                    } else if c.b as usize == h {
+                        c.image_offset -= wrap;
+                    }
+                }
+            }
+            let (sin, cos) = s.floes.angle[h].sin_cos();
+            let in_body = rotate(offset, cos, -sin);
+            for b in s.bonds.iter_mut() {
+                if b.a as usize == h {
+                    b.anchor_a -= in_body;
+                }
+                if b.b as usize == h {
+                    b.anchor_b -= in_body;
+                }
+            }
+            let (external, external_torque) = (s.external_force[h], s.external_torque[h]);
+            let inside = s.force[h] - external;
+            s.torque[h] =
+                s.torque[h] - external_torque - cross(offset, inside) + external_torque * share;
+            s.external_force[h] = external * share;
+            s.external_torque[h] = external_torque * share;
+            s.force[h] = inside + s.external_force[h];
+            self.pipeline.broad_phase.add_slack(h, offset.length());
+        }
+        let p = &mut self.pipeline;
+        p.narrow_phase
+            .forget_shapes(&p.broad_phase.pairs, &reshaped);
+        Ok(())
     }
 
     /// The ridging contact's stored normal energy after the cut (that of

@@ -150,7 +150,7 @@ impl<F: ExternalForces> World<F> {
 /// A piece's last forces for its next half kick: `external` (force,
 /// torque), its contacts' and its bonds' (the bonds' torques, taken about
 /// the parent's centroid, moved to the piece's, `offset` from it).
-pub(super) fn piece_forces(
+fn piece_forces(
     floe: &Floe,
     contacts: &[([u64; 2], ContactRecord)],
     bonds: &[([u64; 2], Bond)],
@@ -205,7 +205,7 @@ fn holder(pieces: &[Vec<Vec2>], at: Vec2) -> usize {
 /// and image offset are moved to the piece's frame: the piece is stored at
 /// `piece.position`, which is `piece_offset` from the parent's centroid up
 /// to a period. The next detection recomputes its geometry.
-pub(super) fn rekey(
+fn rekey(
     mut record: ContactRecord,
     parent_was_b: bool,
     other: u64,
@@ -245,7 +245,7 @@ pub(super) fn rekey(
 /// relative rotation: its energy and loads keep their values), only
 /// expressed in the piece's frame, with the roles swapped when the piece's
 /// id is above `other`.
-pub(super) fn rekey_bond(
+fn rekey_bond(
     mut bond: Bond,
     (parent_was_b, parent_angle): (bool, f64),
     (piece_id, piece_anchor): (u64, Vec2),
