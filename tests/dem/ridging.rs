@@ -118,6 +118,35 @@ fn a_floe_squeezed_between_walls_bears_the_ridging_strength_and_loses_the_rest()
 }
 
 #[test]
+fn a_floe_squeezed_to_less_than_its_smallest_part_goes_whole_to_the_coast() {
+    let mut w = squeezed();
+    // The wall closes 150 m on the 100 m floe at 5 cm/s.
+    let id = w.floes().id[2];
+    w.set_velocity(id, Vec2::new(-0.05, 0.0), 0.0).unwrap();
+    let (v0, m0) = (volume(&w), w.floes().mass_kg[1]);
+    let floe = w.floes().id[1];
+    let mut gone_at = None;
+    for k in 0..(3000.0 / w.dt_s()) as usize {
+        w.step();
+        w.ridge().unwrap();
+        let ledger = w.ridging_ledger();
+        let v = volume(&w) + ledger.volume_to_coast_m3;
+        assert!((v - v0).abs() < 1e-12 * v0, "{v} vs {v0}");
+        if gone_at.is_none() && w.floes().handle_of(floe).is_none() {
+            gone_at = Some(k);
+        }
+    }
+    let ledger = *w.ridging_ledger();
+    let k = gone_at.expect("the floe went whole");
+    eprintln!("gone at step {k}, {} events", ledger.events);
+    assert_eq!(volume(&w), 0.0);
+    assert!((ledger.volume_to_coast_m3 - v0).abs() < 1e-12 * v0);
+    assert!((DENSITY * ledger.volume_to_coast_m3 - m0).abs() < 1e-12 * m0);
+    // The walls never met the ice again: no contact is left.
+    assert!(w.contacts().is_empty());
+}
+
+#[test]
 fn without_ridging_the_squeezed_floe_overlaps_past_the_cap() {
     let mut w = squeezed();
     w.set_ridging(None).unwrap();

@@ -639,10 +639,10 @@ fn weak_ridging() -> Ridging {
 /// The sheared layer ridging: its states every `EVERY` steps and its
 /// ridging events, on `processes` processes (0: one world, no
 /// communicator).
-fn ridging_run(processes: usize) -> (Vec<String>, Vec<PlannedRidge>) {
+fn ridging_run(processes: usize, ridging: Ridging) -> (Vec<String>, Vec<PlannedRidge>) {
     if processes == 0 {
         let mut w = sheared_layer(3);
-        w.set_ridging(Some(weak_ridging())).unwrap();
+        w.set_ridging(Some(ridging)).unwrap();
         let (mut states, mut events) = (vec![bits(w.state())], Vec::new());
         while w.steps() < STEPS {
             w.step();
@@ -663,7 +663,7 @@ fn ridging_run(processes: usize) -> (Vec<String>, Vec<PlannedRidge>) {
         let mut d =
             DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
                 .unwrap();
-        d.set_ridging(Some(weak_ridging())).unwrap();
+        d.set_ridging(Some(ridging)).unwrap();
         let (mut states, mut events) = (Vec::new(), Vec::new());
         if let Some(s) = d.gather_whole().unwrap() {
             states.push(bits(&s));
@@ -687,17 +687,18 @@ fn ridging_run(processes: usize) -> (Vec<String>, Vec<PlannedRidge>) {
     results.into_iter().next().unwrap()
 }
 
-#[test]
-fn ridging_over_one_to_four_processes_is_bitwise_as_one() {
-    let (states, events) = ridging_run(0);
-    let gains = events.iter().filter(|e| e.gainer_free).count();
-    eprintln!("{} ridging events, {gains} onto floes", events.len());
-    assert!(events.len() >= 20 && gains >= 5, "an eventful run");
+/// The ridging layer on 1-4 processes gives one process's states and
+/// events, bitwise.
+fn ridging_on_one_to_four_processes_is(
+    states: &[String],
+    events: &[PlannedRidge],
+    ridging: Ridging,
+) {
     for processes in [1, 2, 3, 4] {
-        let (p_states, p_events) = ridging_run(processes);
+        let (p_states, p_events) = ridging_run(processes, ridging);
         assert_eq!(p_events, events, "{processes} processes: the events");
         assert_eq!(p_states.len(), states.len());
-        for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {
+        for (k, (a, b)) in p_states.iter().zip(states).enumerate() {
             assert!(
                 a == b,
                 "{processes} processes: the state at step {} differs",
@@ -705,4 +706,29 @@ fn ridging_over_one_to_four_processes_is_bitwise_as_one() {
             );
         }
     }
+}
+
+#[test]
+fn ridging_over_one_to_four_processes_is_bitwise_as_one() {
+    let (states, events) = ridging_run(0, weak_ridging());
+    let gains = events.iter().filter(|e| e.gainer_free).count();
+    eprintln!("{} ridging events, {gains} onto floes", events.len());
+    assert!(events.len() >= 20 && gains >= 5, "an eventful run");
+    ridging_on_one_to_four_processes_is(&states, &events, weak_ridging());
+}
+
+#[test]
+fn floes_crushed_whole_over_one_to_four_processes_are_bitwise_as_one() {
+    // Every cut would leave less than 95 % of a floe: each ridging floe goes
+    // whole, onto a thicker floe, a wall, or (through a floe that goes
+    // whole in the same step) further on.
+    let crushing = Ridging {
+        min_floe_area_m2: 0.95 * S * S,
+        ..weak_ridging()
+    };
+    let (states, events) = ridging_run(0, crushing);
+    let whole = events.iter().filter(|e| e.kept.is_empty()).count();
+    eprintln!("{} floes crushed", whole);
+    assert!(whole >= 5, "floes went whole ({whole})");
+    ridging_on_one_to_four_processes_is(&states, &events, crushing);
 }

@@ -30,6 +30,9 @@ pub struct Cut {
     pub removed: Vec<Vec2>,
     /// The elastic force the overlap left carries, N (at most the cap).
     pub elastic_after_n: f64,
+    /// The elastic energy it holds as a strip of its mean depth, `F d / 2`
+    /// (`d` its area over the contact length), J.
+    pub stored_after_j: f64,
 }
 
 /// Most evaluations of the cut: Newton steps, each kept inside the bracket
@@ -46,6 +49,8 @@ struct Trial {
     /// `-inf` without an overlap.
     excess_n: f64,
     elastic_n: f64,
+    /// `F d / 2` of the overlap, J.
+    stored_j: f64,
     /// The cap, N.
     cap_n: f64,
     /// d(elastic)/ds for a strip, `kappa l`, N/m.
@@ -75,6 +80,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
             kept,
             excess_n: f64::NEG_INFINITY,
             elastic_n: 0.0,
+            stored_j: 0.0,
             cap_n: 0.0,
             slope_n_per_m: 0.0,
         };
@@ -98,6 +104,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
                     kept,
                     excess_n: elastic_n - cap_n,
                     elastic_n,
+                    stored_j: 0.5 * elastic_n * ov.area_m2 / ov.length_m.max(f64::MIN_POSITIVE),
                     cap_n,
                     slope_n_per_m: kappa * ov.length_m,
                 }
@@ -123,7 +130,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
     let width = hi - lo;
     let (mut s, mut at) = (hi, start);
     // The kept part and its force at `lo`, once a trial has landed there.
-    let mut below: Option<(Vec<Vec2>, f64)> = None;
+    let mut below: Option<(Vec<Vec2>, f64, f64)> = None;
     for _ in 0..MOST_STEPS {
         let newton = s - at.excess_n / at.slope_n_per_m;
         let next = if at.slope_n_per_m > 0.0 && newton > lo && newton < hi {
@@ -137,7 +144,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
             hi = next;
         } else {
             lo = next;
-            below = Some((t.kept.clone(), t.elastic_n));
+            below = Some((t.kept.clone(), t.elastic_n, t.stored_j));
             if t.excess_n >= -FORCE_TOLERANCE * t.cap_n {
                 break;
             }
@@ -147,11 +154,11 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
             break;
         }
     }
-    let (kept, elastic_after_n) = match below {
+    let (kept, elastic_after_n, stored_after_j) = match below {
         Some(b) => b,
         None => {
             let t = trial(lo);
-            (t.kept, t.elastic_n)
+            (t.kept, t.elastic_n, t.stored_j)
         }
     };
     let removed = clip_half_plane(c.loser, -n, -lo);
@@ -159,6 +166,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
         kept,
         removed,
         elastic_after_n,
+        stored_after_j,
     })
 }
 

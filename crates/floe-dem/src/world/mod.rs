@@ -92,7 +92,7 @@ pub use crate::pipeline::integrator::{stable_time_step, STABILITY_SAFETY};
 pub use edits::DetachedFloe;
 pub use fracture::{FractureEvent, PackSums, PlannedSplit};
 pub use ghosts::Kinematics;
-pub use ridging::{PlannedRidge, RidgedIce, RidgingTally};
+pub use ridging::{final_gainers, IceTarget, PlannedRidge, RidgedIce, RidgingTally};
 
 /// The simulation state and what steps it.
 pub struct World<F: ExternalForces> {

@@ -49,7 +49,8 @@ pub struct PlannedRidge {
     /// Whether the gainer moves under forces (else the ice goes to the coast).
     pub gainer_free: bool,
     /// The loser's part kept: vertices about its centroid, world
-    /// orientation.
+    /// orientation; empty when the whole floe goes (its kept part would
+    /// have been under the smallest area, or too small for the time step).
     pub kept: Vec<Vec2>,
     /// The loser's area before the cut, m^2.
     pub loser_area_m2: f64,
@@ -61,6 +62,9 @@ pub struct PlannedRidge {
     pub elastic_before_n: f64,
     /// The contact's elastic force after it (the cap), N.
     pub elastic_after_n: f64,
+    /// The contact's stored normal energy after it, `F d / 2` of the
+    /// overlap left (`d` its mean depth), J.
+    pub stored_after_j: f64,
 }
 
 /// Ridging's sums over one step's events, exact so that processes add
@@ -242,10 +246,40 @@ impl<F: ExternalForces> World<F> {
             strength_n_per_m: ridging.strength_at(f.thickness_m[loser]),
         };
         let cut = ridge_cut(&contact, stiffness)?;
-        let (kept_shape, _) = FloeShape::from_world(0, &cut.kept).ok()?;
-        if kept_shape.area_m2 < ridging.min_floe_area_m2 {
+        if cut.kept.len() > crate::geometry::MAX_VERTICES {
             return None;
         }
+        let (v, w) = (f.velocity[loser], f.angular_velocity[loser]);
+        let mut plan = PlannedRidge {
+            step: self.state.steps,
+            loser_id: f.id[loser],
+            gainer_id: f.id[gainer],
+            gainer_free: f.is_free(gainer),
+            kept: Vec::new(),
+            loser_area_m2: f.area_m2[loser],
+            removed_area_m2: f.area_m2[loser],
+            ice: RidgedIce {
+                mass_kg: f.mass_kg[loser],
+                volume_m3: f.area_m2[loser] * f.thickness_m[loser],
+                arm_m: -gainer_offset,
+                position_m: f.position[loser],
+                velocity_m_per_s: v,
+                inertia_kg_m2: f.inertia_kg_m2[loser],
+                angular_velocity: w,
+            },
+            elastic_before_n: c.elastic_force_n,
+            elastic_after_n: 0.0,
+            stored_after_j: 0.0,
+        };
+        // A kept part too small (or too small for the time step) is crushed
+        // into the ridge with the rest: the whole floe goes.
+        let Some(kept_shape) = FloeShape::from_world(0, &cut.kept)
+            .ok()
+            .filter(|(s, _)| s.area_m2 >= ridging.min_floe_area_m2)
+            .map(|(s, _)| s)
+        else {
+            return Some(plan);
+        };
         let (removed_area, removed_centroid) = area_and_centroid(&cut.removed);
         if removed_area.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             return None;
@@ -261,61 +295,63 @@ impl<F: ExternalForces> World<F> {
             ..self.state.floes.get(loser)
         };
         if self.state.dt_s > self.stable_step_of(&kept_floe) {
-            return None;
+            return Some(plan);
         }
         let removed_mass = mass * (removed_area / total);
         let about: Vec<Vec2> = cut.removed.iter().map(|&v| v - removed_centroid).collect();
-        let (v, w) = (f.velocity[loser], f.angular_velocity[loser]);
-        Some(PlannedRidge {
-            step: self.state.steps,
-            loser_id: f.id[loser],
-            gainer_id: f.id[gainer],
-            gainer_free: f.is_free(gainer),
-            kept: cut.kept,
-            loser_area_m2: f.area_m2[loser],
-            removed_area_m2: removed_area,
-            ice: RidgedIce {
-                mass_kg: removed_mass,
-                volume_m3: removed_area * f.thickness_m[loser],
-                arm_m: removed_centroid - gainer_offset,
-                position_m: f.position[loser] + removed_centroid,
-                velocity_m_per_s: v + perp(removed_centroid) * w,
-                inertia_kg_m2: removed_mass / removed_area * polar_moment(&about),
-                angular_velocity: w,
-            },
-            elastic_before_n: c.elastic_force_n,
-            elastic_after_n: cut.elastic_after_n,
-        })
+        plan.kept = cut.kept;
+        plan.removed_area_m2 = removed_area;
+        plan.ice = RidgedIce {
+            mass_kg: removed_mass,
+            volume_m3: removed_area * f.thickness_m[loser],
+            arm_m: removed_centroid - gainer_offset,
+            position_m: f.position[loser] + removed_centroid,
+            velocity_m_per_s: v + perp(removed_centroid) * w,
+            inertia_kg_m2: removed_mass / removed_area * polar_moment(&about),
+            angular_velocity: w,
+        };
+        plan.elastic_after_n = cut.elastic_after_n;
+        plan.stored_after_j = cut.stored_after_j;
+        Some(plan)
     }
 
     /// Makes `plans` (sorted by loser id, each loser once) on the floes this
-    /// world holds: every loser's cut, then every gainer's gain, in that
-    /// order. The tally counts the events of this world's own floes (the
-    /// loser's, or for the kinetic energy of a merge the gainer's).
+    /// world holds: every loser's cut (or removal, when it goes whole),
+    /// then every gain, in that order ([`final_gainers`] says where each
+    /// ridged ice goes when its gainer went whole itself). The tally counts
+    /// the events of this world's own floes (the loser's, or for the
+    /// kinetic energy of a merge the gainer's).
     pub fn apply_ridging(&mut self, plans: &[PlannedRidge]) -> Result<RidgingTally, DemError> {
         let mut tally = RidgingTally::default();
         if plans.is_empty() {
             return Ok(tally);
         }
-        // Who is whose (a distributed run marks ghosts).
+        let targets = final_gainers(plans);
+        // Who is whose (a distributed run marks ghosts), before removals.
         let own = |w: &Self, id: u64| w.state.floes.handle_of(id).is_some_and(|h| !w.is_ghost(h));
         let owned: Vec<(bool, bool)> = plans
             .iter()
-            .map(|p| (own(self, p.loser_id), own(self, p.gainer_id)))
+            .zip(&targets)
+            .map(|(p, t)| (own(self, p.loser_id), own(self, t.id)))
             .collect();
         self.reshape_losers(plans)?;
-        for (p, &(loser_own, _)) in plans.iter().zip(&owned) {
+        for ((p, t), &(loser_own, _)) in plans.iter().zip(&targets).zip(&owned) {
             if self.state.floes.handle_of(p.loser_id).is_none() {
                 continue;
             }
-            let released = self.cut_contact_energy(p);
+            let released = if p.kept.is_empty() {
+                self.crush(p.loser_id)?
+            } else {
+                self.cut_contact_energy(p)
+            };
             if !loser_own {
                 continue;
             }
             tally.events += 1;
             tally.sums[6].add(released);
+            // Counted where the ice ends (see `final_gainers`).
             let ice = &p.ice;
-            if p.gainer_free {
+            if t.free {
                 tally.sums[0].add(ice.volume_m3);
             } else {
                 let momentum = ice.velocity_m_per_s * ice.mass_kg;
@@ -333,13 +369,17 @@ impl<F: ExternalForces> World<F> {
                 ));
             }
         }
-        for (p, &(_, gainer_own)) in plans.iter().zip(&owned) {
-            if !p.gainer_free {
+        for ((p, t), &(_, target_own)) in plans.iter().zip(&targets).zip(&owned) {
+            if !t.free {
                 continue;
             }
-            if let Some(h) = self.state.floes.handle_of(p.gainer_id) {
-                let lost = self.gain(h, &p.ice);
-                if gainer_own {
+            if let Some(h) = self.state.floes.handle_of(t.id) {
+                let ice = RidgedIce {
+                    arm_m: t.arm_m,
+                    ..p.ice
+                };
+                let lost = self.gain(h, &ice);
+                if target_own {
                     tally.sums[5].add(lost);
                 }
             }
@@ -359,6 +399,9 @@ impl<F: ExternalForces> World<F> {
         let mut changes: Vec<(usize, Floe)> = Vec::new();
         let mut shifts: Vec<(usize, Vec2, Vec2, f64)> = Vec::new();
         for p in plans {
+            if p.kept.is_empty() {
+                continue;
+            }
             let Some(h) = self.state.floes.handle_of(p.loser_id) else {
                 continue;
             };
@@ -431,9 +474,24 @@ impl<F: ExternalForces> World<F> {
         Ok(())
     }
 
+    /// Takes floe `id` out whole (crushed into the ridge): the energy its
+    /// contacts and bonds held, J.
+    fn crush(&mut self, id: u64) -> Result<f64, DemError> {
+        let d = self.remove_floe(id)?;
+        let contacts: f64 = d.contacts.iter().map(|(_, c)| c.elastic_energy_j()).sum();
+        let bonds: f64 = d
+            .bonds
+            .iter()
+            .filter(|(_, b)| b.formed)
+            .map(|(_, b)| b.energy_j)
+            .sum();
+        Ok(contacts + bonds)
+    }
+
     /// The ridging contact's stored normal energy after the cut (that of
-    /// the force left, `F^2 / 2k` scaled from the force before), its
-    /// elastic force the cap; the energy it no longer holds, J.
+    /// the overlap left as a strip, `F d / 2`: an overlap-area force has no
+    /// potential, so the integrated energy is reset to it), its elastic
+    /// force the cap; the energy it no longer holds, J.
     fn cut_contact_energy(&mut self, p: &PlannedRidge) -> f64 {
         let (Some(x), Some(y)) = (
             self.state.floes.handle_of(p.loser_id.min(p.gainer_id)),
@@ -447,9 +505,8 @@ impl<F: ExternalForces> World<F> {
             return 0.0;
         };
         let c = &mut contacts[k];
-        let ratio = p.elastic_after_n / p.elastic_before_n;
         let before = c.normal_energy_j;
-        c.normal_energy_j = before * ratio * ratio;
+        c.normal_energy_j = p.stored_after_j;
         c.elastic_force_n = p.elastic_after_n;
         before - c.normal_energy_j
     }
@@ -491,4 +548,115 @@ impl<F: ExternalForces> World<F> {
 /// Kinetic energy of a rigid body, J.
 fn kinetic(mass: f64, v: Vec2, inertia: f64, w: f64) -> f64 {
     0.5 * (mass * v.length_squared() + inertia * w * w)
+}
+
+/// Where a plan's ice ends: the floe (or wall) that takes it, whether it
+/// moves under forces, and the ice's centroid from that floe's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IceTarget {
+    /// The id of the floe or wall that takes the ice.
+    pub id: u64,
+    /// Whether it moves under forces (else the ice goes to the coast).
+    pub free: bool,
+    /// The ice's centroid from its centroid, m.
+    pub arm_m: Vec2,
+}
+
+/// Each plan's [`IceTarget`]: its gainer, unless the gainer itself went
+/// whole in this step; then that floe's own gainer, and so on (each step of
+/// the chain goes to a thicker floe or a wall, so it ends), the arm moved
+/// along.
+pub fn final_gainers(plans: &[PlannedRidge]) -> Vec<IceTarget> {
+    let whole = |id: u64| {
+        plans
+            .binary_search_by_key(&id, |p| p.loser_id)
+            .ok()
+            .map(|k| &plans[k])
+            .filter(|p| p.kept.is_empty())
+    };
+    plans
+        .iter()
+        .map(|p| {
+            let mut t = IceTarget {
+                id: p.gainer_id,
+                free: p.gainer_free,
+                arm_m: p.ice.arm_m,
+            };
+            for _ in 0..plans.len() {
+                let Some(q) = whole(t.id).filter(|_| t.free) else {
+                    break;
+                };
+                // q's ice arm is q's centroid from its gainer's.
+                t = IceTarget {
+                    id: q.gainer_id,
+                    free: q.gainer_free,
+                    arm_m: t.arm_m + q.ice.arm_m,
+                };
+            }
+            t
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan(loser: u64, gainer: u64, free: bool, whole: bool, arm: Vec2) -> PlannedRidge {
+        PlannedRidge {
+            step: 1,
+            loser_id: loser,
+            gainer_id: gainer,
+            gainer_free: free,
+            kept: if whole {
+                Vec::new()
+            } else {
+                vec![Vec2::ZERO; 3]
+            },
+            loser_area_m2: 1.0,
+            removed_area_m2: 1.0,
+            ice: RidgedIce {
+                mass_kg: 1.0,
+                volume_m3: 1.0,
+                arm_m: arm,
+                position_m: Vec2::ZERO,
+                velocity_m_per_s: Vec2::ZERO,
+                inertia_kg_m2: 1.0,
+                angular_velocity: 0.0,
+            },
+            elastic_before_n: 1.0,
+            elastic_after_n: 1.0,
+            stored_after_j: 0.0,
+        }
+    }
+
+    #[test]
+    fn ice_given_to_a_floe_that_goes_whole_follows_it_to_its_gainer() {
+        // 1 cuts onto 2; 2 goes whole onto 3; 3 goes whole onto wall 9; 4
+        // cuts onto 5, which stays.
+        let plans = vec![
+            plan(1, 2, true, false, Vec2::new(1.0, 0.0)),
+            plan(2, 3, true, true, Vec2::new(0.0, 10.0)),
+            plan(3, 9, false, true, Vec2::new(100.0, 0.0)),
+            plan(4, 5, true, false, Vec2::new(-1.0, 0.0)),
+        ];
+        let t = final_gainers(&plans);
+        assert_eq!(
+            t[0],
+            IceTarget {
+                id: 9,
+                free: false,
+                arm_m: Vec2::new(101.0, 10.0)
+            }
+        );
+        assert_eq!(
+            (t[1].id, t[1].free, t[1].arm_m),
+            (9, false, Vec2::new(100.0, 10.0))
+        );
+        assert_eq!((t[2].id, t[2].free), (9, false));
+        assert_eq!(
+            (t[3].id, t[3].free, t[3].arm_m),
+            (5, true, Vec2::new(-1.0, 0.0))
+        );
+    }
 }

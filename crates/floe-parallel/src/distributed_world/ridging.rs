@@ -8,7 +8,7 @@
 use super::*;
 use floe_dem::exact_sum::{ExactSum, EXACT_SUM_WORDS};
 use floe_dem::floes::Floe;
-use floe_dem::world::{PlannedRidge, RidgingTally};
+use floe_dem::world::{final_gainers, PlannedRidge, RidgingTally};
 
 impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
     /// Ridging after every step (`try_step`), as [`World::set_ridging`],
@@ -35,7 +35,18 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             return Ok(all);
         }
         all.sort_by_key(|p| p.loser_id);
+        // A floe that goes whole leaves: ownership is kept by id.
+        let f = self.local().floes().columns();
+        let owned_ids: Vec<u64> = (0..f.len())
+            .filter(|&h| self.owned[h])
+            .map(|h| f.id[h])
+            .collect();
         let tally = self.local_mut().apply_ridging(&all)?;
+        let f = self.local().floes().columns();
+        self.owned =
+            f.id.iter()
+                .map(|id| owned_ids.binary_search(id).is_ok())
+                .collect();
         let mut words = vec![tally.events as i64];
         for s in &tally.sums {
             words.extend(s.to_words());
@@ -51,13 +62,25 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         }
         self.local_mut().book_ridging(&total);
         // Process 0 keeps every floe's shape and mass for the gathered whole.
+        let targets = final_gainers(&all);
         let mut changed: Vec<u64> = all
             .iter()
-            .flat_map(|p| [Some(p.loser_id), p.gainer_free.then_some(p.gainer_id)])
+            .zip(&targets)
+            .flat_map(|(p, t)| {
+                [
+                    (!p.kept.is_empty()).then_some(p.loser_id),
+                    t.free.then_some(t.id),
+                ]
+            })
             .flatten()
             .collect();
         changed.sort_unstable();
         changed.dedup();
+        let gone: Vec<u64> = all
+            .iter()
+            .filter(|p| p.kept.is_empty())
+            .map(|p| p.loser_id)
+            .collect();
         let f = self.local().floes();
         let mine: Vec<Floe> = changed
             .iter()
@@ -67,6 +90,11 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             .collect();
         let shared = self.comm.all_gather(encode(&mine));
         if let Some(whole) = self.whole_floes.as_mut() {
+            for &id in &gone {
+                if let Some(h) = whole.handle_of(id) {
+                    whole.remove(h);
+                }
+            }
             for bytes in shared {
                 for floe in decode::<Vec<Floe>>(&bytes)? {
                     if let Some(h) = whole.handle_of(floe.id) {
@@ -76,7 +104,10 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
                 }
             }
         }
-        // The cuts' edits cleared the ghost marks: a migration sets them.
+        // Memory kept aside for a pair with a floe gone goes with it.
+        self.parked
+            .retain(|(pair, _)| !pair.iter().any(|id| gone.binary_search(id).is_ok()));
+        // The ghosts learn the new shapes and lose the floes gone.
         self.migrate()?;
         Ok(all)
     }
