@@ -33,6 +33,8 @@ pub struct Cut {
     /// The elastic energy it holds as a strip of its mean depth, `F d / 2`
     /// (`d` its area over the contact length), J.
     pub stored_after_j: f64,
+    /// The overlap left, m^2.
+    pub overlap_after_m2: f64,
 }
 
 /// Most evaluations of the cut: Newton steps, each kept inside the bracket
@@ -51,6 +53,8 @@ struct Trial {
     elastic_n: f64,
     /// `F d / 2` of the overlap, J.
     stored_j: f64,
+    /// The overlap's area, m^2.
+    overlap_m2: f64,
     /// The cap, N.
     cap_n: f64,
     /// d(elastic)/ds for a strip, `kappa l`, N/m.
@@ -81,6 +85,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
             excess_n: f64::NEG_INFINITY,
             elastic_n: 0.0,
             stored_j: 0.0,
+            overlap_m2: 0.0,
             cap_n: 0.0,
             slope_n_per_m: 0.0,
         };
@@ -105,6 +110,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
                     excess_n: elastic_n - cap_n,
                     elastic_n,
                     stored_j: 0.5 * elastic_n * ov.area_m2 / ov.length_m.max(f64::MIN_POSITIVE),
+                    overlap_m2: ov.area_m2,
                     cap_n,
                     slope_n_per_m: kappa * ov.length_m,
                 }
@@ -130,7 +136,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
     let width = hi - lo;
     let (mut s, mut at) = (hi, start);
     // The kept part and its force at `lo`, once a trial has landed there.
-    let mut below: Option<(Vec<Vec2>, f64, f64)> = None;
+    let mut below: Option<(Vec<Vec2>, f64, f64, f64)> = None;
     for _ in 0..MOST_STEPS {
         let newton = s - at.excess_n / at.slope_n_per_m;
         let next = if at.slope_n_per_m > 0.0 && newton > lo && newton < hi {
@@ -144,7 +150,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
             hi = next;
         } else {
             lo = next;
-            below = Some((t.kept.clone(), t.elastic_n, t.stored_j));
+            below = Some((t.kept.clone(), t.elastic_n, t.stored_j, t.overlap_m2));
             if t.excess_n >= -FORCE_TOLERANCE * t.cap_n {
                 break;
             }
@@ -154,11 +160,11 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
             break;
         }
     }
-    let (kept, elastic_after_n, stored_after_j) = match below {
+    let (kept, elastic_after_n, stored_after_j, overlap_after_m2) = match below {
         Some(b) => b,
         None => {
             let t = trial(lo);
-            (t.kept, t.elastic_n, t.stored_j)
+            (t.kept, t.elastic_n, t.stored_j, t.overlap_m2)
         }
     };
     let removed = clip_half_plane(c.loser, -n, -lo);
@@ -167,6 +173,7 @@ pub fn ridge_cut(c: &RidgingContact, stiffness: impl Fn(f64) -> f64) -> Option<C
         removed,
         elastic_after_n,
         stored_after_j,
+        overlap_after_m2,
     })
 }
 

@@ -17,6 +17,12 @@ use crate::ridging::cut::{ridge_cut, RidgingContact};
 use crate::ridging::{Ridging, RidgingLedger};
 use crate::Vec2;
 
+/// A floe whose kept part would carry an overlap at the cap of more than
+/// this fraction of its area goes whole: a sliver between two pressing
+/// neighbours, thinner than a few capped penetrations, is rubble (and two
+/// such overlaps stay under the health check's 25 % of the smaller floe).
+pub const CRUSHED_OVERLAP_FRACTION: f64 = 0.1;
+
 /// The ice a loser gives up to the ridge.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RidgedIce {
@@ -271,11 +277,15 @@ impl<F: ExternalForces> World<F> {
             elastic_after_n: 0.0,
             stored_after_j: 0.0,
         };
-        // A kept part too small (or too small for the time step) is crushed
-        // into the ridge with the rest: the whole floe goes.
+        // A kept part too small (or too small for the time step, or so thin
+        // that the capped overlap covers a tenth of it) is crushed into the
+        // ridge with the rest: the whole floe goes.
         let Some(kept_shape) = FloeShape::from_world(0, &cut.kept)
             .ok()
-            .filter(|(s, _)| s.area_m2 >= ridging.min_floe_area_m2)
+            .filter(|(s, _)| {
+                s.area_m2 >= ridging.min_floe_area_m2
+                    && cut.overlap_after_m2 <= CRUSHED_OVERLAP_FRACTION * s.area_m2
+            })
             .map(|(s, _)| s)
         else {
             return Some(plan);
