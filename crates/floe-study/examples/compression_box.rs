@@ -54,10 +54,14 @@ fn read(path: &std::path::Path) -> Run {
         let (to_floes, to_coast) = ridged
             .as_ref()
             .and_then(|o| {
-                o.step
-                    .iter()
-                    .position(|&st| st == snap.step)
-                    .map(|j| (o.value[2 * j], o.value[2 * j + 1]))
+                // The last sample at or before the snapshot (the cadences
+                // need not meet: observables every 300 s are 589 steps at
+                // one time step, 86 at another).
+                let j = o
+                    .step
+                    .partition_point(|&st| st <= snap.step)
+                    .checked_sub(1)?;
+                Some((o.value[2 * j], o.value[2 * j + 1]))
             })
             .unwrap_or((0.0, 0.0));
         r.to_floes.push(to_floes / v0);
