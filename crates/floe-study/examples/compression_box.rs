@@ -73,6 +73,9 @@ fn read(path: &std::path::Path) -> Run {
     r
 }
 
+/// One of a run's series.
+type Field = dyn Fn(&Run) -> &Vec<f64>;
+
 /// Mean and sample standard deviation.
 fn stats(x: &[f64]) -> (f64, f64) {
     let n = x.len() as f64;
@@ -120,10 +123,10 @@ fn main() {
     println!("|---|---|---|---|---|---|---|---|---|");
     for (label, runs) in &variants {
         let n = runs.iter().map(|r| r.hours.len()).min().unwrap_or(0);
-        let column = |k: usize, f: &dyn Fn(&Run) -> &Vec<f64>| -> (f64, f64) {
+        let column = |k: usize, f: &Field| -> (f64, f64) {
             stats(&runs.iter().map(|r| f(r)[k]).collect::<Vec<_>>())
         };
-        let fields: [&dyn Fn(&Run) -> &Vec<f64>; 6] = [
+        let fields: [&Field; 6] = [
             &|r| &r.floes,
             &|r| &r.median_m,
             &|r| &r.mean_h,
@@ -136,7 +139,7 @@ fn main() {
             let h = runs[0].hours[k];
             csv.push_str(&format!("{label},{h}"));
             for (j, f) in fields.iter().enumerate() {
-                let (m, sd) = column(k, *f);
+                let (m, sd) = column(k, f);
                 csv.push_str(&format!(",{m},{sd}"));
                 lines[j].push((h, m));
             }

@@ -84,6 +84,7 @@ mod fracture;
 mod ghosts;
 mod life_cycle;
 mod ridging;
+mod ridging_apply;
 mod split;
 #[cfg(test)]
 mod tests;
@@ -92,7 +93,8 @@ pub use crate::pipeline::integrator::{stable_time_step, STABILITY_SAFETY};
 pub use edits::DetachedFloe;
 pub use fracture::{FractureEvent, PackSums, PlannedSplit};
 pub use ghosts::Kinematics;
-pub use ridging::{final_gainers, IceTarget, PlannedRidge, RidgedIce, RidgingTally};
+pub use ridging::{PlannedRidge, RidgedIce, RidgingTally, CRUSHED_OVERLAP_FRACTION};
+pub use ridging_apply::{final_gainers, IceTarget};
 
 /// The simulation state and what steps it.
 pub struct World<F: ExternalForces> {
