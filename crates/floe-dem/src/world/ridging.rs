@@ -16,11 +16,12 @@ use crate::ridging::cut::{ridge_cut, RidgingContact};
 use crate::ridging::{Ridging, RidgingLedger};
 use crate::Vec2;
 
-/// A floe whose kept part would carry an overlap at the cap of more than
-/// this fraction of its area goes whole: a sliver between two pressing
-/// neighbours, thinner than a few capped penetrations, is rubble (and two
-/// such overlaps stay under the health check's 25 % of the smaller floe).
-pub const CRUSHED_OVERLAP_FRACTION: f64 = 0.1;
+/// A floe whose kept part would carry, over all its contacts, overlaps at
+/// their caps of more than this fraction of its area goes whole: a sliver
+/// between pressing neighbours, a few capped penetrations wide, is rubble
+/// (and no pair of its overlaps reaches the health check's 25 % of the
+/// smaller floe while its contacts stay at or below their caps).
+pub const CRUSHED_OVERLAP_FRACTION: f64 = 0.2;
 
 /// The ice a loser gives up to the ridge.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -195,10 +196,25 @@ impl<F: ExternalForces> World<F> {
                 worst[loser] = Some((over, partner, k));
             }
         }
+        // Per loser: the overlap each of its contacts would hold at its cap,
+        // `strength l / kappa`, summed (the crushing rule's measure).
+        let mut at_caps = vec![0.0; f.len()];
+        for (k, c) in self.state.contacts.iter().enumerate() {
+            for (me, other) in [(c.a as usize, c.b as usize), (c.b as usize, c.a as usize)] {
+                if worst[me].is_some_and(|(_, _, cut)| cut != k) {
+                    let kappa = overlap_stiffness(
+                        &self.model,
+                        &Body::of(f, me, Vec2::ZERO),
+                        &Body::of(f, other, Vec2::ZERO),
+                    );
+                    at_caps[me] += strength[me] * c.length_m / kappa;
+                }
+            }
+        }
         let mut plans = Vec::new();
         for (loser, found) in worst.iter().enumerate() {
             if let Some((_, _, k)) = *found {
-                if let Some(plan) = self.plan_cut(ridging, loser, k) {
+                if let Some(plan) = self.plan_cut(ridging, loser, k, at_caps[loser]) {
                     plans.push(plan);
                 }
             }
@@ -207,7 +223,15 @@ impl<F: ExternalForces> World<F> {
     }
 
     /// The cut of floe `loser` at contact `k`, if one can be made.
-    fn plan_cut(&self, ridging: &Ridging, loser: usize, k: usize) -> Option<PlannedRidge> {
+    /// `others_at_cap_m2`: the overlaps the loser's other contacts would
+    /// hold at their caps.
+    fn plan_cut(
+        &self,
+        ridging: &Ridging,
+        loser: usize,
+        k: usize,
+        others_at_cap_m2: f64,
+    ) -> Option<PlannedRidge> {
         let f = self.state.floes.columns();
         let c = &self.state.contacts[k];
         let loser_is_a = c.a as usize == loser;
@@ -277,13 +301,14 @@ impl<F: ExternalForces> World<F> {
             stored_after_j: 0.0,
         };
         // A kept part too small (or too small for the time step, or so thin
-        // that the capped overlap covers a tenth of it) is crushed into the
-        // ridge with the rest: the whole floe goes.
+        // that its overlaps at their caps would cover a fifth of it) is
+        // crushed into the ridge with the rest: the whole floe goes.
         let Some(kept_shape) = FloeShape::from_world(0, &cut.kept)
             .ok()
             .filter(|(s, _)| {
                 s.area_m2 >= ridging.min_floe_area_m2
-                    && cut.overlap_after_m2 <= CRUSHED_OVERLAP_FRACTION * s.area_m2
+                    && cut.overlap_after_m2 + others_at_cap_m2
+                        <= CRUSHED_OVERLAP_FRACTION * s.area_m2
             })
             .map(|(s, _)| s)
         else {
