@@ -51,11 +51,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             all.extend(decode::<Vec<PlannedSplit>>(&bytes)?);
         }
         all.sort_by_key(|p| p.event.parent_id);
-        let f = self.local().floes().columns();
-        let mut owned_ids: Vec<u64> = (0..f.len())
-            .filter(|&h| self.owned[h])
-            .map(|h| f.id[h])
-            .collect();
+        let mut owned_ids = self.owned_ids();
         let mut next = first;
         let mut events = Vec::with_capacity(all.len());
         let mut pieces: Vec<Floe> = Vec::new();
@@ -89,11 +85,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             next += made;
         }
         self.local_mut().set_next_floe_id(next);
-        let f = self.local().floes().columns();
-        self.owned =
-            f.id.iter()
-                .map(|id| owned_ids.binary_search(id).is_ok())
-                .collect();
+        self.own_ids(&owned_ids);
         // Process 0 keeps every floe's shape for the gathered whole.
         let shared = self.comm.all_gather(encode(&pieces));
         if let Some(whole) = self.whole_floes.as_mut() {
@@ -115,8 +107,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             .filter(|e| !e.piece_ids.is_empty())
             .map(|e| e.parent_id)
             .collect();
-        self.parked
-            .retain(|(pair, _)| !pair.iter().any(|id| split.binary_search(id).is_ok()));
+        self.forget_parked(&split);
         if !split.is_empty() {
             // The pieces' ghosts, and who sends whom their motion.
             self.migrate()?;

@@ -404,6 +404,32 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         Ok(())
     }
 
+    /// The ids of the floes this process owns, sorted: what fracture and
+    /// ridging keep across edits that renumber the handles.
+    fn owned_ids(&self) -> Vec<u64> {
+        let f = self.local().floes().columns();
+        (0..f.len())
+            .filter(|&h| self.owned[h])
+            .map(|h| f.id[h])
+            .collect()
+    }
+
+    /// Marks as owned the local floes whose ids are in `ids` (sorted).
+    fn own_ids(&mut self, ids: &[u64]) {
+        let f = self.local().floes().columns();
+        self.owned =
+            f.id.iter()
+                .map(|id| ids.binary_search(id).is_ok())
+                .collect();
+    }
+
+    /// Forgets the broken-contact memory kept aside for pairs with a floe
+    /// in `gone` (sorted): split or crushed floes.
+    fn forget_parked(&mut self, gone: &[u64]) {
+        self.parked
+            .retain(|(pair, _)| !pair.iter().any(|id| gone.binary_search(id).is_ok()));
+    }
+
     /// This process's part of the world: its floes and their ghosts.
     pub fn local(&self) -> &World<F> {
         self.world.as_ref().expect("present between calls")

@@ -36,17 +36,9 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         }
         all.sort_by_key(|p| p.loser_id);
         // A floe that goes whole leaves: ownership is kept by id.
-        let f = self.local().floes().columns();
-        let owned_ids: Vec<u64> = (0..f.len())
-            .filter(|&h| self.owned[h])
-            .map(|h| f.id[h])
-            .collect();
+        let owned_ids = self.owned_ids();
         let tally = self.local_mut().apply_ridging(&all)?;
-        let f = self.local().floes().columns();
-        self.owned =
-            f.id.iter()
-                .map(|id| owned_ids.binary_search(id).is_ok())
-                .collect();
+        self.own_ids(&owned_ids);
         let mut words = vec![tally.events as i64];
         for s in &tally.sums {
             words.extend(s.to_words());
@@ -105,8 +97,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             }
         }
         // Memory kept aside for a pair with a floe gone goes with it.
-        self.parked
-            .retain(|(pair, _)| !pair.iter().any(|id| gone.binary_search(id).is_ok()));
+        self.forget_parked(&gone);
         // The ghosts learn the new shapes and lose the floes gone.
         self.migrate()?;
         Ok(all)
