@@ -46,7 +46,7 @@ pub struct Body {
 impl Body {
     /// Floe `h` of `f`, at `offset` from its stored position (an image
     /// across a periodic boundary).
-    #[inline]
+    #[inline(always)]
     pub fn of(f: &crate::floes::FloeColumns, h: usize, offset: Vec2) -> Self {
         Body {
             position: f.position[h] + offset,

@@ -49,6 +49,94 @@ pub struct Placed<'a> {
     pub radius_m: f64,
 }
 
+/// A convex polygon placed in the world with its vertices already turned
+/// to its orientation (the narrow phase turns every floe's vertices once per
+/// step instead of once per pair it is in): bitwise the same placement as a
+/// [`Placed`] of the same floe.
+#[derive(Debug, Clone, Copy)]
+pub struct Oriented<'a> {
+    /// Vertices relative to the centroid, turned to the floe's orientation,
+    /// counter-clockwise, m.
+    pub vertices: &'a [Vec2],
+    /// Centroid position, m.
+    pub position: Vec2,
+    /// Bounding radius (as [`Placed::radius_m`]), m.
+    pub radius_m: f64,
+}
+
+/// A floe as the clipper reads it: [`Placed`] (local vertices and a
+/// rotation) or [`Oriented`] (vertices already turned).
+pub trait PlacedPolygon: Copy {
+    /// Centroid position, m.
+    fn position(&self) -> Vec2;
+    /// Bounding radius about the centroid, m.
+    fn radius_m(&self) -> f64;
+    /// Number of vertices.
+    fn vertex_count(&self) -> usize;
+    /// Vertex `j` relative to the centroid, in world orientation, m.
+    fn vertex(&self, j: usize) -> Vec2;
+    /// The vertices in world orientation, shifted by `shift` if given,
+    /// into `slots` (as many as both hold).
+    fn place_into(&self, slots: &mut [Vec2], shift: Option<Vec2>);
+}
+
+impl PlacedPolygon for Placed<'_> {
+    #[inline(always)]
+    fn position(&self) -> Vec2 {
+        self.position
+    }
+    #[inline(always)]
+    fn radius_m(&self) -> f64 {
+        self.radius_m
+    }
+    #[inline(always)]
+    fn vertex_count(&self) -> usize {
+        self.vertices.len()
+    }
+    #[inline(always)]
+    fn vertex(&self, j: usize) -> Vec2 {
+        rotate(self.vertices[j], self.cos, self.sin)
+    }
+    #[inline(always)]
+    fn place_into(&self, slots: &mut [Vec2], shift: Option<Vec2>) {
+        let (cos, sin) = (self.cos, self.sin);
+        let slots = slots.iter_mut().zip(self.vertices);
+        // No zero shift for the first floe: `-0.0 + 0.0` is `+0.0`, and the
+        // coordinates must keep their bits.
+        match shift {
+            Some(shift) => slots.for_each(|(slot, &v)| *slot = shift + rotate(v, cos, sin)),
+            None => slots.for_each(|(slot, &v)| *slot = rotate(v, cos, sin)),
+        }
+    }
+}
+
+impl PlacedPolygon for Oriented<'_> {
+    #[inline(always)]
+    fn position(&self) -> Vec2 {
+        self.position
+    }
+    #[inline(always)]
+    fn radius_m(&self) -> f64 {
+        self.radius_m
+    }
+    #[inline(always)]
+    fn vertex_count(&self) -> usize {
+        self.vertices.len()
+    }
+    #[inline(always)]
+    fn vertex(&self, j: usize) -> Vec2 {
+        self.vertices[j]
+    }
+    #[inline(always)]
+    fn place_into(&self, slots: &mut [Vec2], shift: Option<Vec2>) {
+        let slots = slots.iter_mut().zip(self.vertices);
+        match shift {
+            Some(shift) => slots.for_each(|(slot, &v)| *slot = shift + v),
+            None => slots.for_each(|(slot, &v)| *slot = v),
+        }
+    }
+}
+
 /// The overlap of two floes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Overlap {
@@ -150,25 +238,13 @@ fn next(i: usize, n: usize) -> usize {
     }
 }
 
-/// `vertices` rotated, then shifted by `shift` if given, into `poly`: at
-/// most [`MAX_VERTICES`] (the floe constructor refuses more), and the first
-/// again after the last.
+/// The vertices of `p` in world orientation, shifted by `shift` if given,
+/// into `poly`: at most [`MAX_VERTICES`] (the floe constructor refuses
+/// more), and the first again after the last.
 #[inline(always)]
-fn place(
-    poly: &mut Poly<{ MAX_VERTICES + 1 }>,
-    vertices: &[Vec2],
-    shift: Option<Vec2>,
-    cos: f64,
-    sin: f64,
-) {
-    let n = vertices.len().min(MAX_VERTICES);
-    let slots = poly.v[..n].iter_mut().zip(vertices);
-    // No zero shift for the first floe: `-0.0 + 0.0` is `+0.0`, and the
-    // coordinates must keep their bits.
-    match shift {
-        Some(shift) => slots.for_each(|(slot, &v)| *slot = shift + rotate(v, cos, sin)),
-        None => slots.for_each(|(slot, &v)| *slot = rotate(v, cos, sin)),
-    }
+fn place(poly: &mut Poly<{ MAX_VERTICES + 1 }>, p: &impl PlacedPolygon, shift: Option<Vec2>) {
+    let n = p.vertex_count().min(MAX_VERTICES);
+    p.place_into(&mut poly.v[..n], shift);
     poly.v[n] = poly.v[0];
     poly.len = n;
 }
@@ -184,20 +260,18 @@ const AREA_FLOOR: f64 = 1e-12;
 const PENETRATION_FLOOR_ULPS: f64 = 64.0;
 
 /// The overlap of `a` and `b`, or `None` if they do not overlap.
-pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overlap> {
+pub fn overlap<P: PlacedPolygon>(a: P, b: P, scratch: &mut ClipScratch) -> Option<Overlap> {
     debug_assert!(
-        a.vertices
-            .iter()
-            .all(|v| v.length() <= a.radius_m * (1.0 + 1e-12))
-            && b.vertices
-                .iter()
-                .all(|v| v.length() <= b.radius_m * (1.0 + 1e-12)),
-        "Placed::radius_m must bound the vertices"
+        (0..a.vertex_count()).all(|j| a.vertex(j).length() <= a.radius_m() * (1.0 + 1e-12))
+            && (0..b.vertex_count()).all(|j| b.vertex(j).length() <= b.radius_m() * (1.0 + 1e-12)),
+        "the radius must bound the vertices"
     );
-    let offset = b.position - a.position;
-    place(&mut scratch.a, a.vertices, None, a.cos, a.sin);
-    place(&mut scratch.b, b.vertices, Some(offset), b.cos, b.sin);
-    let (result, exact_zero) = scratch.clip(a.radius_m);
+    let offset = b.position() - a.position();
+    place(&mut scratch.a, &a, None);
+    place(&mut scratch.b, &b, Some(offset));
+    let (a_position, b_position) = (a.position(), b.position());
+    let (a_radius, b_radius) = (a.radius_m(), b.radius_m());
+    let (result, exact_zero) = scratch.clip(a_radius);
     let len = scratch.bufs[result].len;
     if len < 3 {
         return None;
@@ -208,7 +282,7 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
     let closed = &scratch.bufs[result].v[..=len];
     let poly = &closed[..len];
     let (area, centroid) = crate::geometry::shape::area_and_centroid(poly);
-    let size = a.radius_m.min(b.radius_m);
+    let size = a_radius.min(b_radius);
     if area <= AREA_FLOOR * size * size {
         return None;
     }
@@ -232,11 +306,10 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
         ),
         None => principal_normal(closed, centroid),
     };
-    let scale = a
-        .position
+    let scale = a_position
         .abs()
         .max_element()
-        .max(b.position.abs().max_element());
+        .max(b_position.abs().max_element());
     if area <= PENETRATION_FLOOR_ULPS * f64::EPSILON * scale * length {
         return None;
     }
@@ -247,7 +320,7 @@ pub fn overlap(a: Placed, b: Placed, scratch: &mut ClipScratch) -> Option<Overla
     };
     Some(Overlap {
         area_m2: area,
-        centroid: a.position + centroid,
+        centroid: a_position + centroid,
         normal,
         length_m: length,
     })
@@ -353,21 +426,19 @@ fn touch_depth(r_min: f64, r_q: f64) -> f64 {
 /// `edge` is the pair's remembered separating edge, updated here. The
 /// result is bitwise that of [`overlap`] whatever `edge` holds (see
 /// `TOUCH_DEPTH` in the source).
-pub fn overlap_cached(
-    a: Placed,
-    b: Placed,
+pub fn overlap_cached<P: PlacedPolygon>(
+    a: P,
+    b: P,
     edge: &mut SeparatingEdge,
     scratch: &mut ClipScratch,
 ) -> Option<Overlap> {
-    let offset = b.position - a.position;
+    let offset = b.position() - a.position();
     let code = edge.0;
     if *edge != SeparatingEdge::NONE && *edge != SeparatingEdge::TOUCHING {
         let apart = still_apart(
             code,
-            (a.vertices.len(), |j| rotate(a.vertices[j], a.cos, a.sin)),
-            (b.vertices.len(), |j| {
-                offset + rotate(b.vertices[j], b.cos, b.sin)
-            }),
+            (a.vertex_count(), |j| a.vertex(j)),
+            (b.vertex_count(), |j| offset + b.vertex(j)),
             &Allowance::new(&a, &b, offset),
         );
         if apart {
@@ -407,12 +478,13 @@ struct Allowance {
 
 impl Allowance {
     #[inline(always)]
-    fn new(a: &Placed, b: &Placed, offset: Vec2) -> Self {
-        let r_min = a.radius_m.min(b.radius_m);
-        let extent = offset.length() + a.radius_m + b.radius_m;
+    fn new(a: &impl PlacedPolygon, b: &impl PlacedPolygon, offset: Vec2) -> Self {
+        let (r_a, r_b) = (a.radius_m(), b.radius_m());
+        let r_min = r_a.min(r_b);
+        let extent = offset.length() + r_a + r_b;
         Self {
-            depth_of_a: touch_depth(r_min, a.radius_m),
-            depth_of_b: touch_depth(r_min, b.radius_m),
+            depth_of_a: touch_depth(r_min, r_a),
+            depth_of_b: touch_depth(r_min, r_b),
             round_off: SIDE_ROUND_OFF * f64::EPSILON * extent,
             corner_m2: TOUCH_DEPTH * AREA_FLOOR * r_min * r_min,
         }
@@ -944,8 +1016,10 @@ mod tests {
             let vb = convex(scale, &angles_b, axes_b);
             prop_assume!(va.len() >= 3 && vb.len() >= 3);
             let mut scratch = ClipScratch::default();
-            place(&mut scratch.a, &va, None, 1.0, 0.0);
-            place(&mut scratch.b, &vb, Some(Vec2::new(dx, dy) * scale), turn.cos(), turn.sin());
+            let pa = Placed { vertices: &va, position: Vec2::ZERO, cos: 1.0, sin: 0.0, radius_m: radius(&va) };
+            let pb = Placed { vertices: &vb, position: Vec2::ZERO, cos: turn.cos(), sin: turn.sin(), radius_m: radius(&vb) };
+            place(&mut scratch.a, &pa, None);
+            place(&mut scratch.b, &pb, Some(Vec2::new(dx, dy) * scale));
             let (result, exact_zero) = scratch.clip(radius(&va));
             prop_assume!(!exact_zero);
             let poly = scratch.bufs[result].as_slice().to_vec();

@@ -7,7 +7,9 @@ pub mod r3_moment;
 pub mod separation;
 pub mod shape;
 
-pub use clip::{overlap, overlap_cached, ClipScratch, Overlap, Placed, SeparatingEdge};
+pub use clip::{
+    overlap, overlap_cached, ClipScratch, Oriented, Overlap, Placed, PlacedPolygon, SeparatingEdge,
+};
 pub use r3_moment::polygon_r3_moment;
 pub use separation::separation_lower_bound;
 pub use shape::FloeShape;

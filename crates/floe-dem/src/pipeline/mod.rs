@@ -35,6 +35,7 @@ pub mod force_gathering;
 pub mod friction;
 pub mod integrator;
 pub mod narrow_phase;
+pub(crate) mod oriented_vertices;
 
 use broad_phase::BroadPhase;
 use energy_accounting::EnergyAccounting;

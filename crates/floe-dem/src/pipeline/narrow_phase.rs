@@ -18,12 +18,13 @@ use super::contact_memory::{recall, remember_broken};
 use super::contact_merge::{merge_in_place, DEAD};
 use super::energy_accounting::ContactPower;
 use super::friction::{new_contact_state, FrictionBatch, Slot};
+use super::oriented_vertices::orient_vertices;
 use crate::contact_kernel::{contact_before_friction, Body};
 use crate::contact_model::ContactModel;
 use crate::contacts::{BrokenContact, ContactRecord};
 use crate::exact_sum::ExactSum;
 use crate::floes::FloeColumns;
-use crate::geometry::{overlap_cached, ClipScratch, Overlap, SeparatingEdge};
+use crate::geometry::{overlap_cached, ClipScratch, Oriented, Overlap, SeparatingEdge};
 use crate::periodicity::Periodicity;
 use crate::Vec2;
 use floe_friction::FrictionLaw;
@@ -92,6 +93,9 @@ pub(crate) struct NarrowPhase {
     /// clipped (reset whenever the broad phase rebuilds the pair list). Only
     /// a shortcut: results do not depend on it, so it is not checkpointed.
     separating: Vec<SeparatingEdge>,
+    /// Every floe's vertices turned to its orientation, this step (laid
+    /// out as `FloeColumns::vertices`).
+    oriented: Vec<Vec2>,
     /// Per chunk, the contacts that formed this step (few: most contacts
     /// continue in place).
     pub(crate) born: Vec<Vec<ContactRecord>>,
@@ -153,10 +157,15 @@ impl NarrowPhase {
         let dt = input.dt;
         let damping_ratio = input.damping_ratio;
         let periodicity = input.periodicity;
-        let trig = input.trig;
+        orient_vertices(f, input.trig, &mut self.oriented);
+        let oriented = &self.oriented;
         let broken = &*set.broken;
         let body = |i: usize, offset: Vec2| Body::of(f, i, offset);
-        let placed = |i: usize, offset: Vec2| f.placed(i, offset, trig[i]);
+        let placed = |i: usize, offset: Vec2| Oriented {
+            vertices: &oriented[f.vertex_start[i] as usize..f.vertex_start[i + 1] as usize],
+            position: f.position[i] + offset,
+            radius_m: f.radius_m[i],
+        };
         // The overlap of a candidate pair, and the offset of the image of `b`
         // that touches `a`.
         let overlap_of_pair = |pair: &CandidatePair,
