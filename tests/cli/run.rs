@@ -846,4 +846,51 @@ fn floes_ridge_keeping_their_volume_and_a_paused_run_resumes_bitwise() {
     assert!(thickest(n - 1) > thickest(0) + 0.1, "floes thickened");
     let areas = |k: usize| f.floes_at(k).unwrap().area_m2;
     assert_ne!(areas(0), areas(n - 1), "the losers' shapes follow");
+    // The event log: one row per event the ledger counted, whose volumes
+    // (summed here in plain floating point) are the ledger's (summed
+    // exactly by the engine), split the same way between floes and coast.
+    let log = f.ridges().unwrap();
+    assert_eq!(log.len() as f64, last_events, "a row per event");
+    let logged = |coast: bool| {
+        log.iter()
+            .filter(|r| r.to_coast == coast)
+            .map(|r| r.volume_m3)
+            .sum::<f64>()
+    };
+    assert!(
+        (logged(false) - to_floes).abs() <= 1e-9 * to_floes,
+        "{} vs {to_floes}",
+        logged(false)
+    );
+    assert!(
+        (logged(true) - to_coast).abs() <= 1e-9 * to_coast,
+        "{} vs {to_coast}",
+        logged(true)
+    );
+    let end = f.snapshot(n - 1).unwrap();
+    for (r, next) in log.iter().zip(log.iter().skip(1)) {
+        assert!(r.step <= next.step && r.step <= end.step, "in step order");
+        assert!(
+            r.step < next.step || r.loser_id < next.loser_id,
+            "by loser within a step"
+        );
+    }
+    let dt = end.time_s / end.step as f64;
+    for r in &log {
+        assert!(
+            (r.time_s - r.step as f64 * dt).abs() <= 1e-9 * end.time_s,
+            "{r:?}"
+        );
+        assert!(
+            r.area_removed_m2 > 0.0 && r.area_removed_m2 <= r.area_before_m2,
+            "{r:?}"
+        );
+        // A crushed floe leaves no contact; a cut one at most its cap
+        // (none where the cut had to go past the gainer's edge).
+        assert_eq!(r.whole, r.area_removed_m2 == r.area_before_m2, "{r:?}");
+        assert!(r.force_after_n < r.force_before_n, "{r:?}");
+        assert!(!r.whole || r.force_after_n == 0.0, "{r:?}");
+        assert!(r.to_coast || r.ice_to_id != r.loser_id, "{r:?}");
+    }
+    assert!(log.iter().any(|r| r.to_coast) && log.iter().any(|r| !r.to_coast));
 }

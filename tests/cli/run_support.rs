@@ -177,6 +177,12 @@ pub fn assert_same_run(a: &Path, b: &Path) {
         fb.fractures().unwrap(),
         "fracture log"
     );
+    // Debug prints every float's shortest round-trip form: equal bits.
+    assert_eq!(
+        format!("{:?}", fa.ridges().unwrap()),
+        format!("{:?}", fb.ridges().unwrap()),
+        "ridging log"
+    );
     let names = fa.observable_names().unwrap();
     assert_eq!(names, fb.observable_names().unwrap());
     for name in &names {

@@ -7,8 +7,7 @@ use hdf5::File;
 
 use floe_dem::world::FractureEvent;
 
-use crate::appendable::{Appendable, Storage};
-use crate::h5;
+use crate::event_log::{Column, EventLog};
 use crate::layout;
 
 /// What a logged floe that did not split says.
@@ -16,11 +15,11 @@ pub const STAYED_WHOLE: &str = "stayed whole";
 
 /// The log's datasets, in [`COLUMNS`] order.
 pub(crate) struct FractureLog {
-    columns: Vec<Appendable>,
+    log: EventLog,
 }
 
 /// Name, unit and type of each column (`u` unsigned, `f` float).
-pub(crate) const COLUMNS: [(&str, &str, char); 8] = [
+pub(crate) const COLUMNS: [Column; 8] = [
     ("step", "", 'u'),
     ("time", "s", 'f'),
     ("parent", "", 'u'),
@@ -34,43 +33,19 @@ pub(crate) const COLUMNS: [(&str, &str, char); 8] = [
 impl FractureLog {
     /// The log of `file`, made if absent.
     pub(crate) fn open_or_create(file: &File) -> hdf5::Result<Self> {
-        let g = match file.group(layout::FRACTURE) {
-            Ok(g) => g,
-            Err(_) => file.create_group(layout::FRACTURE)?,
-        };
-        let storage = Storage::plain(layout::SERIES_CHUNK, &[]);
-        let columns = COLUMNS
-            .iter()
-            .map(|&(name, unit, kind)| {
-                if g.link_exists(name) {
-                    return Appendable::open(&g, name);
-                }
-                let a = match kind {
-                    'u' => Appendable::create::<u64>(&g, name, &[], &storage, None)?,
-                    _ => Appendable::create::<f64>(&g, name, &[], &storage, None)?,
-                };
-                if !unit.is_empty() {
-                    h5::write_str(a.dataset(), "unit", unit)?;
-                }
-                Ok(a)
-            })
-            .collect::<hdf5::Result<_>>()?;
-        Ok(Self { columns })
+        EventLog::open_or_create(file, layout::FRACTURE, &COLUMNS).map(|log| Self { log })
     }
 
     /// The log of `file`, if it has one.
     pub(crate) fn open(file: &File) -> hdf5::Result<Option<Self>> {
-        if !file.link_exists(layout::FRACTURE) {
-            return Ok(None);
-        }
-        Self::open_or_create(file).map(Some)
+        Ok(EventLog::open(file, layout::FRACTURE, &COLUMNS)?.map(|log| Self { log }))
     }
 
     /// Appends `events`.
     pub(crate) fn append(&mut self, events: &[FractureEvent]) -> hdf5::Result<()> {
         let u = |f: fn(&FractureEvent) -> u64| events.iter().map(f).collect::<Vec<u64>>();
         let x = |f: fn(&FractureEvent) -> f64| events.iter().map(f).collect::<Vec<f64>>();
-        let c = &mut self.columns;
+        let c = &mut self.log.columns;
         c[0].append(&u(|e| e.step))?;
         c[1].append(&x(|e| e.time_s))?;
         c[2].append(&u(|e| e.parent_id))?;
@@ -83,12 +58,7 @@ impl FractureLog {
 
     /// Drops the rows after step `step` (a resume from a checkpoint there).
     pub(crate) fn truncate_after(&mut self, step: u64) -> hdf5::Result<()> {
-        let steps: Vec<u64> = self.columns[0].dataset().read_raw()?;
-        let keep = steps.partition_point(|&s| s <= step);
-        for c in &mut self.columns {
-            c.truncate(keep)?;
-        }
-        Ok(())
+        self.log.truncate_after(step)
     }
 }
 

@@ -53,6 +53,8 @@ pub const FLOE_STRESS: (&str, &str, usize) = ("stress", "Pa", 3);
 pub const STRESS_COMPONENTS: &str = "xx xy yy";
 /// The fracture event log (runs whose floes broke).
 pub const FRACTURE: &str = "fracture";
+/// The ridging event log (runs whose floes ridged).
+pub const RIDGING: &str = "ridging";
 /// Contact lists, one per snapshot.
 pub const CONTACTS: &str = "contacts";
 /// Assembly-wide time series.

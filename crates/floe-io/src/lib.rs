@@ -16,6 +16,7 @@ mod appendable;
 pub mod checkpoint;
 mod element;
 pub mod error;
+mod event_log;
 mod floe_group;
 pub mod fracture_log;
 mod h5;
@@ -24,6 +25,7 @@ pub mod layout;
 pub mod metadata;
 pub mod observer;
 pub mod reader;
+pub mod ridging_log;
 pub mod run_status;
 pub mod writer;
 

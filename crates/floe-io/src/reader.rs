@@ -551,6 +551,13 @@ impl RunFile {
             .at(&self.path, || format!("reading /{}", layout::FRACTURE))
     }
 
+    /// The ridging event log: every floe ridging cut, in order (empty for
+    /// a run without ridging).
+    pub fn ridges(&self) -> Result<Vec<crate::ridging_log::RidgeRow>, IoError> {
+        crate::ridging_log::read(&self.file)
+            .at(&self.path, || format!("reading /{}", layout::RIDGING))
+    }
+
     /// Each floe of snapshot `k`'s parent: the id of the floe it broke
     /// from, `None` for a floe of the start (and for every floe of the
     /// first segment, or of a file written before parents were recorded).

@@ -8,7 +8,7 @@ use floe_dem::floes::Floes;
 use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
 use floe_dem::state::WorldState;
-use floe_dem::world::{FractureEvent, World};
+use floe_dem::world::{FractureEvent, PlannedRidge, World};
 use floe_friction::FrictionLaw;
 use hdf5::Group;
 
@@ -23,6 +23,7 @@ use crate::headroom::Headroom;
 use crate::layout;
 use crate::metadata::{CheckpointInfo, DomainBox, InputRecord, OutputOptions, RunMetadata};
 use crate::reader::{self, RunFile};
+use crate::ridging_log::RidgingLog;
 
 /// The contact datasets.
 struct ContactTables {
@@ -69,6 +70,8 @@ pub struct RunWriter {
     land_ids: Vec<u64>,
     /// The fracture event log, from the first event on.
     fractures: Option<FractureLog>,
+    /// The ridging event log, from the first event on.
+    ridges: Option<RidgingLog>,
     contacts: ContactTables,
     /// In [`layout::observable_samples`] order, then
     /// [`layout::BONDS_OBSERVABLE`] if the run has cohesion and
@@ -311,6 +314,7 @@ impl RunWriter {
             opts: *opts,
             land_ids: Vec::new(),
             fractures: None,
+            ridges: None,
             contacts,
             observables,
             next_slot: 0,
@@ -446,6 +450,21 @@ impl RunWriter {
         }
         let log = self.fractures.as_mut().expect("made above");
         log.append(events).at(&self.path, what)
+    }
+
+    /// Appends `events`, made at simulated time `time_s`, to the ridging
+    /// log (made at the first).
+    pub fn write_ridges(&mut self, time_s: f64, events: &[PlannedRidge]) -> Result<(), IoError> {
+        if events.is_empty() {
+            return Ok(());
+        }
+        self.claim(events.len() as u64 * 128 + (64 << 10))?;
+        let what = || format!("appending to /{}", layout::RIDGING);
+        if self.ridges.is_none() {
+            self.ridges = Some(RidgingLog::open_or_create(&self.file).at(&self.path, what)?);
+        }
+        let log = self.ridges.as_mut().expect("made above");
+        log.append(time_s, events).at(&self.path, what)
     }
 
     /// Starts the next segment for the world's floes (their set changed:
@@ -798,6 +817,10 @@ impl RunWriter {
         if let Some(log) = fractures.as_mut() {
             log.truncate_after(state.steps).at(path, what)?;
         }
+        let mut ridges = RidgingLog::open(&file).at(path, what)?;
+        if let Some(log) = ridges.as_mut() {
+            log.truncate_after(state.steps).at(path, what)?;
+        }
         file.flush().at(path, what)?;
         let info = CheckpointInfo {
             step: state.steps,
@@ -818,6 +841,7 @@ impl RunWriter {
                 },
                 land_ids,
                 fractures,
+                ridges,
                 contacts,
                 observables,
                 next_slot: 1 - slot,

@@ -13,7 +13,7 @@ use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
 use floe_dem::run::{self, format_sim_time, Ending, Progress, RunObserver, Silent, Stepper};
 use floe_dem::state::WorldState;
-use floe_dem::world::{FractureEvent, World};
+use floe_dem::world::{FractureEvent, PlannedRidge, World};
 use floe_friction::{FrictionLaw, LawRegistry};
 use floe_io::{DomainBox, InputRecord, IoError, OutputOptions, RunFile, RunMetadata, RunWriter};
 use floe_scenario::Scenario;
@@ -382,6 +382,13 @@ impl<F: ExternalForces> RunObserver<F> for RootWriter<'_> {
     fn fractures(&mut self, events: &[FractureEvent]) -> Result<(), IoError> {
         match &mut self.0 {
             Some(w) => RunObserver::<F>::fractures(*w, events),
+            None => Ok(()),
+        }
+    }
+
+    fn ridges(&mut self, time_s: f64, events: &[PlannedRidge]) -> Result<(), IoError> {
+        match &mut self.0 {
+            Some(w) => RunObserver::<F>::ridges(*w, time_s, events),
             None => Ok(()),
         }
     }

@@ -11,7 +11,7 @@ use std::sync::atomic::AtomicBool;
 use crate::forcing::ExternalForces;
 use crate::observables::Observables;
 use crate::state::WorldState;
-use crate::world::{FractureEvent, World};
+use crate::world::{FractureEvent, PlannedRidge, World};
 
 use floe_friction::FrictionLaw;
 
@@ -36,6 +36,13 @@ pub trait RunObserver<F: ExternalForces> {
     /// it with the same events; the default records nothing).
     fn fractures(&mut self, events: &[FractureEvent]) -> Result<(), Self::Error> {
         let _ = events;
+        Ok(())
+    }
+    /// Floes that ridging cut after the step just taken, at simulated time
+    /// `time_s` (every process calls it with the same events, by loser id;
+    /// the default records nothing).
+    fn ridges(&mut self, time_s: f64, events: &[PlannedRidge]) -> Result<(), Self::Error> {
+        let _ = (time_s, events);
         Ok(())
     }
 }
@@ -150,6 +157,10 @@ pub fn drive<S: Stepper, O: RunObserver<S::Whole>>(
             });
         }
         progress.update(world.steps(), total_steps, world.time_s());
+        // In the order they were made: ridging, then fracture.
+        if !report.ridges.is_empty() {
+            observer.ridges(world.time_s(), &report.ridges)?;
+        }
         if !report.fractures.is_empty() {
             observer.fractures(&report.fractures)?;
         }
