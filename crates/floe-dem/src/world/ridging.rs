@@ -7,7 +7,7 @@
 use super::World;
 use crate::contact_kernel::{overlap_stiffness, Body};
 use crate::error::DemError;
-use crate::exact_sum::ExactSum;
+use crate::exact_sum::{ExactSum, EXACT_SUM_WORDS};
 use crate::floes::Floe;
 use crate::forcing::ExternalForces;
 use crate::geometry::shape::{area_and_centroid, polar_moment, FloeShape};
@@ -95,6 +95,31 @@ impl RidgingTally {
         ledger.angular_momentum_to_coast += v(4);
         ledger.kinetic_energy_lost_j += v(5);
         ledger.contact_energy_released_j += v(6);
+    }
+
+    /// The tally as integer words (the event count, then each sum's exact
+    /// words) that add element-wise across processes; [`Self::from_words`]
+    /// reads a sum of them back.
+    pub fn to_words(&self) -> Vec<i64> {
+        let mut words = vec![self.events as i64];
+        for s in &self.sums {
+            words.extend(s.to_words());
+        }
+        words
+    }
+
+    /// The tally whose words ([`Self::to_words`], perhaps summed over
+    /// processes) are `words`.
+    pub fn from_words(words: &[i64]) -> Self {
+        let mut tally = RidgingTally {
+            events: words[0] as u64,
+            ..RidgingTally::default()
+        };
+        for (k, s) in tally.sums.iter_mut().enumerate() {
+            let at = 1 + k * EXACT_SUM_WORDS;
+            *s = ExactSum::from_words(&words[at..at + EXACT_SUM_WORDS].try_into().expect("words"));
+        }
+        tally
     }
 }
 
@@ -347,5 +372,42 @@ impl<F: ExternalForces> World<F> {
         plan.elastic_after_n = cut.elastic_after_n;
         plan.stored_after_j = cut.stored_after_j;
         Some(plan)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tallies_added_as_words_are_the_tally_of_all_their_terms() {
+        // Two processes' tallies, summed word by word, against one tally
+        // that took every term: the same ledger to the bit.
+        let terms = [1e-300, 3.5, -2.25e12, 7.0e-3, -1.0, 4.4e8, 2.0_f64.powi(-60)];
+        let (mut p0, mut p1, mut one) = (
+            RidgingTally::default(),
+            RidgingTally::default(),
+            RidgingTally::default(),
+        );
+        for (i, &x) in terms.iter().enumerate() {
+            let part = if i % 2 == 0 { &mut p0 } else { &mut p1 };
+            part.events += 1;
+            one.events += 1;
+            for (k, s) in part.sums.iter_mut().enumerate() {
+                s.add(x * (k + 1) as f64);
+            }
+            for (k, s) in one.sums.iter_mut().enumerate() {
+                s.add(x * (k + 1) as f64);
+            }
+        }
+        let mut words = p0.to_words();
+        for (w, v) in words.iter_mut().zip(p1.to_words()) {
+            *w += v;
+        }
+        let (mut a, mut b) = (RidgingLedger::default(), RidgingLedger::default());
+        RidgingTally::from_words(&words).book(&mut a);
+        one.book(&mut b);
+        assert_eq!(format!("{a:?}"), format!("{b:?}"));
+        assert_eq!(a.events, 7);
     }
 }

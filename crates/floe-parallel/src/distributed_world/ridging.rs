@@ -6,7 +6,6 @@
 //! restores the ghosts.
 
 use super::*;
-use floe_dem::exact_sum::{ExactSum, EXACT_SUM_WORDS};
 use floe_dem::floes::Floe;
 use floe_dem::world::{final_gainers, PlannedRidge, RidgingTally};
 
@@ -39,19 +38,9 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let owned_ids = self.owned_ids();
         let tally = self.local_mut().apply_ridging(&all)?;
         self.own_ids(&owned_ids);
-        let mut words = vec![tally.events as i64];
-        for s in &tally.sums {
-            words.extend(s.to_words());
-        }
+        let mut words = tally.to_words();
         self.comm.sum_i64(&mut words);
-        let mut total = RidgingTally {
-            events: words[0] as u64,
-            ..RidgingTally::default()
-        };
-        for (k, s) in total.sums.iter_mut().enumerate() {
-            let at = 1 + k * EXACT_SUM_WORDS;
-            *s = ExactSum::from_words(&words[at..at + EXACT_SUM_WORDS].try_into().expect("words"));
-        }
+        let total = RidgingTally::from_words(&words);
         self.local_mut().book_ridging(&total);
         // Process 0 keeps every floe's shape and mass for the gathered whole.
         let targets = final_gainers(&all);
