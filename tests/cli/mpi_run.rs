@@ -121,10 +121,7 @@ fn floes_break_on_two_and_three_processes_as_on_one_and_resume_across_counts() {
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
     let out = case.resume_with(Launch::Mpi(3), "parts.h5", &[]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("alone.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.assert_same("alone.h5", "parts.h5");
 }
 
 #[test]
@@ -144,10 +141,7 @@ fn floes_ridge_on_two_and_three_processes_as_on_one() {
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
     let out = case.resume_with(Launch::Mpi(3), "parts.h5", &[]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("alone.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.assert_same("alone.h5", "parts.h5");
 }
 
 #[test]
@@ -163,12 +157,8 @@ fn a_run_paused_on_two_processes_resumes_on_three_and_on_one_bitwise() {
     );
     let out = case.resume_with(Launch::Mpi(3), "parts.h5", &["--max-steps", "300"]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    let out = case.resume("parts.h5", &[]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("alone.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.resume_ok("parts.h5", &[]);
+    case.assert_same("alone.h5", "parts.h5");
 }
 
 /// The processes `mpirun` started (its children).

@@ -128,14 +128,9 @@ fn pausing_and_resuming_on_another_thread_count_is_bitwise_the_uninterrupted_run
     assert_eq!(paused.status().unwrap(), "paused at step 137");
     assert_eq!(paused.checkpoint().unwrap().unwrap().step, 137);
     drop(paused);
-    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    let out = case.resume("parts.h5", &["--threads", "2"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("whole.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.resume_ok("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    case.resume_ok("parts.h5", &["--threads", "2"]);
+    case.assert_same("whole.h5", "parts.h5");
 }
 
 #[test]
@@ -144,12 +139,8 @@ fn a_run_with_floe_stress_writes_it_with_every_snapshot_and_resumes_bitwise() {
     let case = Case::new(&stressed);
     case.run_ok("whole.h5", &["--threads", "2"]);
     case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
-    let out = case.resume("parts.h5", &["--threads", "2"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("whole.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.resume_ok("parts.h5", &["--threads", "2"]);
+    case.assert_same("whole.h5", "parts.h5");
     let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
     let n = f.snapshot_count().unwrap();
     let floes = f.static_floes().unwrap();
@@ -192,12 +183,8 @@ fn floes_break_keeping_their_mass_and_a_paused_run_resumes_bitwise() {
     case.run_ok("whole.h5", &["--threads", "2"]);
     // 1371 steps: between fracture checks, snapshots and checkpoints.
     case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "1371"]);
-    let out = case.resume("parts.h5", &["--threads", "2"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("whole.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.resume_ok("parts.h5", &["--threads", "2"]);
+    case.assert_same("whole.h5", "parts.h5");
     let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
     let n = f.snapshot_count().unwrap();
     let counts: Vec<usize> = (0..n).map(|k| f.floes_at(k).unwrap().len()).collect();
@@ -316,14 +303,9 @@ fn a_run_paused_in_the_middle_of_a_wall_schedule_resumes_bitwise() {
     let case = Case::new(&scheduled);
     case.run_ok("whole.h5", &["--threads", "2"]);
     case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
-    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    let out = case.resume("parts.h5", &["--threads", "1"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("whole.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.resume_ok("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    case.resume_ok("parts.h5", &["--threads", "1"]);
+    case.assert_same("whole.h5", "parts.h5");
     // The wall went where its schedule says: 25 + 5 + 0 - 35 m along x,
     // -0.14 m across, at t = 200 s.
     let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
@@ -383,8 +365,7 @@ fn kill_9_in_the_middle_of_a_run_then_resume_is_bitwise() {
     child.kill().unwrap(); // SIGKILL: no handler runs
     child.wait().unwrap();
 
-    let out = case.resume("parts.h5", &["--threads", "2"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    case.resume_ok("parts.h5", &["--threads", "2"]);
     assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
 }
 
@@ -645,8 +626,7 @@ fn a_run_paused_in_the_previous_checkpoint_format_resumes_from_its_state() {
     // It resumes to the end, writing where the uninterrupted run would
     // (the pause's own snapshot gives way to the cadence's).
     let first = RunFile::open(Path::new(&old)).unwrap().snapshot(0).unwrap();
-    let out = case.resume("old.h5", &[]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    case.resume_ok("old.h5", &[]);
     assert!(run_ok(&["info", &old]).contains("completed"));
     let f = RunFile::open(Path::new(&old)).unwrap();
     assert_eq!(
@@ -757,14 +737,9 @@ fn a_run_paused_inside_a_window_resumes_bitwise() {
     let paused = RunFile::open(Path::new(&case.path("parts.h5"))).unwrap();
     assert_eq!(paused.snapshot_times().unwrap().last(), Some(&68.5));
     drop(paused);
-    let out = case.resume("parts.h5", &["--threads", "2", "--max-steps", "101"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    let out = case.resume("parts.h5", &["--threads", "1"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("whole.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.resume_ok("parts.h5", &["--threads", "2", "--max-steps", "101"]);
+    case.resume_ok("parts.h5", &["--threads", "1"]);
+    case.assert_same("whole.h5", "parts.h5");
 }
 
 #[test]
@@ -787,8 +762,7 @@ fn ctrl_c_inside_a_window_then_resume_is_bitwise() {
     assert!(kill.success());
     let out = child.wait_with_output().unwrap();
     assert_eq!(out.status.code(), Some(130), "{}", text(&out.stderr));
-    let out = case.resume("parts.h5", &["--threads", "1"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    case.resume_ok("parts.h5", &["--threads", "1"]);
     assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
 }
 
@@ -797,12 +771,8 @@ fn floes_ridge_keeping_their_volume_and_a_paused_run_resumes_bitwise() {
     let case = Case::new(RIDGING);
     case.run_ok("whole.h5", &["--threads", "2"]);
     case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
-    let out = case.resume("parts.h5", &["--threads", "2"]);
-    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    assert_same_run(
-        Path::new(&case.path("whole.h5")),
-        Path::new(&case.path("parts.h5")),
-    );
+    case.resume_ok("parts.h5", &["--threads", "2"]);
+    case.assert_same("whole.h5", "parts.h5");
     let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
     let n = f.snapshot_count().unwrap();
     let volume = f.observable("ridged_volume").unwrap();

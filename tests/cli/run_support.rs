@@ -115,6 +115,15 @@ impl Case {
     pub fn resume(&self, name: &str, extra: &[&str]) -> Output {
         self.resume_with(Launch::Alone, name, extra)
     }
+    /// [`Case::resume`], which must succeed.
+    pub fn resume_ok(&self, name: &str, extra: &[&str]) {
+        let out = self.resume(name, extra);
+        assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    }
+    /// [`assert_same_run`] of two of this case's run files.
+    pub fn assert_same(&self, a: &str, b: &str) {
+        assert_same_run(Path::new(&self.path(a)), Path::new(&self.path(b)));
+    }
     pub fn spawn_with(&self, launch: Launch, name: &str, extra: &[&str]) -> Child {
         launch
             .command()

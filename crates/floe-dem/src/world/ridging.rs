@@ -383,7 +383,15 @@ mod tests {
     fn tallies_added_as_words_are_the_tally_of_all_their_terms() {
         // Two processes' tallies, summed word by word, against one tally
         // that took every term: the same ledger to the bit.
-        let terms = [1e-300, 3.5, -2.25e12, 7.0e-3, -1.0, 4.4e8, 2.0_f64.powi(-60)];
+        let terms = [
+            1e-300,
+            3.5,
+            -2.25e12,
+            7.0e-3,
+            -1.0,
+            4.4e8,
+            2.0_f64.powi(-60),
+        ];
         let (mut p0, mut p1, mut one) = (
             RidgingTally::default(),
             RidgingTally::default(),
