@@ -863,4 +863,18 @@ fn floes_ridge_keeping_their_volume_and_a_paused_run_resumes_bitwise() {
         assert!(r.to_coast || r.ice_to_id != r.loser_id, "{r:?}");
     }
     assert!(log.iter().any(|r| r.to_coast) && log.iter().any(|r| !r.to_coast));
+    let info = floe()
+        .args(["info", &case.path("whole.h5")])
+        .output()
+        .unwrap();
+    let info = text(&info.stdout);
+    let crushed = log.iter().filter(|r| r.whole).count();
+    assert!(
+        info.contains(&format!(
+            "ridging      {} events ({} cuts, {crushed} floes crushed whole)",
+            log.len(),
+            log.len() - crushed
+        )),
+        "floe info reports the log: {info}"
+    );
 }

@@ -151,6 +151,36 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
                 ),
             );
         }
+        let ridges = run.ridges()?;
+        if !ridges.is_empty() {
+            let whole = ridges.iter().filter(|r| r.whole).count();
+            let volume = |coast: bool| -> f64 {
+                ridges
+                    .iter()
+                    .filter(|r| r.to_coast == coast)
+                    .map(|r| r.volume_m3)
+                    .sum()
+            };
+            let thickest = |k: usize| -> Result<f64, floe_io::IoError> {
+                let f = run.floes_at(k)?;
+                Ok((0..f.len())
+                    .filter(|&i| !f.prescribed[i])
+                    .map(|i| f.thickness_m[i])
+                    .fold(0.0, f64::max))
+            };
+            line(
+                "ridging",
+                format!(
+                    "{} events ({} cuts, {whole} floes crushed whole): {} m^3 onto floes, {} m^3 to the coast; thickest free floe {} m (at the start {} m)",
+                    ridges.len(),
+                    ridges.len() - whole,
+                    significant(volume(false), 4),
+                    significant(volume(true), 4),
+                    significant(thickest(snapshots - 1)?, 4),
+                    significant(thickest(0)?, 4),
+                ),
+            );
+        }
     } else {
         line("snapshots", "none".into());
     }
