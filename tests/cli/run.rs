@@ -863,6 +863,16 @@ fn floes_ridge_keeping_their_volume_and_a_paused_run_resumes_bitwise() {
         assert!(r.to_coast || r.ice_to_id != r.loser_id, "{r:?}");
     }
     assert!(log.iter().any(|r| r.to_coast) && log.iter().any(|r| !r.to_coast));
+    // Without `[output] ridging_log` the same run writes no log.
+    let unlogged = Case::new(&RIDGING.replacen("ridging_log = true\n", "", 1));
+    unlogged.run_ok("plain.h5", &["--threads", "1"]);
+    let plain = RunFile::open(Path::new(&unlogged.path("plain.h5"))).unwrap();
+    assert!(plain.ridges().unwrap().is_empty());
+    assert_eq!(
+        bits2(&plain.snapshot(n - 1).unwrap().position),
+        bits2(&f.snapshot(n - 1).unwrap().position),
+        "the log changes nothing else"
+    );
     let info = floe()
         .args(["info", &case.path("whole.h5")])
         .output()

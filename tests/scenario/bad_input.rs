@@ -1509,6 +1509,26 @@ fn ridging_tables_are_checked_key_by_key() {
         .build()
         .unwrap();
     assert!(plain.world.ridging().is_none());
+    // The event log: off by default, refused without ridging to log.
+    let log = "\n[output]\nridging_log = true\n";
+    check(
+        &format!("{BASE}{log}"),
+        "ridging_log = true",
+        14,
+        "output.ridging_log",
+        &["no [ridging] table"],
+    );
+    check(
+        &format!("{}{}", with(""), "\n[output]\nridging_log = 1\n"),
+        "ridging_log = 1",
+        14,
+        "ridging_log",
+        &["bool"],
+    );
+    let logged = Scenario::from_text(&format!("{}{log}", with("")), Path::new("ok.toml")).unwrap();
+    assert!(logged.output().ridging_log);
+    let unlogged = Scenario::from_text(&with(""), Path::new("ok.toml")).unwrap();
+    assert!(!unlogged.output().ridging_log);
 }
 
 #[test]

@@ -352,8 +352,9 @@ pub(crate) fn reopen(
 }
 
 /// The run writer on the process that writes (`None` on the others of a
-/// distributed run, which never get a world to write).
-pub(crate) struct RootWriter<'a>(pub(crate) Option<&'a mut RunWriter>);
+/// distributed run, which never get a world to write), and whether it logs
+/// ridging events (`[output] ridging_log`).
+pub(crate) struct RootWriter<'a>(pub(crate) Option<&'a mut RunWriter>, pub(crate) bool);
 
 impl<F: ExternalForces> RunObserver<F> for RootWriter<'_> {
     type Error = IoError;
@@ -388,8 +389,8 @@ impl<F: ExternalForces> RunObserver<F> for RootWriter<'_> {
 
     fn ridges(&mut self, time_s: f64, events: &[PlannedRidge]) -> Result<(), IoError> {
         match &mut self.0 {
-            Some(w) => RunObserver::<F>::ridges(*w, time_s, events),
-            None => Ok(()),
+            Some(w) if self.1 => RunObserver::<F>::ridges(*w, time_s, events),
+            _ => Ok(()),
         }
     }
 }
@@ -417,7 +418,7 @@ pub(crate) fn advance<S: Stepper>(
         pause_at,
         &cadence,
         scenario.domain().area_m2(),
-        &mut RootWriter(writer.as_deref_mut()),
+        &mut RootWriter(writer.as_deref_mut(), scenario.output().ridging_log),
         hooks.interrupt(),
         progress.as_mut(),
     )?;

@@ -136,7 +136,7 @@ fn run_inner<C: Communicator + Sync>(
         if fresh {
             run::start(
                 &mut world,
-                &mut RootWriter(writer.as_mut()),
+                &mut RootWriter(writer.as_mut(), scenario.output().ridging_log),
                 scenario.domain().area_m2(),
             )
             .map_err(|e| abort_with(comm, e.into()))?;

@@ -13,6 +13,10 @@ pub struct OutputCadence {
     pub checkpoint_every_s: f64,
     /// `[[output.window]]`: stretches of the run with denser output.
     pub windows: Vec<OutputWindow>,
+    /// Write the ridging event log `/ridging`, a row per floe cut (default
+    /// false: a pack that ridges at every step logs tens of events a step,
+    /// 70 times the rest of the file in the compression box).
+    pub ridging_log: bool,
 }
 
 /// A stretch of the run whose snapshots or observables (or both) are also

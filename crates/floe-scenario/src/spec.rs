@@ -386,6 +386,7 @@ pub(crate) struct RawOutput {
     pub snapshot_every_s: Num,
     pub observables_every_s: Num,
     pub checkpoint_every_s: Num,
+    pub ridging_log: Flag,
     pub window: Option<Vec<Spanned<RawOutputWindow>>>,
 }
 

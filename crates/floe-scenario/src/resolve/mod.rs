@@ -231,6 +231,15 @@ pub(crate) fn resolve(
     let floe_stress = resolve_floe_stress(f, raw.floe_stress.as_ref())?;
     let cohesion = resolve_cohesion(f, raw.cohesion.as_ref())?;
     let ridging = resolve_ridging(f, raw.ridging.as_ref())?;
+    if let Some(log) = raw.output.as_ref().and_then(|o| o.ridging_log.as_ref()) {
+        if *log.get_ref() && ridging.is_none() {
+            return Err(f.error(
+                log.span(),
+                "output.ridging_log",
+                "logs ridging events, and the scenario has no [ridging] table: add one, or drop the key",
+            ));
+        }
+    }
     let (fracture, fracture_spans) = match resolve_fracture(f, raw.fracture.as_ref())? {
         Some((settings, spans)) => (Some(settings), spans),
         None => (

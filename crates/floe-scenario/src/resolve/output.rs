@@ -40,6 +40,9 @@ pub(crate) fn resolve_output(
             duration_s / 10.0,
         )?,
         windows: Vec::new(),
+        ridging_log: raw
+            .and_then(|o| o.ridging_log.as_ref())
+            .is_some_and(|v| *v.get_ref()),
     };
     let raw_windows = raw.and_then(|o| o.window.as_deref()).unwrap_or(&[]);
     for (i, w) in raw_windows.iter().enumerate() {
