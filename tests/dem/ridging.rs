@@ -10,7 +10,7 @@ use floe_dem::floes::{Floes, Motion};
 use floe_dem::forcing::NoForcing;
 use floe_dem::geometry::cross;
 use floe_dem::periodicity::Periodicity;
-use floe_dem::ridging::Ridging;
+use floe_dem::ridging::{Ridging, Rubble};
 use floe_dem::world::{stable_time_step, World};
 use floe_dem::Vec2;
 use floe_fixtures::channel::sheared_channel;
@@ -247,6 +247,62 @@ fn free_floes_that_ridge_keep_volume_momentum_and_angular_momentum() {
     let gained = (f.thickness_m[0] - h0) * f.area_m2[0];
     assert!((gained - lost).abs() < 1e-9 * lost, "{gained} vs {lost}");
     // The ledger follows the floes' energy through ridging.
+    let residual = energy_residual(&w) - e0;
+    assert!(
+        residual.abs() < 0.01 * ke0,
+        "residual {residual} J of {ke0} J"
+    );
+}
+
+#[test]
+fn rubble_on_both_floes_thickens_them_alike_keeping_volume_and_both_momenta() {
+    let mut w = collision();
+    let both = Ridging {
+        rubble: Rubble::Both,
+        ..w.ridging().unwrap()
+    };
+    w.set_ridging(Some(both)).unwrap();
+    let (v0, (p0, l0)) = (volume(&w), momenta(&w));
+    let e0 = energy_residual(&w);
+    let ke0 = {
+        let o = w.observables(1.0);
+        o.kinetic_translational_j + o.kinetic_rotational_j
+    };
+    let h0: Vec<f64> = w.floes().thickness_m.clone();
+    for _ in 0..3000 {
+        w.step();
+        w.ridge().unwrap();
+        let (p, l) = momenta(&w);
+        assert!((p - p0).length() < 1e-12 * p0.length(), "{p} vs {p0}");
+        assert!((l - l0).abs() < 1e-11 * l0.abs(), "{l} vs {l0}");
+        let v = volume(&w);
+        assert!((v - v0).abs() < 1e-12 * v0, "{v} vs {v0}");
+    }
+    let ledger = *w.ridging_ledger();
+    let f = w.floes();
+    let gain = |i: usize| f.thickness_m[i] - h0[i];
+    eprintln!(
+        "{} events, {:.3} m^3 ridged; thick floe +{} m, thin floe +{} m ({} m^2 left)",
+        ledger.events,
+        ledger.volume_to_floes_m3,
+        gain(0),
+        gain(1),
+        f.area_m2[1]
+    );
+    assert!(ledger.events > 5, "{}", ledger.events);
+    // Each event gives both the same thickness, V / (A_gainer + A_kept).
+    assert!(gain(1) > 0.0);
+    assert!(
+        (gain(0) - gain(1)).abs() < 1e-9 * gain(1),
+        "{} vs {}",
+        gain(0),
+        gain(1)
+    );
+    // The volume ridged is the thin floe's lost area at its start thickness
+    // plus what its kept part took back on later cuts (ridged again).
+    let onto_thick = gain(0) * f.area_m2[0];
+    let lost_by_thin = 1e4 * 0.3 - f.area_m2[1] * f.thickness_m[1];
+    assert!((onto_thick - lost_by_thin).abs() < 1e-9 * lost_by_thin);
     let residual = energy_residual(&w) - e0;
     assert!(
         residual.abs() < 0.01 * ke0,

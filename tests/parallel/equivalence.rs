@@ -732,3 +732,18 @@ fn floes_crushed_whole_over_one_to_four_processes_are_bitwise_as_one() {
     assert!(whole >= 5, "floes went whole ({whole})");
     ridging_on_one_to_four_processes_is(&states, &events, crushing);
 }
+
+#[test]
+fn rubble_shared_by_both_floes_over_one_to_four_processes_is_bitwise_as_one() {
+    // The loser's share lands on its kept part, held by other processes
+    // as a ghost: the same gains everywhere.
+    let both = Ridging {
+        rubble: floe_dem::ridging::Rubble::Both,
+        ..weak_ridging()
+    };
+    let (states, events) = ridging_run(0, both);
+    let shared = events.iter().filter(|e| e.loser_share > 0.0).count();
+    eprintln!("{} ridging events, {shared} shared", events.len());
+    assert!(shared >= 5, "shared events ({shared})");
+    ridging_on_one_to_four_processes_is(&states, &events, both);
+}

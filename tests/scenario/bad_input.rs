@@ -1480,6 +1480,29 @@ fn ridging_tables_are_checked_key_by_key() {
         &[">= 0"],
     );
     check(
+        &with("rubble = \"loser\""),
+        "\"loser\"",
+        0,
+        "ridging.rubble",
+        &["`gainer`", "`both`"],
+    );
+    let shared = Scenario::from_text(&with("rubble = \"both\""), Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert_eq!(
+        shared.world.ridging().map(|r| r.rubble),
+        Some(floe_dem::ridging::Rubble::Both)
+    );
+    assert!(
+        shared
+            .report
+            .iter()
+            .any(|l| l.contains("goes to both floes by area")),
+        "{:?}",
+        shared.report
+    );
+    check(
         &with("strength = 1e5"),
         "strength",
         0,

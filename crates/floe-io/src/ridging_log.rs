@@ -217,6 +217,8 @@ mod tests {
                 inertia_kg_m2: 1.0,
                 angular_velocity: 0.0,
             },
+            loser_share: 0.0,
+            loser_arm_m: Vec2::ZERO,
             elastic_before_n: 2.0,
             elastic_after_n: if whole { 0.0 } else { 1.0 },
             stored_after_j: 0.0,

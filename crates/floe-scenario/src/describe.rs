@@ -78,11 +78,15 @@ pub(crate) fn describe_cohesion(c: &floe_dem::cohesion::Cohesion) -> String {
 /// The ridging line of the build report.
 pub(crate) fn describe_ridging(r: &floe_dem::ridging::Ridging) -> String {
     format!(
-        "  ridging: a floe up to {} m thick bears at most {} h^{} N per m of contact ({} N/m at 1 m), the rest of its overlap goes to the thicker floe or the coast; kept parts under {} m^2 stay whole",
+        "  ridging: a floe up to {} m thick bears at most {} h^{} N per m of contact ({} N/m at 1 m), the rest of its overlap goes to {} or the coast; kept parts under {} m^2 stay whole",
         sig(r.max_thickness_m),
         sig(r.strength_n_per_m),
         sig(r.thickness_exponent),
         sig(r.strength_at(1.0)),
+        match r.rubble {
+            floe_dem::ridging::Rubble::Gainer => "the thicker floe",
+            floe_dem::ridging::Rubble::Both => "both floes by area",
+        },
         sig(r.min_floe_area_m2),
     )
 }

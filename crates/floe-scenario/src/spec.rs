@@ -69,6 +69,7 @@ pub(crate) struct RawRidging {
     pub thickness_exponent: Num,
     pub max_thickness_m: Num,
     pub min_floe_area_m2: Num,
+    pub rubble: Option<Spanned<String>>,
 }
 
 /// `[cohesion]`

@@ -29,6 +29,20 @@ pub use ledger::RidgingLedger;
 
 use crate::error::{invalid_parameter, DemError};
 
+/// Where a free floe's ridged ice goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Rubble {
+    /// All of it onto the thicker floe (the gainer), as Subzero.jl.
+    #[default]
+    Gainer,
+    /// Shared between the gainer and the loser's kept part in proportion
+    /// to their areas, so that both thicken by the same amount: a small
+    /// thick floe no longer collects its large neighbours' ridges over its
+    /// small area. Against a wall all of it goes to the coast as with
+    /// [`Rubble::Gainer`].
+    Both,
+}
+
 /// The ridging strength and who ridges.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ridging {
@@ -41,6 +55,8 @@ pub struct Ridging {
     pub max_thickness_m: f64,
     /// A floe whose kept part would be smaller than this stays whole, m^2.
     pub min_floe_area_m2: f64,
+    /// Where the ridged ice goes between two free floes.
+    pub rubble: Rubble,
 }
 
 impl Default for Ridging {
@@ -50,6 +66,7 @@ impl Default for Ridging {
             thickness_exponent: 1.5,
             max_thickness_m: 5.0,
             min_floe_area_m2: 100.0,
+            rubble: Rubble::Gainer,
         }
     }
 }
@@ -63,6 +80,7 @@ impl Ridging {
             thickness_exponent,
             max_thickness_m,
             min_floe_area_m2,
+            rubble: _,
         } = *self;
         for (name, value) in [
             ("strength_n_per_m", strength_n_per_m),

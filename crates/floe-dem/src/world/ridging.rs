@@ -13,7 +13,7 @@ use crate::forcing::ExternalForces;
 use crate::geometry::shape::{area_and_centroid, polar_moment, FloeShape};
 use crate::geometry::{perp, rotate};
 use crate::ridging::cut::{ridge_cut, RidgingContact};
-use crate::ridging::{Ridging, RidgingLedger};
+use crate::ridging::{Ridging, RidgingLedger, Rubble};
 use crate::Vec2;
 
 /// A floe whose kept part would carry, over all its contacts, overlaps at
@@ -42,6 +42,20 @@ pub struct RidgedIce {
     pub angular_velocity: f64,
 }
 
+impl RidgedIce {
+    /// The fraction `share` of the ice: mass, volume and moment of inertia
+    /// scaled (the same shape at a fraction of the thickness), moving the
+    /// same way from the same place.
+    pub fn scaled(&self, share: f64) -> Self {
+        RidgedIce {
+            mass_kg: self.mass_kg * share,
+            volume_m3: self.volume_m3 * share,
+            inertia_kg_m2: self.inertia_kg_m2 * share,
+            ..*self
+        }
+    }
+}
+
 /// A ridging event: a loser cut against a gainer, planned by
 /// [`World::plan_ridging`] and made by [`World::apply_ridging`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -62,8 +76,14 @@ pub struct PlannedRidge {
     pub loser_area_m2: f64,
     /// The ridged part's area, m^2.
     pub removed_area_m2: f64,
-    /// The ice ridged.
+    /// The ice ridged (all of it, before [`PlannedRidge::loser_share`]
+    /// is taken out).
     pub ice: RidgedIce,
+    /// The fraction of the ice that stays on the loser's kept part as
+    /// thickness ([`crate::ridging::Rubble::Both`]; 0 otherwise).
+    pub loser_share: f64,
+    /// The ice's centroid from the kept part's, m.
+    pub loser_arm_m: Vec2,
     /// The contact's elastic force before the cut, N.
     pub elastic_before_n: f64,
     /// The contact's elastic force after it (the cap), N.
@@ -321,6 +341,8 @@ impl<F: ExternalForces> World<F> {
                 inertia_kg_m2: f.inertia_kg_m2[loser],
                 angular_velocity: w,
             },
+            loser_share: 0.0,
+            loser_arm_m: Vec2::ZERO,
             elastic_before_n: c.elastic_force_n,
             elastic_after_n: 0.0,
             stored_after_j: 0.0,
@@ -328,14 +350,12 @@ impl<F: ExternalForces> World<F> {
         // A kept part too small (or too small for the time step, or so thin
         // that its overlaps at their caps would cover a fifth of it) is
         // crushed into the ridge with the rest: the whole floe goes.
-        let Some(kept_shape) = FloeShape::from_world(0, &cut.kept)
-            .ok()
-            .filter(|(s, _)| {
+        let Some((kept_shape, kept_centroid)) =
+            FloeShape::from_world(0, &cut.kept).ok().filter(|(s, _)| {
                 s.area_m2 >= ridging.min_floe_area_m2
                     && cut.overlap_after_m2 + others_at_cap_m2
                         <= CRUSHED_OVERLAP_FRACTION * s.area_m2
             })
-            .map(|(s, _)| s)
         else {
             return Some(plan);
         };
@@ -369,6 +389,11 @@ impl<F: ExternalForces> World<F> {
             inertia_kg_m2: removed_mass / removed_area * polar_moment(&about),
             angular_velocity: w,
         };
+        if ridging.rubble == Rubble::Both && plan.gainer_free {
+            // Both thicken by the same amount: shares by area.
+            plan.loser_share = kept_shape.area_m2 / (kept_shape.area_m2 + f.area_m2[gainer]);
+            plan.loser_arm_m = removed_centroid - kept_centroid;
+        }
         plan.elastic_after_n = cut.elastic_after_n;
         plan.stored_after_j = cut.stored_after_j;
         Some(plan)

@@ -67,14 +67,31 @@ impl<F: ExternalForces> World<F> {
                 ));
             }
         }
-        for ((p, t), &(_, target_own)) in plans.iter().zip(&targets).zip(&owned) {
+        for ((p, t), &(loser_own, target_own)) in plans.iter().zip(&targets).zip(&owned) {
             if !t.free {
                 continue;
             }
+            // The loser's share first (its kept part holds it), then the
+            // rest to the gainer; no share: all of it, unscaled.
+            let to_gainer = if p.loser_share > 0.0 {
+                if let Some(h) = self.state.floes.handle_of(p.loser_id) {
+                    let ice = RidgedIce {
+                        arm_m: p.loser_arm_m,
+                        ..p.ice.scaled(p.loser_share)
+                    };
+                    let lost = self.gain(h, &ice);
+                    if loser_own {
+                        tally.sums[5].add(lost);
+                    }
+                }
+                p.ice.scaled(1.0 - p.loser_share)
+            } else {
+                p.ice
+            };
             if let Some(h) = self.state.floes.handle_of(t.id) {
                 let ice = RidgedIce {
                     arm_m: t.arm_m,
-                    ..p.ice
+                    ..to_gainer
                 };
                 let lost = self.gain(h, &ice);
                 if target_own {
@@ -322,6 +339,8 @@ mod tests {
                 inertia_kg_m2: 1.0,
                 angular_velocity: 0.0,
             },
+            loser_share: 0.0,
+            loser_arm_m: Vec2::ZERO,
             elastic_before_n: 1.0,
             elastic_after_n: 1.0,
             stored_after_j: 0.0,

@@ -5,7 +5,7 @@ use floe_dem::cohesion::Cohesion;
 use floe_dem::fracture::criteria::{FractureCriterion, HiblerEllipse, MohrCoulomb};
 use floe_dem::fracture::rule::StrengthThickness;
 use floe_dem::pipeline::floe_stress::StressFilter;
-use floe_dem::ridging::Ridging;
+use floe_dem::ridging::{Ridging, Rubble};
 use toml::Spanned;
 
 use crate::error::ScenarioError;
@@ -126,6 +126,12 @@ pub(crate) fn resolve_ridging(
         },
         max_thickness_m: positive(&r.max_thickness_m, "max_thickness_m", d.max_thickness_m)?,
         min_floe_area_m2: positive(&r.min_floe_area_m2, "min_floe_area_m2", d.min_floe_area_m2)?,
+        rubble: f.keyword(
+            &r.rubble,
+            "ridging.rubble",
+            &[("gainer", Rubble::Gainer), ("both", Rubble::Both)],
+            d.rubble,
+        )?,
     }))
 }
 
