@@ -74,30 +74,13 @@ impl<F: ExternalForces> World<F> {
             // The loser's share first (its kept part holds it), then the
             // rest to the gainer; no share: all of it, unscaled.
             let to_gainer = if p.loser_share > 0.0 {
-                if let Some(h) = self.state.floes.handle_of(p.loser_id) {
-                    let ice = RidgedIce {
-                        arm_m: p.loser_arm_m,
-                        ..p.ice.scaled(p.loser_share)
-                    };
-                    let lost = self.gain(h, &ice);
-                    if loser_own {
-                        tally.sums[5].add(lost);
-                    }
-                }
+                let share = p.ice.scaled(p.loser_share);
+                self.gain_if_held(p.loser_id, share, p.loser_arm_m, loser_own, &mut tally);
                 p.ice.scaled(1.0 - p.loser_share)
             } else {
                 p.ice
             };
-            if let Some(h) = self.state.floes.handle_of(t.id) {
-                let ice = RidgedIce {
-                    arm_m: t.arm_m,
-                    ..to_gainer
-                };
-                let lost = self.gain(h, &ice);
-                if target_own {
-                    tally.sums[5].add(lost);
-                }
-            }
+            self.gain_if_held(t.id, to_gainer, t.arm_m, target_own, &mut tally);
         }
         Ok(tally)
     }
@@ -224,6 +207,25 @@ impl<F: ExternalForces> World<F> {
         c.normal_energy_j = p.stored_after_j;
         c.elastic_force_n = p.elastic_after_n;
         before - c.normal_energy_j
+    }
+
+    /// Floe `id`, if this world holds it, takes `ice` with its centroid at
+    /// `arm_m` from the floe's ([`Self::gain`]); the kinetic energy lost
+    /// goes to `tally` if `counted` (the floe is this world's own).
+    fn gain_if_held(
+        &mut self,
+        id: u64,
+        ice: RidgedIce,
+        arm_m: Vec2,
+        counted: bool,
+        tally: &mut RidgingTally,
+    ) {
+        if let Some(h) = self.state.floes.handle_of(id) {
+            let lost = self.gain(h, &RidgedIce { arm_m, ..ice });
+            if counted {
+                tally.sums[5].add(lost);
+            }
+        }
     }
 
     /// Floe `h` takes the ridged ice: its volume spread over the floe as
