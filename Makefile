@@ -13,12 +13,18 @@ else
 FEATURES := --features floe-cli/mpi
 endif
 
-.PHONY: demo slider-demo test build deps check-tools system-deps python-deps validation bench lammps clean
+# The Python package (python/, docs/python.md) is built into .venv unless
+# PYTHON=0: then no Python is needed and its tests are skipped.
+PYTHON ?= 1
+VENV   := .venv
+PY     := $(VENV)/bin/python
+
+.PHONY: demo slider-demo test build deps check-tools system-deps python-deps python-package validation bench lammps paraview clean
 
 ## Tools and system packages: Rust's tools, HDF5, NetCDF-C, pkg-config and (unless
 ## MPI=0) Open MPI with libclang for its bindings (apt-installed when missing), and
 ## optionally h5py, xarray and netCDF4 for the Python examples of docs/output.md.
-deps: check-tools system-deps python-deps
+deps: check-tools system-deps python-deps python-package
 
 check-tools:
 	@command -v $(CARGO) >/dev/null 2>&1 || { echo "error: cargo not found; install Rust (rustup) first" >&2; exit 1; }
@@ -74,6 +80,21 @@ python-deps:
 	  echo "note: no pip for python3: the h5py and xarray examples are skipped (optional; apt-get install python3-h5py python3-matplotlib python3-xarray python3-netcdf4)"; \
 	fi
 
+## The Python package `floe` (python/): a virtual environment in .venv with
+## maturin and the test dependencies (python/requirements-dev.txt, from PyPI),
+## and floe built into it (`maturin develop --release`, sharing target/).
+python-package:
+ifeq ($(PYTHON),0)
+	@echo "PYTHON=0: the Python package is not built"
+else
+	@command -v python3 >/dev/null 2>&1 || { echo "error: no python3: the Python package needs CPython >= 3.9 (or build with PYTHON=0)" >&2; exit 1; }
+	@[ -x $(PY) ] || python3 -m venv $(VENV) || { echo "error: python3 -m venv $(VENV) failed: apt-get install python3-venv (or build with PYTHON=0)" >&2; exit 1; }
+	@[ $(VENV)/.installed -nt python/requirements-dev.txt ] \
+	  || { $(PY) -m pip install -q --upgrade pip >/dev/null && $(PY) -m pip install -q -r python/requirements-dev.txt && touch $(VENV)/.installed; } \
+	  || { echo "error: could not install python/requirements-dev.txt into $(VENV) (PyPI unreachable? build with PYTHON=0)" >&2; exit 1; }
+	cd python && PATH="$(CURDIR)/$(VENV)/bin:$$PATH" VIRTUAL_ENV=$(CURDIR)/$(VENV) maturin develop --release --quiet
+endif
+
 ## The main job: a DEM run of the default scenario (a few hundred diamond
 ## floes sheared by the wind in a walled channel) into an HDF5 file, pictures
 ## of it, a summary, then the same ice under Amontons, rate and rate-and-state
@@ -101,6 +122,9 @@ test: deps
 	$(CARGO) fmt --all --check
 	$(CARGO) clippy --workspace --all-targets --release $(FEATURES) -- -D warnings
 	$(CARGO) test --workspace --release $(FEATURES)
+ifneq ($(PYTHON),0)
+	$(PY) -m pytest -q python/tests
+endif
 
 ## The release binary, with MPI unless MPI=0.
 build: deps
@@ -115,6 +139,19 @@ bench: deps
 	$(CARGO) bench -p floe-friction --bench contact_update
 	$(CARGO) bench -p floe-dem --bench dem_step
 	$(CARGO) bench -p floe-dem --bench narrow_phase
+
+## Optional: ParaView (Debian's `paraview` package, about 440 MB) for pvpython,
+## with which python/tests/test_xdmf.py reads `floe export --xdmf` files as
+## ParaView does (skipped without it).
+paraview:
+	@if command -v pvpython >/dev/null 2>&1; then \
+	  echo "pvpython found: $$(command -v pvpython)"; \
+	else \
+	  command -v apt-get >/dev/null 2>&1 || { echo "error: no pvpython and no apt-get: install ParaView (https://www.paraview.org/download/)" >&2; exit 1; }; \
+	  sudo=""; [ "$$(id -u)" = 0 ] || sudo="sudo"; \
+	  echo "installing paraview"; \
+	  $$sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq paraview; \
+	fi
 
 ## Optional: LAMMPS (Debian's `lammps` package; it brings Open MPI's mpirun) for
 ## benches/vs_lammps.sh, which installs nothing itself.

@@ -506,3 +506,21 @@ fn bad_land_files_stop_floe_run_with_one_located_message() {
     assert_eq!(code, 0, "{err}");
     assert!(out.exists());
 }
+
+#[test]
+fn export_refuses_missing_or_foreign_files_and_needs_a_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let (code, err) = floe(&["export", "/nonexistent/run.h5", "--xdmf"]);
+    assert_one_clear_error(code, &err, 2);
+    assert!(err.contains("/nonexistent/run.h5"), "{err}");
+    let text = dir.path().join("text.h5");
+    std::fs::write(&text, "not a run file").unwrap();
+    let (code, err) = floe(&["export", &text.to_string_lossy(), "--xdmf"]);
+    assert_one_clear_error(code, &err, 2);
+    assert!(err.contains("not an HDF5 file"), "{err}");
+    // Without a format flag there is nothing to write: clap names --xdmf.
+    let (code, err) = floe(&["export", &text.to_string_lossy()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--xdmf"), "{err}");
+    assert!(!dir.path().join("text.xdmf").exists());
+}

@@ -888,3 +888,32 @@ fn floes_ridge_keeping_their_volume_and_a_paused_run_resumes_bitwise() {
         "floe info reports the log: {info}"
     );
 }
+
+/// `floe run --xdmf` leaves the ParaView description beside the run file,
+/// the same one `floe export --xdmf` writes (python/tests/test_xdmf.py
+/// reads it back against the run file, also with ParaView's reader).
+#[test]
+fn run_with_xdmf_writes_what_export_writes() {
+    let case = Case::new(SMALL);
+    case.run_ok("a.h5", &["--threads", "1", "--xdmf"]);
+    let written = std::fs::read_to_string(case.path("a.xdmf")).unwrap();
+    assert!(Path::new(&case.path("a.xdmf.h5")).exists());
+    let n = RunFile::open(Path::new(&case.path("a.h5")))
+        .unwrap()
+        .snapshot_count()
+        .unwrap();
+    assert_eq!(written.matches(r#"<Grid Name="floes "#).count(), n);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_floe"))
+        .args([
+            "export",
+            &case.path("a.h5"),
+            "--xdmf",
+            "-o",
+            &case.path("b.xdmf"),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(code(&out), 0, "{}", text(&out.stderr));
+    let exported = std::fs::read_to_string(case.path("b.xdmf")).unwrap();
+    assert_eq!(written.replace("a.xdmf.h5", "b.xdmf.h5"), exported);
+}

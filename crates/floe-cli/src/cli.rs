@@ -3,7 +3,9 @@
 
 use clap::{Parser, Subcommand};
 
-use crate::commands::{compare, grid, info, pack_friction, render, rheology, run, slider, sweep};
+use crate::commands::{
+    compare, export, grid, info, pack_friction, render, rheology, run, slider, sweep,
+};
 use crate::CliError;
 
 /// floe: sea-ice floes with rate-and-state friction.
@@ -38,6 +40,7 @@ pub enum Command {
     Grid(grid::Args),
     #[command(allow_negative_numbers = true)]
     Render(render::Args),
+    Export(export::Args),
 }
 
 /// Runs a parsed command; returns what to print on standard output.
@@ -55,5 +58,6 @@ pub fn execute(cli: Cli) -> Result<String, CliError> {
         Command::PackFriction(args) => args.run(),
         Command::Grid(args) => args.run(),
         Command::Render(args) => args.run(),
+        Command::Export(args) => args.run(),
     }
 }

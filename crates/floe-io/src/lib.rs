@@ -28,6 +28,7 @@ pub mod reader;
 pub mod ridging_log;
 pub mod run_status;
 pub mod writer;
+pub mod xdmf;
 
 pub use error::IoError;
 pub use metadata::{CheckpointInfo, DomainBox, InputRecord, OutputOptions, RunMetadata};

@@ -209,7 +209,7 @@ impl RunFile {
         &self.path
     }
 
-    fn ds(&self, name: &str) -> Result<Dataset, IoError> {
+    pub(crate) fn ds(&self, name: &str) -> Result<Dataset, IoError> {
         self.file
             .dataset(name)
             .at(&self.path, || format!("opening /{name}"))
@@ -299,6 +299,20 @@ impl RunFile {
         .at(&self.path, || "reading /parameters status".into())
     }
 
+    /// Snapshot `k`'s rows of the contact datasets: the first and how many.
+    pub(crate) fn contact_rows(&self, k: usize) -> Result<(usize, usize), IoError> {
+        let start: u64 = self.read_one(&format!("{}/start", layout::CONTACTS), k)?;
+        let count: u64 = self.read_one(&format!("{}/count", layout::CONTACTS), k)?;
+        Ok((start as usize, count as usize))
+    }
+
+    /// Whether segment `index` marks its pieces of land (files written
+    /// without land, or before floe marked it, do not).
+    pub(crate) fn has_land_marks(&self, index: usize) -> bool {
+        self.file
+            .link_exists(&format!("{}/{}", layout::floe_segment(index), layout::LAND))
+    }
+
     /// The fixed properties of the floes the run began with (those of
     /// every snapshot unless floes broke: then [`RunFile::floes_at`]).
     pub fn static_floes(&self) -> Result<StaticFloes, IoError> {
@@ -366,7 +380,7 @@ impl RunFile {
     }
 
     /// The segment holding snapshot `k` and the snapshot's row in it.
-    fn locate(&self, k: usize) -> Result<(usize, usize), IoError> {
+    pub(crate) fn locate(&self, k: usize) -> Result<(usize, usize), IoError> {
         let segments = self.segments()?;
         let n = self.count_of(&segments)?;
         if k >= n {

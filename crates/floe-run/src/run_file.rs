@@ -165,8 +165,21 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
     let path = args.scenario.as_ref().ok_or_else(|| {
         Error::Usage("give a scenario file, or --resume to continue a run".into())
     })?;
-    refuse_overwriting_input(path, "scenario file", [args.output.as_path()])?;
     let scenario = Scenario::load_with(path, &args.laws)?.with_max_steps(args.step_limit);
+    run_scenario(args, path, &scenario, hooks)
+}
+
+/// Runs a scenario already read (from `path`, or made from text whose
+/// relative inputs are found beside `path`: the Python package's edited
+/// scenarios) into `args.output`; `args.scenario` and `args.resume` are
+/// not read. The file records `path` as where the scenario came from.
+pub fn run_scenario(
+    args: &RunArgs,
+    path: &Path,
+    scenario: &Scenario,
+    hooks: &dyn RunHooks,
+) -> Result<RunSummary, Error> {
+    refuse_overwriting_input(path, "scenario file", [args.output.as_path()])?;
     check_output(args)?;
     let threads = thread_count(args.threads.or(scenario.threads()))?;
     let pool = pool(threads)?;
@@ -175,11 +188,11 @@ pub fn run(args: &RunArgs, hooks: &dyn RunHooks) -> Result<RunSummary, Error> {
         for line in &setup.report {
             hooks.say(line);
         }
-        let mut writer = create_writer(args, path, &scenario, &setup, (threads, 1))?;
+        let mut writer = create_writer(args, path, scenario, &setup, (threads, 1))?;
         let mut world = setup.world;
         run::start(&mut world, &mut writer, scenario.domain().area_m2())?;
         advance(
-            &scenario,
+            scenario,
             &mut world,
             Some(&mut writer),
             args,

@@ -171,6 +171,33 @@ pub fn apply(
     Ok(doc.to_string())
 }
 
+/// The item at a dotted key of `text` (a part `name[k]` names the k-th
+/// `[[name]]` table, as in a setting), or `None` where the file does not
+/// have it.
+pub fn get(text: &str, origin: &Path, key: &[String]) -> Result<Option<Item>, ScenarioError> {
+    let doc = SourceFile {
+        path: origin.to_path_buf(),
+        text: text.to_string(),
+    }
+    .parse_document()?;
+    let mut item: Item = doc.as_item().clone();
+    for part in key {
+        let next = match indexed(part) {
+            Some((name, k)) => item
+                .get(name)
+                .and_then(Item::as_array_of_tables)
+                .and_then(|array| array.get(k))
+                .map(|t| Item::Table(t.clone())),
+            None => item.get(part.as_str()).cloned(),
+        };
+        match next {
+            Some(next) => item = next,
+            None => return Ok(None),
+        }
+    }
+    Ok(Some(item))
+}
+
 /// The index of the first `[[array]]` table of `text` whose `key` is the
 /// string `value` (e.g. the `[[wall]]` with `side = "top"`), for a `--set`
 /// path `array[k]`.

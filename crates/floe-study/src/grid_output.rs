@@ -123,42 +123,102 @@ pub(crate) const FIELDS: [(&str, &str, &str, &str); 11] = [
     ),
 ];
 
+/// A run's snapshots on a grid, computed record by record: the file
+/// `floe grid` writes and the Python package's `floe.grid` both come from
+/// it.
+pub struct GridPlan {
+    /// The run file.
+    pub run: RunFile,
+    /// The cells.
+    pub grid: Grid,
+    /// Whether the domain is periodic along x and y.
+    pub periodic: [bool; 2],
+    /// The domain's size, m.
+    pub size_m: [f64; 2],
+    /// Every snapshot's time, s.
+    pub times: Vec<f64>,
+    /// The snapshots taken, one per record.
+    pub taken: Vec<usize>,
+    /// The scenario's `start_time`, if it has one.
+    pub start_time: Option<String>,
+}
+
+impl GridPlan {
+    /// The grid of at most `cell_m` cells over `run`'s domain and the
+    /// snapshots `cadence` takes; a bad cell size or cadence is refused
+    /// naming its flag.
+    pub fn new(run: &Path, cell_m: f64, cadence: Cadence) -> Result<Self, Error> {
+        if !(cell_m.is_finite() && cell_m > 0.0) {
+            return Err(Error::Usage(format!(
+                "--cell-m {cell_m}: a cell size in m, > 0"
+            )));
+        }
+        cadence.check()?;
+        let file = RunFile::open(run)?;
+        let meta = file.metadata()?;
+        let (min, size) = (meta.domain.min_m, meta.domain.size_m);
+        let shape = [0, 1].map(|a| (size[a] / cell_m).ceil().max(1.0));
+        if shape.iter().any(|&n| n > MAX_CELLS_PER_AXIS as f64)
+            || shape[0] * shape[1] > MAX_CELLS as f64
+        {
+            return Err(Error::Usage(format!(
+                "--cell-m {cell_m}: {} x {} cells for the {} m x {} m domain; at most {MAX_CELLS_PER_AXIS} per axis and {MAX_CELLS} in all",
+                shape[0], shape[1], size[0], size[1]
+            )));
+        }
+        let shape = shape.map(|n| n as usize);
+        let grid = Grid {
+            origin_m: min,
+            cell_m: [size[0] / shape[0] as f64, size[1] / shape[1] as f64],
+            shape,
+        };
+        let times = file.snapshot_times()?;
+        let taken = cadence.select(&times)?;
+        let start_time = floe_scenario::start_time::stored_start_time(&meta.scenario_toml)
+            .map_err(|e| Error::Usage(format!("{}: {e}", run.display())))?;
+        Ok(GridPlan {
+            run: file,
+            grid,
+            periodic: meta.domain.periodic,
+            size_m: size,
+            times,
+            taken,
+            start_time,
+        })
+    }
+
+    /// The cells' centres along `axis` (0: x, 1: y), m.
+    pub fn centres(&self, axis: usize) -> Vec<f64> {
+        (0..self.grid.shape[axis])
+            .map(|i| self.grid.centre(i, i)[axis])
+            .collect()
+    }
+
+    /// Record `record`'s fields in the order of [`FIELDS`], row-major
+    /// (x fastest); NaN in cells without ice.
+    pub fn record(&self, record: usize) -> Result<Vec<Vec<f64>>, Error> {
+        let k = self.taken[record];
+        let floes = self.run.floes_at(k)?;
+        snapshot_fields(&self.run, &floes, &self.grid, self.periodic, self.size_m, k)
+    }
+}
+
+/// The names of the gridded fields, in the order [`GridPlan::record`]
+/// gives them, with their CF standard name (empty: none), units and
+/// description.
+pub fn field_names() -> &'static [(&'static str, &'static str, &'static str, &'static str)] {
+    &FIELDS
+}
+
 /// Writes the gridded fields of the snapshots of `args.run` that
 /// `args.cadence` takes; returns the output's path.
 pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
-    if !(args.cell_m.is_finite() && args.cell_m > 0.0) {
-        return Err(Error::Usage(format!(
-            "--cell-m {}: a cell size in m, > 0",
-            args.cell_m
-        )));
-    }
-    args.cadence.check()?;
+    let plan = GridPlan::new(&args.run, args.cell_m, args.cadence)?;
     refuse_overwriting_input(&args.run, "run file", [args.output.as_path()])?;
     if args.output.exists() && !args.force {
         return Err(Error::WouldOverwrite(args.output.clone()));
     }
-    let run = RunFile::open(&args.run)?;
-    let meta = run.metadata()?;
-    let (min, size) = (meta.domain.min_m, meta.domain.size_m);
-    let shape = [0, 1].map(|a| (size[a] / args.cell_m).ceil().max(1.0));
-    if shape.iter().any(|&n| n > MAX_CELLS_PER_AXIS as f64)
-        || shape[0] * shape[1] > MAX_CELLS as f64
-    {
-        return Err(Error::Usage(format!(
-            "--cell-m {}: {} x {} cells for the {} m x {} m domain; at most {MAX_CELLS_PER_AXIS} per axis and {MAX_CELLS} in all",
-            args.cell_m, shape[0], shape[1], size[0], size[1]
-        )));
-    }
-    let shape = shape.map(|n| n as usize);
-    let grid = Grid {
-        origin_m: min,
-        cell_m: [size[0] / shape[0] as f64, size[1] / shape[1] as f64],
-        shape,
-    };
-    let times = run.snapshot_times()?;
-    let taken = args.cadence.select(&times)?;
-    let start_time = floe_scenario::start_time::stored_start_time(&meta.scenario_toml)
-        .map_err(|e| Error::Usage(format!("{}: {e}", args.run.display())))?;
+    let shape = plan.grid.shape;
 
     // Written beside the target and renamed at the end: a failure leaves
     // no half file under the output's name.
@@ -170,22 +230,19 @@ pub fn write_grid(args: &GridArgs) -> Result<PathBuf, Error> {
     partial.create()?;
     let mut file =
         netcdf::create_with(partial.path(), Options::NETCDF4 | Options::CLASSIC).map_err(nc)?;
-    define(&mut file, &args.run, &grid, start_time.as_deref()).map_err(nc)?;
+    define(&mut file, &args.run, &plan.grid, plan.start_time.as_deref()).map_err(nc)?;
     // The classic model has a define mode to leave before writing data.
     file.enddef().map_err(nc)?;
-    let centres =
-        |axis: usize| -> Vec<f64> { (0..shape[axis]).map(|i| grid.centre(i, i)[axis]).collect() };
     for (axis, name) in [(0, "x"), (1, "y")] {
         variable(&mut file, name)
-            .and_then(|mut v| v.put_values(&centres(axis), ..))
+            .and_then(|mut v| v.put_values(&plan.centres(axis), ..))
             .map_err(nc)?;
     }
-    for (record, &k) in taken.iter().enumerate() {
+    for (record, &k) in plan.taken.iter().enumerate() {
         variable(&mut file, "time")
-            .and_then(|mut v| v.put_value(times[k], [record]))
+            .and_then(|mut v| v.put_value(plan.times[k], [record]))
             .map_err(nc)?;
-        let floes = run.floes_at(k)?;
-        let fields = snapshot_fields(&run, &floes, &grid, meta.domain.periodic, size, k)?;
+        let fields = plan.record(record)?;
         for ((name, ..), mut values) in FIELDS.iter().zip(fields) {
             // Cells without ice (NaN) get the fill value.
             for v in values.iter_mut().filter(|v| v.is_nan()) {

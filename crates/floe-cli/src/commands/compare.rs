@@ -55,7 +55,7 @@ impl Args {
         let hooks = TerminalHooks {
             progress: !self.quiet,
         };
-        let report = compare::compare(&args, &hooks)?;
+        let report = compare::compare(&args, &hooks)?.report;
         Ok(format!("report: {}", report.display()))
     }
 }

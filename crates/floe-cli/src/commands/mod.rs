@@ -3,6 +3,7 @@
 //! several commands share, [`values`] what each flag's value may be.
 
 pub mod compare;
+pub mod export;
 pub mod grid;
 pub mod info;
 pub mod options;

@@ -44,6 +44,11 @@ pub struct Args {
     /// No progress bar or progress lines.
     #[arg(long, short)]
     pub quiet: bool,
+    /// When the run stops (completed or paused), describe the run file
+    /// for ParaView as `floe export --xdmf` does: OUT.xdmf and
+    /// OUT.xdmf.h5 beside it, replaced if there.
+    #[arg(long)]
+    pub xdmf: bool,
     /// Under mpirun: cut the domain anew when the busiest process's
     /// work (floes plus contacts) exceeds the mean by this fraction.
     #[arg(long, value_name = "FRACTION", default_value_t = Settings::default().rebalance_threshold, value_parser = positive_fraction)]
@@ -108,7 +113,7 @@ impl Args {
             if floe_parallel::Communicator::size(&comm) > 1 {
                 let summary = floe_run::run_parallel::run_parallel(&args, &hooks, &comm, settings)?;
                 return Ok(if floe_parallel::Communicator::rank(&comm) == 0 {
-                    summary.describe(&args.output)
+                    summary.describe(&args.output) + &export_xdmf(self.xdmf, &args.output)?
                 } else {
                     String::new()
                 });
@@ -116,6 +121,16 @@ impl Args {
         }
         let _ = (mpi, settings);
         let summary = run_file::run(&args, &hooks)?;
-        Ok(summary.describe(&args.output))
+        Ok(summary.describe(&args.output) + &export_xdmf(self.xdmf, &args.output)?)
     }
+}
+
+/// With `--xdmf`, the run file's XDMF description beside it; the line
+/// that says so.
+fn export_xdmf(wanted: bool, output: &std::path::Path) -> Result<String, CliError> {
+    if !wanted {
+        return Ok(String::new());
+    }
+    let done = floe_io::xdmf::write_xdmf(output, &output.with_extension("xdmf"), true)?;
+    Ok(format!("\nParaView: {}", done.xdmf.display()))
 }

@@ -60,9 +60,18 @@ pub(crate) fn reference_of(
     })?)
 }
 
-/// Runs the variants and writes the report; returns the report's path.
-/// `hooks` hear what each run says and may interrupt it.
-pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Error> {
+/// What a comparison made: the report and each variant's metrics.
+#[derive(Debug, Clone)]
+pub struct Comparison {
+    /// `DIR/report.md`.
+    pub report: PathBuf,
+    /// The variants in the order of the laws asked for.
+    pub variants: Vec<Variant>,
+}
+
+/// Runs the variants and writes the report. `hooks` hear what each run
+/// says and may interrupt it.
+pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<Comparison, Error> {
     thread_count(args.threads)?;
     if args.matching.amontons_mu.is_some() && !args.laws.iter().any(|l| l.is_amontons()) {
         return Err(Error::Usage(
@@ -169,5 +178,8 @@ pub fn compare(args: &CompareArgs, hooks: &dyn RunHooks) -> Result<PathBuf, Erro
     figures(&args.out_dir, &out)?;
     let md = markdown(&args.scenario, &out, &notes);
     std::fs::write(&report_path, md).map_err(|e| Error::io(&report_path, e))?;
-    Ok(report_path)
+    Ok(Comparison {
+        report: report_path,
+        variants: out,
+    })
 }

@@ -23,6 +23,54 @@ pub struct Variant {
     pub file: PathBuf,
 }
 
+/// One row of the report's table, in SI units (`None`: not measured).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Summary {
+    /// Peak over steady shear stress.
+    pub peak_to_steady: Option<f64>,
+    /// Steady shear stress, N/m.
+    pub steady_shear_stress_n_per_m: Option<f64>,
+    /// Normal stress at the end, N/m.
+    pub final_normal_stress_n_per_m: Option<f64>,
+    /// Velocity change across the pack, m/s.
+    pub velocity_change_m_per_s: Option<f64>,
+    /// Shear band's equivalent width, m.
+    pub band_equivalent_width_m: Option<f64>,
+    /// Shear band's 10-90 width, m.
+    pub band_10_90_width_m: Option<f64>,
+    /// Slip events.
+    pub slip_events: usize,
+    /// Median slip of an event, m.
+    pub median_event_slip_m: Option<f64>,
+    /// Mean fraction of contacts sliding.
+    pub mean_sliding_fraction: f64,
+    /// Energy dissipated by friction, J.
+    pub friction_dissipation_j: Option<f64>,
+    /// Whether the pack moved as a plug (the band widths measure noise).
+    pub plug_flow: bool,
+}
+
+impl Summary {
+    /// The row of `m`.
+    pub fn of(m: &RunMetrics) -> Self {
+        let mut sizes: Vec<f64> = m.slip_events.iter().map(|e| e.slip_m).collect();
+        sizes.sort_by(f64::total_cmp);
+        Summary {
+            peak_to_steady: m.peak_to_steady.map(|p| p.ratio),
+            steady_shear_stress_n_per_m: m.peak_to_steady.map(|p| p.steady),
+            final_normal_stress_n_per_m: m.normal_stress_n_per_m.last().copied(),
+            velocity_change_m_per_s: m.band.map(|b| b.velocity_jump_m_per_s),
+            band_equivalent_width_m: m.band.map(|b| b.equivalent_width_m),
+            band_10_90_width_m: m.band.map(|b| b.width_10_90_m),
+            slip_events: m.slip_events.len(),
+            median_event_slip_m: (!sizes.is_empty()).then(|| sizes[sizes.len() / 2]),
+            mean_sliding_fraction: m.mean_sliding_fraction(),
+            friction_dissipation_j: m.friction_dissipation_j.last().copied(),
+            plug_flow: is_plug_flow(m),
+        }
+    }
+}
+
 fn hours(t: &[f64]) -> impl Iterator<Item = f64> + '_ {
     t.iter().map(|t| t / 3600.0)
 }
@@ -180,27 +228,25 @@ pub fn markdown(scenario: &Path, variants: &[Variant], notes: &[String]) -> Stri
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
     let mut any_plug = false;
     for v in variants {
-        let m = &v.metrics;
-        let mut sizes: Vec<f64> = m.slip_events.iter().map(|e| e.slip_m).collect();
-        sizes.sort_by(f64::total_cmp);
-        let median = (!sizes.is_empty()).then(|| sizes[sizes.len() / 2]);
-        let mean_sliding = m.mean_sliding_fraction();
-        let plug = is_plug_flow(m);
+        let r = Summary::of(&v.metrics);
+        let plug = r.plug_flow;
         any_plug |= plug;
+        let kilo = |x: Option<f64>| x.map(|x| x * 1e-3);
+        let km = |x: f64| width(x, plug);
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             v.name,
-            or_dash(m.peak_to_steady.map(|p| p.ratio), sig),
-            or_dash(m.peak_to_steady.map(|p| p.steady * 1e-3), sig),
-            or_dash(m.normal_stress_n_per_m.last().map(|x| x * 1e-3), sig),
-            or_dash(m.band.map(|b| b.velocity_jump_m_per_s), sig),
-            or_dash(m.band.map(|b| b.equivalent_width_m), |x| width(x, plug)),
-            or_dash(m.band.map(|b| b.width_10_90_m), |x| width(x, plug)),
-            m.slip_events.len(),
-            or_dash(median, sig),
-            sig(mean_sliding),
-            or_dash(m.friction_dissipation_j.last().map(|x| x * 1e-6), sig),
+            or_dash(r.peak_to_steady, sig),
+            or_dash(kilo(r.steady_shear_stress_n_per_m), sig),
+            or_dash(kilo(r.final_normal_stress_n_per_m), sig),
+            or_dash(r.velocity_change_m_per_s, sig),
+            or_dash(r.band_equivalent_width_m, km),
+            or_dash(r.band_10_90_width_m, km),
+            r.slip_events,
+            or_dash(r.median_event_slip_m, sig),
+            sig(r.mean_sliding_fraction),
+            or_dash(r.friction_dissipation_j.map(|x| x * 1e-6), sig),
         );
     }
     if any_plug {
