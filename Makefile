@@ -9,8 +9,10 @@ DEMO  := out/demo
 MPI ?= 1
 ifeq ($(MPI),0)
 FEATURES :=
+PY_FEATURES :=
 else
 FEATURES := --features floe-cli/mpi
+PY_FEATURES := --features mpi
 endif
 
 # The Python package (python/, docs/python.md) is built into .venv unless
@@ -92,7 +94,7 @@ else
 	@[ $(VENV)/.installed -nt python/requirements-dev.txt ] \
 	  || { $(PY) -m pip install -q --upgrade pip >/dev/null && $(PY) -m pip install -q -r python/requirements-dev.txt && touch $(VENV)/.installed; } \
 	  || { echo "error: could not install python/requirements-dev.txt into $(VENV) (PyPI unreachable? build with PYTHON=0)" >&2; exit 1; }
-	cd python && PATH="$(CURDIR)/$(VENV)/bin:$$PATH" VIRTUAL_ENV=$(CURDIR)/$(VENV) maturin develop --release --quiet
+	cd python && PATH="$(CURDIR)/$(VENV)/bin:$$PATH" VIRTUAL_ENV=$(CURDIR)/$(VENV) maturin develop --release --quiet $(PY_FEATURES)
 endif
 
 ## The main job: a DEM run of the default scenario (a few hundred diamond

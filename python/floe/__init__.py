@@ -8,7 +8,7 @@ laws (:func:`compare`) and plot them (:mod:`floe.plot`). docs/python.md has the 
 >>> import floe
 >>> s = floe.Scenario.from_file("scenarios/demo.toml")
 >>> s["friction.law"]
-'rate_state'
+'rate-state'
 >>> floe.run(s.with_values({"duration_s": 600.0}), "out.h5")   # doctest: +SKIP
 """
 

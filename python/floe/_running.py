@@ -85,6 +85,7 @@ def run(
     progress: bool = True,
     force: bool = False,
     max_steps: Optional[int] = None,
+    xdmf: bool = False,
 ) -> Dict[str, Any]:
     """Run ``scenario`` (a :class:`floe.Scenario` or a scenario file) into
     the run file ``out`` (HDF5, docs/output.md), in this process, as
@@ -96,6 +97,8 @@ def run(
     a progress bar (tqdm where installed) and the set-up lines on standard
     error. ``force``: replace an existing ``out``. ``max_steps``: stop after
     this many steps with a checkpoint (continue with :func:`floe.resume`).
+    ``xdmf``: when the run stops (completed or paused), describe the file
+    for ParaView beside it, as ``floe run --xdmf`` (:func:`floe.export_xdmf`).
 
     The GIL is released while the run steps. Ctrl-C stops the run after
     the current step, writes a final snapshot and checkpoint (status
@@ -106,7 +109,7 @@ def run(
     """
     if not isinstance(scenario, Scenario):
         scenario = Scenario.from_file(os.fspath(scenario))
-    return _with_progress(
+    summary = _with_progress(
         progress,
         _floe.run,
         scenario,
@@ -116,6 +119,16 @@ def run(
         max_steps=max_steps,
         command_line=_command_line(f"floe.run({scenario.path}, {os.fspath(out)})"),
     )
+    return _with_xdmf(summary, out, xdmf)
+
+
+def _with_xdmf(summary: Dict[str, Any], out: PathLike, xdmf: bool) -> Dict[str, Any]:
+    """The summary, with ``xdmf`` (the ParaView description written beside
+    ``out``) when asked for."""
+    if xdmf:
+        target = os.path.splitext(os.fspath(out))[0] + ".xdmf"
+        summary["xdmf"] = str(_floe.export_xdmf(os.fspath(out), target, force=True)[0])
+    return summary
 
 
 def resume(
@@ -124,11 +137,12 @@ def resume(
     threads: Optional[int] = None,
     progress: bool = True,
     max_steps: Optional[int] = None,
+    xdmf: bool = False,
 ) -> Dict[str, Any]:
     """Continue the run in ``out`` from its last checkpoint, as
     ``floe run --resume OUT``: the finished file is bitwise the one an
     uninterrupted run writes. Arguments and result as :func:`floe.run`."""
-    return _with_progress(
+    summary = _with_progress(
         progress,
         _floe.resume,
         os.fspath(out),
@@ -136,3 +150,4 @@ def resume(
         max_steps=max_steps,
         command_line=_command_line(f"floe.resume({os.fspath(out)})"),
     )
+    return _with_xdmf(summary, out, xdmf)

@@ -22,8 +22,10 @@ class ScenarioError(FloeError, ValueError):
     """A scenario that floe refuses, located where the scenario reader
     locates it: ``file``, ``line``, ``column`` (1-based), ``key`` (the dotted
     key, when there is one) and ``reason`` (what is wrong); ``str(e)`` is the
-    message ``floe run`` prints. A problem not located in a file (a key
-    written as ``"a..b"``) has them all ``None``."""
+    message ``floe run`` prints. A problem not located in a file (a
+    ``--set``-style edit of a key whose table is an array element, say) has
+    them all ``None``. ``key`` is the key as the reader names it: the dotted
+    path, or for a value of the wrong type its last part (``size_m``)."""
 
     def __init__(
         self,

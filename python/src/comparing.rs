@@ -14,7 +14,6 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::errors::scenario_error;
 use crate::running::{drive_with, provenance, Callbacks};
 use crate::scenario::Scenario;
 
@@ -53,7 +52,8 @@ pub fn compare<'py>(
     let laws = LawChoice::parse_list(&laws.join(","), &registry)
         .map_err(|e| PyValueError::new_err(e.to_string().replace("--laws", "laws")))?;
     scenario.parsed()?;
-    let scenario_file = scenario.as_file(&out_dir, force).map_err(scenario_error)?;
+    let dir_existed = out_dir.exists();
+    let (scenario_file, made) = scenario.as_file(&out_dir, force)?;
     let args = CompareArgs {
         scenario: scenario_file,
         laws,
@@ -75,6 +75,17 @@ pub fn compare<'py>(
     };
     let comparison = drive_with(py, callbacks, |hooks| {
         floe_study::compare::compare(&args, hooks)
+    })
+    .inspect_err(|_| {
+        // A comparison refused before it wrote anything leaves nothing
+        // behind; one stopped later keeps the scenario its runs came from.
+        let alone = std::fs::read_dir(&args.out_dir).is_ok_and(|d| d.count() == 1);
+        if let (Some(made), true) = (&made, alone) {
+            let _ = std::fs::remove_file(made);
+            if !dir_existed {
+                let _ = std::fs::remove_dir(&args.out_dir);
+            }
+        }
     })?;
     let rows = PyList::empty(py);
     for v in &comparison.variants {

@@ -74,6 +74,10 @@ pub fn io_error(e: IoError) -> PyErr {
         IoError::NotHdf5 { .. } | IoError::NotFloeFile { .. } => {
             floe_error("RunFileError", e.to_string(), no_attributes)
         }
+        // The system's refusals (a full disk, no permission): OSError.
+        IoError::CannotCreate { .. } | IoError::NoSpace { .. } | IoError::Os { .. } => {
+            PyOSError::new_err(python_words(&e.to_string()))
+        }
         other => floe_error("RunFileError", other.to_string(), no_attributes),
     }
 }
@@ -83,7 +87,7 @@ pub fn run_error(e: Error) -> PyErr {
     match e {
         Error::Scenario(e) => scenario_error(e),
         Error::Output(e) => io_error(e),
-        Error::Usage(m) => PyValueError::new_err(m),
+        Error::Usage(m) => PyValueError::new_err(python_words(&m)),
         Error::WouldOverwrite(_) => PyFileExistsError::new_err(format!(
             "{}; pass force=True to overwrite it",
             e.to_string()
@@ -93,6 +97,17 @@ pub fn run_error(e: Error) -> PyErr {
         Error::Interrupted { .. } => PyKeyboardInterrupt::new_err(e.to_string()),
         other => floe_error("RunError", other.to_string(), no_attributes),
     }
+}
+
+/// A message written for the command line in the Python API's words
+/// (flags become keyword arguments).
+pub fn python_words(message: &str) -> String {
+    message
+        .replace("--threads", "threads")
+        .replace("--max-steps", "max_steps")
+        .replace("pass --force", "pass force=True")
+        .replace("run with --force", "pass force=True")
+        .replace("--force", "force=True")
 }
 
 /// A path argument that must name a file that exists.

@@ -34,23 +34,31 @@ pub fn grid<'py>(
         (None, Some(t)) => Cadence::IntervalS(t),
         (None, None) => Cadence::All,
     };
-    let (plan, records) = py
-        .detach(|| -> Result<_, floe_run::Error> {
-            let plan = GridPlan::new(&run, cell_m, cadence)?;
-            let records = (0..plan.taken.len())
-                .map(|r| plan.record(r))
-                .collect::<Result<Vec<_>, _>>()?;
-            Ok((plan, records))
-        })
-        .map_err(|e| match e {
-            floe_run::Error::Usage(m) => PyValueError::new_err(
-                m.replace("--cell-m", "cell_m")
-                    .replace("--every", "every")
-                    .replace("--interval-s", "interval_s"),
-            ),
-            other => run_error(other),
-        })?;
+    let words = |e: floe_run::Error| match e {
+        floe_run::Error::Usage(m) => PyValueError::new_err(
+            m.replace("--cell-m", "cell_m")
+                .replace("--every", "every")
+                .replace("--interval-s", "interval_s"),
+        ),
+        other => run_error(other),
+    };
+    let plan = py
+        .detach(|| GridPlan::new(&run, cell_m, cadence))
+        .map_err(words)?;
+    py.check_signals()?;
     let [nx, ny] = plan.grid.shape;
+    let (records, cells) = (plan.taken.len(), nx * ny);
+    // One record at a time, the GIL released while it is computed and
+    // Ctrl-C honoured between records; each field filled in place.
+    let names = field_names();
+    let mut values = vec![Vec::with_capacity(records * cells); names.len()];
+    for r in 0..records {
+        let record = py.detach(|| plan.record(r)).map_err(words)?;
+        py.check_signals()?;
+        for (all, field) in values.iter_mut().zip(record) {
+            all.extend_from_slice(&field);
+        }
+    }
     let out = PyDict::new(py);
     out.set_item("x", PyArray1::from_vec(py, plan.centres(0)))?;
     out.set_item("y", PyArray1::from_vec(py, plan.centres(1)))?;
@@ -60,13 +68,9 @@ pub fn grid<'py>(
     out.set_item("start_time", plan.start_time.clone())?;
     let fields = PyDict::new(py);
     let attributes = PyDict::new(py);
-    for (f, (name, standard, units, long)) in field_names().iter().enumerate() {
-        let mut values = Vec::with_capacity(records.len() * nx * ny);
-        for record in &records {
-            values.extend_from_slice(&record[f]);
-        }
-        let array = PyArray1::from_vec(py, values).reshape([records.len(), ny, nx])?;
-        let array: Bound<'py, PyArray3<f64>> = array;
+    for ((name, standard, units, long), v) in names.iter().zip(values) {
+        let array: Bound<'py, PyArray3<f64>> =
+            PyArray1::from_vec(py, v).reshape([records, ny, nx])?;
         fields.set_item(name, array)?;
         attributes.set_item(name, (standard, units, long))?;
     }

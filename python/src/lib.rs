@@ -20,6 +20,9 @@ use pyo3::prelude::*;
 /// The module `floe._floe`.
 #[pymodule]
 fn _floe(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // NumPy's C API, imported now rather than at the first array (where a
+    // pending Ctrl-C would make the import fail inside rust-numpy).
+    numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("GIT_COMMIT", env!("FLOE_GIT_COMMIT"))?;
     m.add_class::<scenario::Scenario>()?;

@@ -40,8 +40,11 @@ impl RunReader {
         py: Python<'_>,
         read: impl Fn(&RunFile) -> Result<T, IoError> + Send + Sync,
     ) -> PyResult<T> {
-        py.detach(|| RunFile::read_retrying(&self.path, read))
-            .map_err(io_error)
+        let out = py
+            .detach(|| RunFile::read_retrying(&self.path, read))
+            .map_err(io_error)?;
+        py.check_signals()?;
+        Ok(out)
     }
 
     fn check_snapshot(&self, py: Python<'_>, k: usize) -> PyResult<()> {
@@ -273,5 +276,7 @@ pub fn export_xdmf(
     let done = py
         .detach(|| floe_io::xdmf::write_xdmf(&run, &xdmf, force))
         .map_err(io_error)?;
+    // A Ctrl-C while it wrote: raised now, the files written whole.
+    py.check_signals()?;
     Ok((done.xdmf, done.sidecar))
 }

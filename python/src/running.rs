@@ -159,10 +159,11 @@ pub fn drive_with<T: Send>(
         })
     });
     match outcome {
+        // A Ctrl-C or a callback's exception that came as the run ended:
+        // the run is whole, and the exception is raised all the same.
         Ok(Ok(done)) => match pending {
-            // A callback failed after the last step: the run is whole.
-            Some(e) if !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => Err(e),
-            _ => Ok(done),
+            Some(e) => Err(e),
+            None => Ok(done),
         },
         Ok(Err(e @ Error::Interrupted { .. })) => match pending {
             Some(p) if !p.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) => Err(p),
@@ -217,6 +218,16 @@ fn summary_dict<'py>(
     Ok(d)
 }
 
+/// `max_steps`, if given, is at least 1 (as `floe run --max-steps`).
+fn check_max_steps(max_steps: Option<u64>) -> PyResult<()> {
+    match max_steps {
+        Some(0) => Err(pyo3::exceptions::PyValueError::new_err(
+            "max_steps=0: the steps to take before pausing, at least 1 (None: to the end)",
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Runs `scenario` into the run file `output` (see ``floe.run``).
 #[pyfunction]
 #[pyo3(signature = (scenario, output, *, threads=None, force=false, max_steps=None, on_line=None, on_progress=None, command_line=None))]
@@ -232,6 +243,7 @@ pub fn run<'py>(
     on_progress: Option<Py<PyAny>>,
     command_line: Option<Vec<String>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    check_max_steps(max_steps)?;
     let parsed = scenario.parsed()?;
     let args = RunArgs {
         scenario: None,
@@ -270,6 +282,7 @@ pub fn resume<'py>(
     command_line: Option<Vec<String>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     crate::errors::existing(&output)?;
+    check_max_steps(max_steps)?;
     let args = RunArgs {
         scenario: None,
         output: output.clone(),

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use floe_friction::LawRegistry;
 use floe_scenario::settings::{self, Setting};
 use floe_scenario::ScenarioError;
-use pyo3::exceptions::{PyKeyError, PyTypeError};
+use pyo3::exceptions::{PyFileExistsError, PyKeyError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyMapping};
 
@@ -53,23 +53,34 @@ impl Scenario {
 
     /// A scenario file holding this scenario, for the studies that read
     /// one (`floe compare`): its own file while unedited, else
-    /// `dir/scenario.toml` with its relative input paths made absolute
-    /// (refused if that file exists with other content, unless `force`).
-    pub fn as_file(&self, dir: &Path, force: bool) -> Result<PathBuf, ScenarioError> {
+    /// `dir/scenario.toml` with its relative input paths made absolute.
+    /// Refused: replacing the file the scenario was read from, and (without
+    /// `force`) a `dir/scenario.toml` with other content. Also returns the
+    /// file if this call made it (to remove again if the study refuses).
+    pub fn as_file(&self, dir: &Path, force: bool) -> PyResult<(PathBuf, Option<PathBuf>)> {
         if std::fs::read_to_string(&self.origin).is_ok_and(|t| t == self.text) {
-            return Ok(self.origin.clone());
+            return Ok((self.origin.clone(), None));
         }
         let path = dir.join("scenario.toml");
         let text = floe_scenario::input_paths::anchor_input_paths(&self.text, &self.base_dir);
-        if !force && std::fs::read_to_string(&path).is_ok_and(|t| t != text) {
-            return Err(ScenarioError::Usage(format!(
+        let existing = std::fs::read_to_string(&path).ok();
+        if existing.is_some() && floe_run::same_file::same_file(&path, &self.origin) {
+            return Err(PyValueError::new_err(format!(
+                "{}: the edited scenario would replace the file it was read from; \
+                 write the comparison to another directory",
+                path.display()
+            )));
+        }
+        if existing.as_ref().is_some_and(|t| *t != text) && !force {
+            return Err(PyFileExistsError::new_err(format!(
                 "{}: already exists with another scenario; pass force=True to replace it",
                 path.display()
             )));
         }
-        std::fs::create_dir_all(dir).map_err(|e| ScenarioError::io(dir, e))?;
-        std::fs::write(&path, text).map_err(|e| ScenarioError::io(&path, e))?;
-        Ok(path)
+        std::fs::create_dir_all(dir).map_err(|e| scenario_error(ScenarioError::io(dir, e)))?;
+        std::fs::write(&path, text).map_err(|e| scenario_error(ScenarioError::io(&path, e)))?;
+        let made = existing.is_none().then(|| path.clone());
+        Ok((path, made))
     }
 
     fn checked(text: String, origin: PathBuf, base_dir: PathBuf) -> PyResult<Self> {

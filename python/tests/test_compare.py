@@ -56,3 +56,15 @@ def test_bad_comparisons(short_demo, tmp_path):
     with pytest.raises(ValueError, match="reference_slip_m_per_s"):
         floe.compare(short_demo, tmp_path, reference_slip_m_per_s=0.0, progress=False)
     assert not any(tmp_path.iterdir()), "a refused comparison writes nothing"
+    # Refused after the edited scenario was written beside the runs: gone again.
+    edited = floe.Scenario.from_file(short_demo).with_values(duration_s=60.0)
+    with pytest.raises(ValueError, match="threads"):
+        floe.compare(edited, tmp_path / "c", ["amontons"], threads=0, progress=False)
+    assert not (tmp_path / "c").exists()
+    # An edited scenario read from OUT/scenario.toml is not written over it.
+    (tmp_path / "d").mkdir()
+    edited.write(tmp_path / "d" / "scenario.toml")
+    mine = floe.Scenario.from_file(tmp_path / "d" / "scenario.toml").with_values(seed=7)
+    with pytest.raises(ValueError, match="read from"):
+        floe.compare(mine, tmp_path / "d", ["amontons"], progress=False, force=True)
+    assert floe.Scenario.from_file(tmp_path / "d" / "scenario.toml")["seed"] != 7

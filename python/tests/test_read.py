@@ -128,8 +128,9 @@ def test_a_file_being_written_can_be_read(tmp_path, floe_binary):
     child = subprocess.Popen([str(floe_binary), "run", str(scenario), "-o",
                               str(tmp_path / "live.h5"), "--quiet", "--threads", "1"])
     try:
-        seen, reads = [], 0
-        while child.poll() is None or reads == 0:
+        seen, reads, deadline = [], 0, time.monotonic() + 120
+        while (child.poll() is None or reads == 0) and time.monotonic() < deadline:
+            time.sleep(0.01)
             if (tmp_path / "live.h5").exists():
                 try:
                     run = floe.open_run(tmp_path / "live.h5")
@@ -140,7 +141,6 @@ def test_a_file_being_written_can_be_read(tmp_path, floe_binary):
                     assert run.snapshot(n - 1).sizes["floe"] == 399
                 seen.append(n)
                 reads += 1
-            time.sleep(0.01)
     finally:
         child.wait(timeout=120)
     assert child.returncode == 0

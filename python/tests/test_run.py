@@ -99,6 +99,10 @@ def test_run_errors(tmp_path):
     (tmp_path / "text.h5").write_text("not a run file")
     with pytest.raises(floe.RunFileError):
         floe.resume(tmp_path / "text.h5", progress=False)
+    with pytest.raises(ValueError, match="max_steps"):
+        floe.run(s, tmp_path / "a.h5", progress=False, max_steps=0, force=True)
+    with pytest.raises(ValueError, match="max_steps"):
+        floe.resume(tmp_path / "a.h5", progress=False, max_steps=0)
     with pytest.raises(ValueError, match="threads"):
         floe.run(s, tmp_path / "a.h5", progress=False, threads=0, force=True)
     with pytest.raises(TypeError):

@@ -81,6 +81,15 @@ def test_update_checks_keys_that_are_only_valid_together():
     assert v.duration_s == 60.0 and s.duration_s == 1800.0
 
 
+def test_keys_inside_inline_tables_can_be_set():
+    s = floe.Scenario.from_file(DEMO)
+    s["wind.shear.y_min_m"] = 500.0
+    assert s["wind.shear"]["y_min_m"] == 500.0
+    assert s["wind.shear"]["velocity_at_y_max_m_per_s"] == [15.0, -2.0]
+    with pytest.raises(floe.ScenarioError):
+        s["wind.shear.no_such_key"] = 1.0
+
+
 def test_types_toml_cannot_hold_are_type_errors():
     s = floe.Scenario.from_file(DEMO)
     with pytest.raises(TypeError):

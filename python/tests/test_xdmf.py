@@ -35,7 +35,11 @@ def read_item(item: ET.Element, base: Path) -> np.ndarray:
         start, stride, count = read_item(select, base).astype(int)
         data = read_item(source, base)
         index = tuple(slice(a, a + s * c, s) for a, s, c in zip(start, stride, count))
-        return data[index].reshape(dims)
+        picked = data[index]
+        # The item's Dimensions: the count's, a leading single row dropped.
+        shape = list(picked.shape)
+        assert dims == shape or (shape[0] == 1 and dims == shape[1:]), (dims, shape)
+        return picked.reshape(dims)
     if item.get("Format") == "XML":
         return np.array(item.text.split(), dtype=float).reshape(dims)
     assert item.get("Format") == "HDF"
@@ -166,8 +170,10 @@ for t in reader.TimestepValues:
         block = it.GetCurrentDataObject()
         cells = block.GetCellData()
         speed = cells.GetArray("velocity")
+        force = cells.GetArray("normal_force")
         blocks[name] = [block.GetNumberOfCells(),
-                        speed.GetRange(-1)[1] if speed is not None else None]
+                        speed.GetRange(-1)[1] if speed is not None else None,
+                        force.GetRange(0)[1] if force is not None else None]
         it.GoToNextItem()
     out.append([t, blocks])
 print(json.dumps(out))
@@ -191,6 +197,8 @@ def test_paraview_reads_it(exported, tmp_path):
         assert cells["floes"][0] == ds.sizes["floe"]
         assert cells["walls"][0] == int(ds["prescribed"].sum())
         assert cells.get("contacts", [0])[0] == c.sizes["contact"]
+        if c.sizes["contact"]:
+            assert cells["contacts"][2] == float(c["normal_force"].max())
         assert cells["floes"][1] == pytest.approx(float(ds["speed"].max()), rel=1e-12)
 
 
@@ -203,3 +211,12 @@ def test_python_export_is_the_command_line_s(exported, tmp_path):
         floe.export_xdmf(tmp_path / "run.h5")
     with pytest.raises(FileNotFoundError):
         floe.export_xdmf(tmp_path / "missing.h5")
+
+
+def test_python_run_with_xdmf_writes_it_beside_the_file(tmp_path):
+    s = floe.Scenario.from_file(ROOT / "scenarios" / "demo.toml").with_values(duration_s=60.0)
+    summary = floe.run(s, tmp_path / "r.h5", progress=False, xdmf=True)
+    assert summary["xdmf"] == str(tmp_path / "r.xdmf")
+    assert (tmp_path / "r.xdmf.h5").exists()
+    root = ET.parse(tmp_path / "r.xdmf").getroot()
+    assert len(root.find("Domain").findall("Grid")[0].findall("Grid")) == len(floe.open_run(tmp_path / "r.h5"))

@@ -173,6 +173,7 @@ fn fill(word: &str, previous: Option<&str>) -> Option<String> {
         "STEPPED_CELL.toml" => "steps.toml",
         "OUT.h5" => "out.h5",
         "FIELDS.nc" => "fields.nc",
+        "OUT.xdmf" => "out.xdmf",
         "DIR" => "dir",
         "MOVIE" | "MOVIE.gif" => "movie.gif",
         "MOVIE.mp4" => "movie.mp4",

@@ -442,6 +442,14 @@ fn describe(
         // Contacts: lines from floe a's centroid to floe b's nearest image
         // (the sidecar's), their fields rows start..start+count of the file's.
         let (start, count) = file.contact_rows(k)?;
+        if let Some(bad) = contacts.pair.iter().flatten().find(|&&i| i as usize >= n) {
+            return Err(invalid(
+                run,
+                format!(
+                    "snapshot {k}: a contact names floe {bad}, past its {n} floes (file damaged)"
+                ),
+            ));
+        }
         let ends = contact_ends(&snap.position, &contacts.pair, period);
         write(
             &format!("snapshots/{k}/contact_ends"),

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use toml_edit::{Item, Table, Value};
+use toml_edit::{Item, Table, TableLike, Value};
 
 use crate::error::ScenarioError;
 use crate::source_file::SourceFile;
@@ -133,7 +133,10 @@ pub fn apply(
             ScenarioError::Usage(format!("--set {}: bad value `{}`", s.dotted(), s.values[k]))
         })?;
         let (last, path) = s.key.split_last().expect("non-empty key");
-        let mut table: &mut Table = doc.as_table_mut();
+        // Standard tables, then (once inside one) inline tables:
+        // `wind.shear.y_min_m` sets a key of `shear = { ... }`.
+        let mut table: &mut dyn TableLike = doc.as_table_mut();
+        let mut inline = false;
         for part in path {
             let not_there = |what: &str| {
                 ScenarioError::Usage(format!(
@@ -148,12 +151,22 @@ pub fn apply(
                     .get_mut(name)
                     .and_then(Item::as_array_of_tables_mut)
                     .and_then(|array| array.get_mut(k))
+                    .map(|t| t as &mut dyn TableLike)
                     .ok_or_else(|| not_there(&format!("one of the `[[{name}]]` tables")))?,
-                None => table
-                    .entry(part)
-                    .or_insert_with(|| Item::Table(Table::new()))
-                    .as_table_mut()
-                    .ok_or_else(|| not_there("a table"))?,
+                None => {
+                    if !table.contains_key(part) {
+                        let empty = if inline {
+                            Item::Value(Value::InlineTable(Default::default()))
+                        } else {
+                            Item::Table(Table::new())
+                        };
+                        table.insert(part, empty);
+                    }
+                    let item = table.get_mut(part).expect("present or just inserted");
+                    inline |= item.is_inline_table();
+                    item.as_table_like_mut()
+                        .ok_or_else(|| not_there("a table"))?
+                }
             };
         }
         // In place when the key exists, so its comments stay with it.

@@ -4,12 +4,20 @@
 //! The wind's envelope and the top wall's schedule (it slides with the wind,
 //! stops in the calm and restarts with it) are rewritten together.
 //!
-//!     cargo run --release -p floe-study --example wind_pause_study [-- OUT_DIR [slip|aging]]
+//!     cargo run --release -p floe-study --example wind_pause_study -- \
+//!         [OUT_DIR [slip|aging]] [--seed N] [--calms H1,H2,...] [--set KEY=VALUE]...
+//!     cargo run --release -p floe-study --example wind_pause_study -- --gather OUT_DIR...
 //!
 //! Writes OUT_DIR (default out/studies/wind-pause): one compare directory per
-//! pause, `table.md` (the table of the study) and `restart.png`; copy those
-//! two into docs/studies/ to update the study. The second argument sets the
-//! rate-and-state state law (default: the scenario's, the slip law).
+//! pause, `table.md` (the table of the study), `rows.csv` (its numbers) and
+//! `restart.png`; copy `table.md` and `restart.png` into docs/studies/ to
+//! update the study. The second argument sets the rate-and-state state law
+//! (default: the scenario's, the slip law); `--seed` the scenario's seed,
+//! `--calms` the calm lengths in hours (default 0.25,1,4,12), `--set` any
+//! other key (`contact.youngs_modulus_pa=6e7`). `--gather` reads the
+//! `rows.csv` of several such directories (one per seed) and prints, per
+//! calm and law, each number's mean over them with its 95 % interval, and
+//! the rate-and-state less Amontons difference paired by directory.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -32,8 +40,17 @@ const RAMP_S: f64 = 600.0;
 const AFTER_S: f64 = 10800.0;
 /// The top wall's speed along x while the wind blows, m/s.
 const WALL_SPEED_M_PER_S: f64 = 0.2;
-/// Calm lengths, s.
+/// Calm lengths, s (by default).
 const PAUSES_S: [f64; 4] = [900.0, 3600.0, 4.0 * 3600.0, 12.0 * 3600.0];
+/// The columns of `rows.csv` after calm and law.
+const COLUMNS: [&str; 6] = [
+    "kinetic energy before the calm (% of its peak)",
+    "shear stress before the calm (kN/m)",
+    "at the end of the calm (kN/m)",
+    "peak after restart (kN/m)",
+    "peak / before",
+    "peak after restart (min)",
+];
 /// The stress level before the calm and the peak after the restart are
 /// taken over windows of this length, s.
 const WINDOW_S: f64 = 3600.0;
@@ -45,19 +62,96 @@ fn main() {
     }
 }
 
+/// What the command line asked for.
+struct Options {
+    out: PathBuf,
+    state_law: Option<String>,
+    seed: Option<u64>,
+    pauses_s: Vec<f64>,
+    settings: Vec<String>,
+    gather: Option<Vec<PathBuf>>,
+}
+
+fn usage(why: String) -> CliError {
+    CliError::Usage(format!("wind_pause_study: {why}"))
+}
+
+fn options() -> Result<Options, CliError> {
+    let mut o = Options {
+        out: PathBuf::from("out/studies/wind-pause"),
+        state_law: None,
+        seed: None,
+        pauses_s: PAUSES_S.to_vec(),
+        settings: Vec::new(),
+        gather: None,
+    };
+    let mut positional = Vec::new();
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let mut value = |flag: &str| {
+            args.next()
+                .ok_or_else(|| usage(format!("{flag} needs a value")))
+        };
+        match a.as_str() {
+            "--seed" => {
+                let v = value("--seed")?;
+                o.seed = Some(
+                    v.parse()
+                        .map_err(|_| usage(format!("--seed {v}: a whole number")))?,
+                );
+            }
+            "--calms" => {
+                let v = value("--calms")?;
+                o.pauses_s = v
+                    .split(',')
+                    .map(|h| match h.trim().parse::<f64>() {
+                        Ok(h) if h > 0.0 && h.is_finite() => Ok(h * 3600.0),
+                        _ => Err(usage(format!("--calms {v}: hours > 0, comma-separated"))),
+                    })
+                    .collect::<Result<_, _>>()?;
+            }
+            "--set" => o.settings.push(value("--set")?),
+            "--gather" => o.gather = Some(args.by_ref().map(PathBuf::from).collect()),
+            flag if flag.starts_with("--") => return Err(usage(format!("unknown flag {flag}"))),
+            _ => positional.push(a),
+        }
+    }
+    let mut positional = positional.into_iter();
+    if let Some(out) = positional.next() {
+        o.out = PathBuf::from(out);
+    }
+    o.state_law = positional.next();
+    if let Some(extra) = positional.next() {
+        return Err(usage(format!("unexpected argument {extra}")));
+    }
+    Ok(o)
+}
+
 fn study() -> Result<(), CliError> {
-    let out = PathBuf::from(
-        std::env::args()
-            .nth(1)
-            .unwrap_or_else(|| "out/studies/wind-pause".into()),
-    );
+    let o = options()?;
+    if let Some(dirs) = &o.gather {
+        return gather(dirs);
+    }
+    let out = o.out.clone();
     std::fs::create_dir_all(&out).map_err(|e| CliError::io(&out, e))?;
     let base_path = Path::new("scenarios/wind_pause.toml");
     let mut base = std::fs::read_to_string(base_path).map_err(|e| CliError::io(base_path, e))?;
-    if let Some(state_law) = std::env::args().nth(2) {
-        let setting = parse_setting(&format!("friction.state_law=\"{state_law}\""))?;
-        base = apply(&base, base_path, &[setting], &[0])?;
+    let mut settings = Vec::new();
+    if let Some(state_law) = &o.state_law {
+        settings.push(parse_setting(&format!(
+            "friction.state_law=\"{state_law}\""
+        ))?);
     }
+    if let Some(seed) = o.seed {
+        settings.push(parse_setting(&format!("seed={seed}"))?);
+    }
+    for s in &o.settings {
+        settings.push(parse_setting(s)?);
+    }
+    if !settings.is_empty() {
+        base = apply(&base, base_path, &settings, &vec![0; settings.len()])?;
+    }
+    let mut csv = format!("calm_h,law,{}\n", COLUMNS.join(","));
     let top = find_table(&base, base_path, "wall", "side", "top")?.ok_or_else(|| {
         CliError::from(floe_scenario::ScenarioError::Usage(format!(
             "{}: no top wall to put on the wind's schedule",
@@ -73,7 +167,7 @@ fn study() -> Result<(), CliError> {
     );
     let mut panels: Vec<Vec<Line>> = vec![Vec::new(); laws.len()];
     let mut energy: Vec<Vec<Line>> = vec![Vec::new(); laws.len()];
-    for pause in PAUSES_S {
+    for &pause in &o.pauses_s {
         let restart = BLOW_S + RAMP_S + pause;
         let times = format!(
             "{{ times_s = [0.0, {BLOW_S}, {}, {restart}, {}, {}], factors = [1.0, 1.0, 0.0, 0.0, 1.0, 1.0] }}",
@@ -155,17 +249,33 @@ fn study() -> Result<(), CliError> {
                 .map(|p| p.1)
                 .collect();
             let ke_late = late.iter().sum::<f64>() / late.len().max(1) as f64;
-            let _ = writeln!(
-                table,
-                "| {} h | {} | {:.0} | {:.3} | {:.3} | {:.3} | {:.2} | {:.0} |",
-                pause / 3600.0,
-                law.name(),
+            let row = [
                 100.0 * ke_late / ke_peak.max(f64::MIN_POSITIVE),
                 r.before * 1e-3,
                 calm_mean * 1e-3,
                 r.peak * 1e-3,
                 r.ratio,
-                r.peak_delay_s / 60.0
+                r.peak_delay_s / 60.0,
+            ];
+            let _ = writeln!(
+                table,
+                "| {} h | {} | {:.0} | {:.3} | {:.3} | {:.3} | {:.2} | {:.0} |",
+                pause / 3600.0,
+                law.name(),
+                row[0],
+                row[1],
+                row[2],
+                row[3],
+                row[4],
+                row[5]
+            );
+            let numbers: Vec<String> = row.iter().map(|x| format!("{x:e}")).collect();
+            let _ = writeln!(
+                csv,
+                "{},{},{}",
+                pause / 3600.0,
+                law.name(),
+                numbers.join(",")
             );
             let points = m
                 .time_s
@@ -184,6 +294,8 @@ fn study() -> Result<(), CliError> {
             energy[k].push(Line::new(format!("calm {} h", pause / 3600.0), points));
         }
     }
+    let csv_path = out.join("rows.csv");
+    std::fs::write(&csv_path, &csv).map_err(|e| CliError::io(&csv_path, e))?;
     let table_path = out.join("table.md");
     std::fs::write(&table_path, &table).map_err(|e| CliError::io(&table_path, e))?;
     let figure = out.join("restart.png");
@@ -214,6 +326,96 @@ fn study() -> Result<(), CliError> {
     }));
     grid(&figure, 2, &rows)?;
     println!("{table}\n{} and {}", table_path.display(), figure.display());
+    Ok(())
+}
+
+/// Per calm and law, each column's mean over the directories' `rows.csv`
+/// with its 95 % interval, and the rate-and-state less Amontons difference
+/// paired by directory (the same seed and settings), as a markdown table.
+fn gather(dirs: &[PathBuf]) -> Result<(), CliError> {
+    use floe_analysis::uncertainty::seed_mean;
+    use std::collections::BTreeMap;
+    if dirs.is_empty() {
+        return Err(usage(
+            "--gather needs the study's output directories".into(),
+        ));
+    }
+    // (calm in hours as text, law) -> per directory, the row.
+    let mut rows: BTreeMap<(String, String), Vec<Vec<f64>>> = BTreeMap::new();
+    for dir in dirs {
+        let path = dir.join("rows.csv");
+        let text = std::fs::read_to_string(&path).map_err(|e| CliError::io(&path, e))?;
+        for (i, line) in text.lines().enumerate().skip(1) {
+            let f: Vec<&str> = line.split(',').collect();
+            let numbers: Result<Vec<f64>, _> = f.iter().skip(2).map(|x| x.parse::<f64>()).collect();
+            match (f.len() == COLUMNS.len() + 2, numbers) {
+                (true, Ok(n)) => rows
+                    .entry((f[0].to_string(), f[1].to_string()))
+                    .or_default()
+                    .push(n),
+                _ => {
+                    return Err(usage(format!(
+                        "{}:{}: not a rows.csv line",
+                        path.display(),
+                        i + 1
+                    )))
+                }
+            }
+        }
+    }
+    let mut calms: Vec<String> = rows.keys().map(|k| k.0.clone()).collect();
+    calms.sort_by(|a, b| {
+        a.parse::<f64>()
+            .unwrap_or(0.0)
+            .total_cmp(&b.parse().unwrap_or(0.0))
+    });
+    calms.dedup();
+    let cell = |values: &[f64]| {
+        let m = seed_mean(values);
+        format!("{:.3} +- {:.3}", m.mean, m.ci95)
+    };
+    let mut table = format!(
+        "{} directories; mean +- 95 % interval over them.\n\n| calm | law | {} |\n|---|---|{}\n",
+        dirs.len(),
+        COLUMNS.join(" | "),
+        "---|".repeat(COLUMNS.len())
+    );
+    for calm in &calms {
+        let of = |law: &str| rows.get(&(calm.clone(), law.to_string()));
+        for law in ["amontons", "rate-state"] {
+            if let Some(r) = of(law) {
+                let cells: Vec<String> = (0..COLUMNS.len())
+                    .map(|c| cell(&r.iter().map(|row| row[c]).collect::<Vec<_>>()))
+                    .collect();
+                let _ = writeln!(
+                    table,
+                    "| {calm} h | {law} ({}) | {} |",
+                    r.len(),
+                    cells.join(" | ")
+                );
+            }
+        }
+        if let (Some(a), Some(b)) = (of("amontons"), of("rate-state")) {
+            if a.len() == b.len() {
+                let cells: Vec<String> = (0..COLUMNS.len())
+                    .map(|c| {
+                        cell(
+                            &a.iter()
+                                .zip(b)
+                                .map(|(x, y)| y[c] - x[c])
+                                .collect::<Vec<_>>(),
+                        )
+                    })
+                    .collect();
+                let _ = writeln!(
+                    table,
+                    "| {calm} h | rate-state less Amontons, paired | {} |",
+                    cells.join(" | ")
+                );
+            }
+        }
+    }
+    println!("{table}");
     Ok(())
 }
 
