@@ -415,6 +415,32 @@ fn gather(dirs: &[PathBuf]) -> Result<(), CliError> {
             }
         }
     }
+    // Each law's longest calm less its shortest, paired by directory: does
+    // the restart grow with the calm?
+    if let (Some(first), Some(last)) = (calms.first(), calms.last()) {
+        for law in ["amontons", "rate-state"] {
+            let pick = |calm: &String| rows.get(&(calm.clone(), law.to_string()));
+            if let (Some(a), Some(b), true) = (pick(first), pick(last), first != last) {
+                if a.len() == b.len() {
+                    let cells: Vec<String> = (0..COLUMNS.len())
+                        .map(|c| {
+                            cell(
+                                &a.iter()
+                                    .zip(b)
+                                    .map(|(x, y)| y[c] - x[c])
+                                    .collect::<Vec<_>>(),
+                            )
+                        })
+                        .collect();
+                    let _ = writeln!(
+                        table,
+                        "| {last} h less {first} h | {law}, paired | {} |",
+                        cells.join(" | ")
+                    );
+                }
+            }
+        }
+    }
     println!("{table}");
     Ok(())
 }
