@@ -6,6 +6,7 @@
 //!
 //!     cargo run --release -p floe-study --example wind_pause_study -- \
 //!         [OUT_DIR [slip|aging]] [--seed N] [--calms H1,H2,...] [--set KEY=VALUE]...
+//!         [--laws L1,L2] [--amontons-mu MU]
 //!     cargo run --release -p floe-study --example wind_pause_study -- --gather OUT_DIR...
 //!
 //! Writes OUT_DIR (default out/studies/wind-pause): one compare directory per
@@ -14,7 +15,9 @@
 //! update the study. The second argument sets the rate-and-state state law
 //! (default: the scenario's, the slip law); `--seed` the scenario's seed,
 //! `--calms` the calm lengths in hours (default 0.25,1,4,12), `--set` any
-//! other key (`contact.youngs_modulus_pa=6e7`). `--gather` reads the
+//! other key (`contact.youngs_modulus_pa=6e7`), `--laws` the laws (default
+//! amontons,rate-state), `--amontons-mu` Amontons' mu instead of the
+//! rate-and-state steady state at 1 cm/s. `--gather` reads the
 //! `rows.csv` of several such directories (one per seed) and prints, per
 //! calm and law, each number's mean over them with its 95 % interval, and
 //! the rate-and-state less Amontons difference paired by directory.
@@ -69,6 +72,8 @@ struct Options {
     seed: Option<u64>,
     pauses_s: Vec<f64>,
     settings: Vec<String>,
+    laws: String,
+    amontons_mu: Option<f64>,
     gather: Option<Vec<PathBuf>>,
 }
 
@@ -83,6 +88,8 @@ fn options() -> Result<Options, CliError> {
         seed: None,
         pauses_s: PAUSES_S.to_vec(),
         settings: Vec::new(),
+        laws: "amontons,rate-state".into(),
+        amontons_mu: None,
         gather: None,
     };
     let mut positional = Vec::new();
@@ -111,6 +118,18 @@ fn options() -> Result<Options, CliError> {
                     .collect::<Result<_, _>>()?;
             }
             "--set" => o.settings.push(value("--set")?),
+            "--laws" => o.laws = value("--laws")?,
+            "--amontons-mu" => {
+                let v = value("--amontons-mu")?;
+                o.amontons_mu = match v.parse::<f64>() {
+                    Ok(mu) if (0.0..=10.0).contains(&mu) => Some(mu),
+                    _ => {
+                        return Err(usage(format!(
+                            "--amontons-mu {v}: a friction coefficient, 0 to 10"
+                        )))
+                    }
+                };
+            }
             "--gather" => o.gather = Some(args.by_ref().map(PathBuf::from).collect()),
             flag if flag.starts_with("--") => return Err(usage(format!("unknown flag {flag}"))),
             _ => positional.push(a),
@@ -158,10 +177,7 @@ fn study() -> Result<(), CliError> {
             base_path.display()
         )))
     })?;
-    let laws = LawChoice::parse_list(
-        "amontons,rate-state",
-        &floe_friction::LawRegistry::builtin(),
-    )?;
+    let laws = LawChoice::parse_list(&o.laws, &floe_friction::LawRegistry::builtin())?;
     let mut table = String::from(
         "| calm | law | kinetic energy before the calm (% of its peak) | shear stress before the calm (kN/m) | at the end of the calm (kN/m) | peak after restart (kN/m) | peak / before | peak after restart (min) |\n|---|---|---|---|---|---|---|---|\n",
     );
@@ -206,7 +222,7 @@ fn study() -> Result<(), CliError> {
                     force: true,
                     matching: Matching {
                         reference_slip_m_per_s: 1e-2,
-                        amontons_mu: None,
+                        amontons_mu: o.amontons_mu,
                     },
                     metrics: MetricOptions::default(),
                     provenance: Provenance::of_this_process("unknown"),
@@ -270,13 +286,11 @@ fn study() -> Result<(), CliError> {
                 row[5]
             );
             let numbers: Vec<String> = row.iter().map(|x| format!("{x:e}")).collect();
-            let _ = writeln!(
-                csv,
-                "{},{},{}",
-                pause / 3600.0,
-                law.name(),
-                numbers.join(",")
-            );
+            let label = match (law.is_amontons(), o.amontons_mu) {
+                (true, Some(mu)) => format!("amontons mu {mu}"),
+                _ => law.name().to_string(),
+            };
+            let _ = writeln!(csv, "{},{label},{}", pause / 3600.0, numbers.join(","));
             let points = m
                 .time_s
                 .iter()
@@ -380,9 +394,24 @@ fn gather(dirs: &[PathBuf]) -> Result<(), CliError> {
         COLUMNS.join(" | "),
         "---|".repeat(COLUMNS.len())
     );
+    let mut laws: Vec<String> = rows.keys().map(|k| k.1.clone()).collect();
+    laws.sort();
+    laws.dedup();
+    let paired = |a: &Vec<Vec<f64>>, b: &Vec<Vec<f64>>| -> Vec<String> {
+        (0..COLUMNS.len())
+            .map(|c| {
+                cell(
+                    &a.iter()
+                        .zip(b)
+                        .map(|(x, y)| y[c] - x[c])
+                        .collect::<Vec<_>>(),
+                )
+            })
+            .collect()
+    };
     for calm in &calms {
         let of = |law: &str| rows.get(&(calm.clone(), law.to_string()));
-        for law in ["amontons", "rate-state"] {
+        for law in &laws {
             if let Some(r) = of(law) {
                 let cells: Vec<String> = (0..COLUMNS.len())
                     .map(|c| cell(&r.iter().map(|row| row[c]).collect::<Vec<_>>()))
@@ -395,47 +424,30 @@ fn gather(dirs: &[PathBuf]) -> Result<(), CliError> {
                 );
             }
         }
-        if let (Some(a), Some(b)) = (of("amontons"), of("rate-state")) {
-            if a.len() == b.len() {
-                let cells: Vec<String> = (0..COLUMNS.len())
-                    .map(|c| {
-                        cell(
-                            &a.iter()
-                                .zip(b)
-                                .map(|(x, y)| y[c] - x[c])
-                                .collect::<Vec<_>>(),
-                        )
-                    })
-                    .collect();
-                let _ = writeln!(
-                    table,
-                    "| {calm} h | rate-state less Amontons, paired | {} |",
-                    cells.join(" | ")
-                );
+        // Rate-and-state less each other law, paired by directory order.
+        for law in laws.iter().filter(|l| *l != "rate-state") {
+            if let (Some(a), Some(b)) = (of(law), of("rate-state")) {
+                if a.len() == b.len() {
+                    let _ = writeln!(
+                        table,
+                        "| {calm} h | rate-state less {law}, paired | {} |",
+                        paired(a, b).join(" | ")
+                    );
+                }
             }
         }
     }
     // Each law's longest calm less its shortest, paired by directory: does
     // the restart grow with the calm?
     if let (Some(first), Some(last)) = (calms.first(), calms.last()) {
-        for law in ["amontons", "rate-state"] {
-            let pick = |calm: &String| rows.get(&(calm.clone(), law.to_string()));
+        for law in &laws {
+            let pick = |calm: &String| rows.get(&(calm.clone(), law.clone()));
             if let (Some(a), Some(b), true) = (pick(first), pick(last), first != last) {
                 if a.len() == b.len() {
-                    let cells: Vec<String> = (0..COLUMNS.len())
-                        .map(|c| {
-                            cell(
-                                &a.iter()
-                                    .zip(b)
-                                    .map(|(x, y)| y[c] - x[c])
-                                    .collect::<Vec<_>>(),
-                            )
-                        })
-                        .collect();
                     let _ = writeln!(
                         table,
                         "| {last} h less {first} h | {law}, paired | {} |",
-                        cells.join(" | ")
+                        paired(a, b).join(" | ")
                     );
                 }
             }
