@@ -116,3 +116,28 @@ fn dt_fraction_scales_the_stable_step_and_a_quarter_is_half_the_automatic_step()
         dt_line(&auto)
     );
 }
+
+#[test]
+fn apply_reaches_keys_inside_inline_tables_and_get_reads_them_back() {
+    let origin = Path::new("inline.toml");
+    let text =
+        "duration_s = 10.0\n[wind]\nshear = { y_min_m = 0.0, y_max_m = 100.0 } # the shear\n";
+    let settings = [
+        parse_setting("wind.shear.y_min_m=25.0").unwrap(),
+        parse_setting("wind.shear.new_table.k=1").unwrap(),
+    ];
+    let out = apply(text, origin, &settings, &[0, 0]).unwrap();
+    // The edited table stays inline, its comment with it.
+    assert!(out.contains("shear = {"), "{out}");
+    assert!(out.contains("# the shear"), "{out}");
+    let key = |k: &str| k.split('.').map(String::from).collect::<Vec<_>>();
+    let get = |k: &str| floe_scenario::settings::get(&out, origin, &key(k)).unwrap();
+    assert_eq!(get("wind.shear.y_min_m").unwrap().as_float(), Some(25.0));
+    assert_eq!(get("wind.shear.y_max_m").unwrap().as_float(), Some(100.0));
+    assert_eq!(get("wind.shear.new_table.k").unwrap().as_integer(), Some(1));
+    assert!(get("wind.shear.absent").is_none());
+    // A key under a value that is not a table is refused, naming it.
+    let bad = parse_setting("duration_s.x=1").unwrap();
+    let err = apply(text, origin, &[bad], &[0]).unwrap_err().to_string();
+    assert!(err.contains("`duration_s` is not a table"), "{err}");
+}
