@@ -231,7 +231,7 @@ class Run:
             tdim = "time" if same else f"time_{name}"
             if not same:
                 coords[tdim] = s["time"]
-            dims = (tdim,) + tuple(f"{name}_component" for _ in s["value"].shape[1:2])
+            dims = (tdim, f"{name}_component")[: s["value"].ndim]
             data[name] = (dims, s["value"], {"units": s["unit"]})
         if names:
             coords["time"] = ("time", series[names[0]]["time"], {"units": "s"})

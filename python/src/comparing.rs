@@ -14,6 +14,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
+use crate::errors::python_words;
 use crate::running::{drive_with, provenance, Callbacks};
 use crate::scenario::Scenario;
 
@@ -50,7 +51,7 @@ pub fn compare<'py>(
     }
     let registry = LawRegistry::builtin();
     let laws = LawChoice::parse_list(&laws.join(","), &registry)
-        .map_err(|e| PyValueError::new_err(e.to_string().replace("--laws", "laws")))?;
+        .map_err(|e| PyValueError::new_err(python_words(&e.to_string())))?;
     scenario.parsed()?;
     let dir_existed = out_dir.exists();
     let (scenario_file, made) = scenario.as_file(&out_dir, force)?;

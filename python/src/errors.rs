@@ -105,6 +105,10 @@ pub fn python_words(message: &str) -> String {
     message
         .replace("--threads", "threads")
         .replace("--max-steps", "max_steps")
+        .replace("--cell-m", "cell_m")
+        .replace("--every", "every")
+        .replace("--interval-s", "interval_s")
+        .replace("--laws", "laws")
         .replace("pass --force", "pass force=True")
         .replace("run with --force", "pass force=True")
         .replace("--force", "force=True")

@@ -34,17 +34,9 @@ pub fn grid<'py>(
         (None, Some(t)) => Cadence::IntervalS(t),
         (None, None) => Cadence::All,
     };
-    let words = |e: floe_run::Error| match e {
-        floe_run::Error::Usage(m) => PyValueError::new_err(
-            m.replace("--cell-m", "cell_m")
-                .replace("--every", "every")
-                .replace("--interval-s", "interval_s"),
-        ),
-        other => run_error(other),
-    };
     let plan = py
         .detach(|| GridPlan::new(&run, cell_m, cadence))
-        .map_err(words)?;
+        .map_err(run_error)?;
     py.check_signals()?;
     let [nx, ny] = plan.grid.shape;
     let (records, cells) = (plan.taken.len(), nx * ny);
@@ -53,7 +45,7 @@ pub fn grid<'py>(
     let names = field_names();
     let mut values = vec![Vec::with_capacity(records * cells); names.len()];
     for r in 0..records {
-        let record = py.detach(|| plan.record(r)).map_err(words)?;
+        let record = py.detach(|| plan.record(r)).map_err(run_error)?;
         py.check_signals()?;
         for (all, field) in values.iter_mut().zip(record) {
             all.extend_from_slice(&field);

@@ -162,7 +162,31 @@ fn whole(file: &str, path: &str, number: Number, shape: &[usize]) -> String {
 }
 
 /// Rows `first .. first + count` of the first axis of a dataset of shape
-/// `shape` (its other axes whole), shaped `[count, rest...]`.
+/// `shape` (its other axes whole), the item shaped `out`.
+fn slab(
+    file: &str,
+    path: &str,
+    number: Number,
+    shape: &[usize],
+    (first, count): (usize, usize),
+    out: &[usize],
+) -> String {
+    let rank = shape.len();
+    let mut start = vec![0; rank];
+    let mut size = shape.to_vec();
+    start[0] = first;
+    size[0] = count;
+    format!(
+        r#"<DataItem ItemType="HyperSlab" Dimensions="{}" Type="HyperSlab"><DataItem Dimensions="3 {rank}" Format="XML">{} {} {}</DataItem>{}</DataItem>"#,
+        dims(out),
+        dims(&start),
+        dims(&vec![1; rank]),
+        dims(&size),
+        whole(file, path, number, shape)
+    )
+}
+
+/// Rows `first .. first + count`, shaped `[count, rest...]`.
 fn rows(
     file: &str,
     path: &str,
@@ -171,38 +195,15 @@ fn rows(
     first: usize,
     count: usize,
 ) -> String {
-    let rank = shape.len();
-    let mut start = vec![0; rank];
-    let mut size = shape.to_vec();
-    start[0] = first;
-    size[0] = count;
-    let stride = vec![1; rank];
-    format!(
-        r#"<DataItem ItemType="HyperSlab" Dimensions="{}" Type="HyperSlab"><DataItem Dimensions="3 {rank}" Format="XML">{} {} {}</DataItem>{}</DataItem>"#,
-        dims(&size),
-        dims(&start),
-        dims(&stride),
-        dims(&size),
-        whole(file, path, number, shape)
-    )
+    let out: Vec<usize> = std::iter::once(count)
+        .chain(shape[1..].iter().copied())
+        .collect();
+    slab(file, path, number, shape, (first, count), &out)
 }
 
-/// Row `row` of the first axis of a dataset of shape `shape` (one
-/// snapshot of a `[S, n, ...]` element), shaped `[n, ...]`.
+/// Row `row` of a `[S, n, ...]` snapshot element, shaped `[n, ...]`.
 fn snapshot_row(file: &str, path: &str, shape: &[usize], row: usize) -> String {
-    let rank = shape.len();
-    let mut start = vec![0; rank];
-    let mut count = shape.to_vec();
-    start[0] = row;
-    count[0] = 1;
-    format!(
-        r#"<DataItem ItemType="HyperSlab" Dimensions="{}" Type="HyperSlab"><DataItem Dimensions="3 {rank}" Format="XML">{} {} {}</DataItem>{}</DataItem>"#,
-        dims(&shape[1..]),
-        dims(&start),
-        dims(&vec![1; rank]),
-        dims(&count),
-        whole(file, path, Number::F64, shape)
-    )
+    slab(file, path, Number::F64, shape, (row, 1), &shape[1..])
 }
 
 fn attribute(name: &str, kind: &str, item: &str) -> String {
@@ -227,17 +228,16 @@ fn connectivity(floes: &StaticFloes, keep: impl Fn(usize) -> bool) -> (Vec<i64>,
     (out, cells)
 }
 
-/// Each floe's mean `theta` and `mu` over its contacts (NaN without one).
+/// Each floe's mean `theta` and `mu` over its contacts (NaN without one);
+/// the contacts name floes below `n`.
 fn contact_means(n: usize, c: &ContactSnapshot) -> [Vec<f64>; 2] {
     let (mut theta, mut mu, mut count) = (vec![0.0; n], vec![0.0; n], vec![0u32; n]);
     for (k, pair) in c.pair.iter().enumerate() {
         for &i in pair {
             let i = i as usize;
-            if i < n {
-                theta[i] += c.theta[k];
-                mu[i] += c.mu[k];
-                count[i] += 1;
-            }
+            theta[i] += c.theta[k];
+            mu[i] += c.mu[k];
+            count[i] += 1;
         }
     }
     for i in 0..n {
@@ -268,9 +268,6 @@ fn put<T: hdf5::H5Type>(
         .and_then(|d| d.write_raw(data))
         .at(sidecar, || format!("writing /{path}"))
 }
-
-/// Stands for the shared line connectivity's row count until it is known.
-const LINES_SHAPE_MARK: usize = usize::MAX;
 
 /// Each contact's two ends: floe `a`'s centroid and floe `b`'s image
 /// nearest to it (across a periodic seam, the image beside `a`).
@@ -305,18 +302,44 @@ fn describe(
     let write = |path: &str, data: &[f64], shape: &[usize]| put(&side, sidecar, path, data, shape);
     let (mut floes_xml, mut walls_xml, mut contacts_xml) =
         (String::new(), String::new(), String::new());
-    let mut segment_done = None;
-    let mut most_contacts = 0;
     let domain = file.metadata()?.domain;
     let period = [0, 1].map(|a| domain.periodic[a].then_some(domain.size_m[a]));
-    let mut cells = (0, 0, Vec::new(), Vec::new());
-    for k in 0..n_snapshots {
+    // Each snapshot's contact rows; the contacts' connectivity, shared by
+    // every snapshot: line k joins points 2k and 2k + 1.
+    let contact_rows = (0..n_snapshots)
+        .map(|k| file.contact_rows(k))
+        .collect::<Result<Vec<_>, _>>()?;
+    let most_contacts = contact_rows.iter().map(|r| r.1).max().unwrap_or(0);
+    let lines: Vec<i64> = (0..2 * most_contacts as i64).collect();
+    put(&side, sidecar, "lines", &lines, &[most_contacts, 2])?;
+    let contact_shape = |name: &str| -> Result<Vec<usize>, IoError> {
+        Ok(file.ds(&format!("{}/{name}", layout::CONTACTS))?.shape())
+    };
+    let contact_shapes = layout::CONTACT_FIELDS
+        .iter()
+        .filter(|f| f.2 == 1)
+        .map(|f| Ok((f.0, contact_shape(f.0)?)))
+        .collect::<Result<Vec<_>, IoError>>()?;
+    // Per floe set: its cell counts and connectivity lengths, and the
+    // shapes of its snapshot elements.
+    let mut segment_done = None;
+    let mut cells = (0, 0, 0, 0);
+    let mut shapes: Vec<(&str, Vec<usize>)> = Vec::new();
+    for (k, &(start, count)) in contact_rows.iter().enumerate() {
         let (segment, row) = file.locate(k)?;
         let floes = file.floes_at(k)?;
         let snap = file.snapshot(k)?;
         let contacts = file.contacts(k)?;
         let n = floes.len();
         let group = layout::floe_segment(segment);
+        if let Some(bad) = contacts.pair.iter().flatten().find(|&&i| i as usize >= n) {
+            return Err(invalid(
+                run,
+                format!(
+                    "snapshot {k}: a contact names floe {bad}, past its {n} floes (file damaged)"
+                ),
+            ));
+        }
         if segment_done != Some(segment) {
             let (all, all_cells) = connectivity(&floes, |_| true);
             let (walls, wall_cells) = connectivity(&floes, |i| floes.prescribed[i]);
@@ -324,7 +347,13 @@ fn describe(
                 let path = format!("segments/{segment}/{name}");
                 put(&side, sidecar, &path, data, &[data.len()])?;
             }
-            cells = (all_cells, wall_cells, all, walls);
+            cells = (all_cells, wall_cells, all.len(), walls.len());
+            let stress = file.has_floe_stress().then_some(layout::FLOE_STRESS.0);
+            shapes = ["velocity", "angular_velocity"]
+                .into_iter()
+                .chain(stress)
+                .map(|name| Ok((name, file.ds(&format!("{group}/{name}/value"))?.shape())))
+                .collect::<Result<_, IoError>>()?;
             segment_done = Some(segment);
         }
         let world: Vec<f64> = (0..n)
@@ -358,34 +387,15 @@ fn describe(
                 )
             )
         };
-        let element = |name: &str| -> Result<Vec<usize>, IoError> {
-            Ok(file.ds(&format!("{group}/{name}/value"))?.shape())
-        };
         let mut fields = String::new();
-        let velocity = element("velocity")?;
-        fields += &attribute(
-            "velocity",
-            "Vector",
-            &snapshot_row(&run_ref, &format!("{group}/velocity/value"), &velocity, row),
-        );
-        let spin = element("angular_velocity")?;
-        fields += &attribute(
-            "angular_velocity",
-            "Scalar",
-            &snapshot_row(
-                &run_ref,
-                &format!("{group}/angular_velocity/value"),
-                &spin,
-                row,
-            ),
-        );
-        if file.has_floe_stress() {
-            let stress = element(layout::FLOE_STRESS.0)?;
-            fields += &attribute(
-                "stress",
-                "Matrix",
-                &snapshot_row(&run_ref, &format!("{group}/stress/value"), &stress, row),
-            );
+        for (name, shape) in &shapes {
+            let kind = match shape.len() {
+                2 => "Scalar",
+                _ if *name == "velocity" => "Vector",
+                _ => "Matrix",
+            };
+            let path = format!("{group}/{name}/value");
+            fields += &attribute(name, kind, &snapshot_row(&run_ref, &path, shape, row));
         }
         for (name, number) in [
             ("thickness", Number::F64),
@@ -427,7 +437,7 @@ fn describe(
         let _ = write!(
             floes_xml,
             r#"<Grid Name="floes {k}" GridType="Uniform"><Time Value="{time:e}"/>{}{geometry}{fields}</Grid>"#,
-            topology("floes", cells.0, cells.2.len())
+            topology("floes", cells.0, cells.2)
         );
         // ParaView's reader cannot take an empty grid: a snapshot without
         // walls or contacts has none in that collection.
@@ -435,45 +445,25 @@ fn describe(
             let _ = write!(
                 walls_xml,
                 r#"<Grid Name="walls {k}" GridType="Uniform"><Time Value="{time:e}"/>{}{geometry}</Grid>"#,
-                topology("walls", cells.1, cells.3.len())
+                topology("walls", cells.1, cells.3)
             );
         }
 
         // Contacts: lines from floe a's centroid to floe b's nearest image
         // (the sidecar's), their fields rows start..start+count of the file's.
-        let (start, count) = file.contact_rows(k)?;
-        if let Some(bad) = contacts.pair.iter().flatten().find(|&&i| i as usize >= n) {
-            return Err(invalid(
-                run,
-                format!(
-                    "snapshot {k}: a contact names floe {bad}, past its {n} floes (file damaged)"
-                ),
-            ));
-        }
         let ends = contact_ends(&snap.position, &contacts.pair, period);
         write(
             &format!("snapshots/{k}/contact_ends"),
             &ends,
             &[2 * count, 2],
         )?;
-        most_contacts = most_contacts.max(count);
         let mut contact_fields = String::new();
-        for (name, _, width) in layout::CONTACT_FIELDS {
-            if width != 1 {
-                continue;
-            }
-            let shape = file.ds(&format!("{}/{name}", layout::CONTACTS))?.shape();
+        for (name, shape) in &contact_shapes {
+            let path = format!("{}/{name}", layout::CONTACTS);
             contact_fields += &attribute(
                 name,
                 "Scalar",
-                &rows(
-                    &run_ref,
-                    &format!("{}/{name}", layout::CONTACTS),
-                    Number::F64,
-                    &shape,
-                    start,
-                    count,
-                ),
+                &rows(&run_ref, &path, Number::F64, shape, start, count),
             );
         }
         if count == 0 {
@@ -486,7 +476,7 @@ fn describe(
                 &side_ref,
                 "lines",
                 Number::I64,
-                &[LINES_SHAPE_MARK, 2],
+                &[most_contacts, 2],
                 0,
                 count
             ),
@@ -498,14 +488,6 @@ fn describe(
             ),
         );
     }
-    // The contacts' connectivity, shared by every snapshot: line k joins
-    // points 2k and 2k + 1.
-    let lines: Vec<i64> = (0..2 * most_contacts as i64).collect();
-    put(&side, sidecar, "lines", &lines, &[most_contacts, 2])?;
-    let contacts_xml = contacts_xml.replace(
-        &format!(r#"Dimensions="{LINES_SHAPE_MARK} 2""#),
-        &format!(r#"Dimensions="{most_contacts} 2""#),
-    );
     side.close().at(sidecar, || "closing".into())?;
     let collection = |name: &str, grids: &str| {
         format!(
