@@ -31,6 +31,7 @@ const BLOW_UP: &str = include_str!("../data/run_blow_up.toml");
 const FRACTURE: &str = include_str!("../data/run_fracture.toml");
 /// Small channel pressed by a closing wall: floes ridge.
 const RIDGING: &str = include_str!("../data/run_ridging.toml");
+const WELDING: &str = include_str!("../data/run_welding.toml");
 
 /// Free floes whose x moved by more than half the 6 km period between the
 /// first and the last snapshot: they crossed the periodic seam.
@@ -124,9 +125,10 @@ fn floes_break_on_two_and_three_processes_as_on_one_and_resume_across_counts() {
     case.assert_same("alone.h5", "parts.h5");
 }
 
-#[test]
-fn floes_ridge_on_two_and_three_processes_as_on_one() {
-    let case = Case::new(RIDGING);
+/// `scenario` on two and three processes, and paused on two and resumed on
+/// three, gives one process's run file.
+fn on_two_and_three_processes_as_on_one(scenario: &str) {
+    let case = Case::new(scenario);
     case.run_ok("alone.h5", &["--threads", "1"]);
     for np in [2, 3] {
         let name = format!("np{np}.h5");
@@ -142,6 +144,16 @@ fn floes_ridge_on_two_and_three_processes_as_on_one() {
     let out = case.resume_with(Launch::Mpi(3), "parts.h5", &[]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
     case.assert_same("alone.h5", "parts.h5");
+}
+
+#[test]
+fn floes_ridge_on_two_and_three_processes_as_on_one() {
+    on_two_and_three_processes_as_on_one(RIDGING);
+}
+
+#[test]
+fn floes_weld_on_two_and_three_processes_as_on_one() {
+    on_two_and_three_processes_as_on_one(WELDING);
 }
 
 #[test]

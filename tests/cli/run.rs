@@ -30,6 +30,7 @@ const BLOW_UP: &str = include_str!("../data/run_blow_up.toml");
 const FRACTURE: &str = include_str!("../data/run_fracture.toml");
 /// Small channel pressed by a closing wall: floes ridge.
 const RIDGING: &str = include_str!("../data/run_ridging.toml");
+const WELDING: &str = include_str!("../data/run_welding.toml");
 
 fn floe() -> Command {
     Launch::Alone.command()
@@ -764,6 +765,73 @@ fn ctrl_c_inside_a_window_then_resume_is_bitwise() {
     assert_eq!(out.status.code(), Some(130), "{}", text(&out.stderr));
     case.resume_ok("parts.h5", &["--threads", "1"]);
     assert_same_run(Path::new(&case.path("whole.h5")), Path::new(&target));
+}
+
+#[test]
+fn floes_weld_keeping_their_volume_and_a_paused_run_resumes_bitwise() {
+    let case = Case::new(WELDING);
+    case.run_ok("whole.h5", &["--threads", "2"]);
+    case.run_ok("parts.h5", &["--threads", "1", "--max-steps", "137"]);
+    case.resume_ok("parts.h5", &["--threads", "2"]);
+    case.assert_same("whole.h5", "parts.h5");
+    let f = RunFile::open(Path::new(&case.path("whole.h5"))).unwrap();
+    let n = f.snapshot_count().unwrap();
+    let log = f.welds().unwrap();
+    let chained = log
+        .iter()
+        .filter(|r| log.iter().any(|q| r.ids.contains(&q.welded_id)))
+        .count();
+    eprintln!("{} welds, {chained} of a welded floe", log.len());
+    assert!(log.len() >= 10 && chained >= 1, "{} welds", log.len());
+    // Every snapshot's free ice volume and mass are the start's; the floe
+    // count falls by one a weld; each welded floe names the first of its
+    // pair as its parent, and its area and mass are the log's.
+    let free = |k: usize, what: fn(&floe_io::StaticFloes, usize) -> f64| {
+        let s = f.floes_at(k).unwrap();
+        (0..s.len())
+            .filter(|&i| !s.prescribed[i])
+            .map(|i| what(&s, i))
+            .sum::<f64>()
+    };
+    let volume = |s: &floe_io::StaticFloes, i: usize| s.area_m2[i] * s.thickness_m[i];
+    let mass = |s: &floe_io::StaticFloes, i: usize| s.mass_kg[i];
+    let (v0, m0) = (free(0, volume), free(0, mass));
+    let count0 = f.floes_at(0).unwrap().len();
+    for k in 0..n {
+        let (v, m) = (free(k, volume), free(k, mass));
+        assert!((v - v0).abs() < 1e-12 * v0, "snapshot {k}: {v} vs {v0}");
+        assert!((m - m0).abs() < 1e-12 * m0, "snapshot {k}: {m} vs {m0}");
+        let step = f.snapshot(k).unwrap().step;
+        let welded = log.iter().filter(|r| r.step <= step).count();
+        let s = f.floes_at(k).unwrap();
+        assert_eq!(s.len(), count0 - welded, "snapshot {k}");
+        let parents = f.parent_ids_at(k).unwrap();
+        for r in log.iter().filter(|r| r.step <= step) {
+            if let Some(i) = s.id.iter().position(|&id| id == r.welded_id) {
+                assert_eq!(parents[i], Some(r.ids[0]), "{r:?}");
+                assert_eq!(s.area_m2[i], r.area_m2);
+                assert_eq!(s.mass_kg[i], r.mass_kg);
+            }
+        }
+    }
+    let end = f.snapshot(n - 1).unwrap();
+    let dt = end.time_s / end.step as f64;
+    for (r, next) in log.iter().zip(log.iter().skip(1)) {
+        assert!(r.step <= next.step, "in step order");
+        assert!(
+            r.step < next.step || r.ids < next.ids,
+            "by pair within a step"
+        );
+        assert_eq!(next.welded_id, r.welded_id + 1, "numbered in order");
+    }
+    for r in &log {
+        assert!((r.time_s - r.step as f64 * dt).abs() <= 1e-9 * end.time_s);
+        // The hull is at most 30 % larger than the pair (the scenario's
+        // limit) and never smaller than the pair less its overlap.
+        let pair = r.areas_m2[0] + r.areas_m2[1];
+        assert!(r.area_m2 <= 1.3 * pair && r.area_m2 > 0.99 * pair, "{r:?}");
+        assert!(r.released_j >= 0.0, "{r:?}");
+    }
 }
 
 #[test]

@@ -192,6 +192,11 @@ pub fn assert_same_run(a: &Path, b: &Path) {
         format!("{:?}", fb.ridges().unwrap()),
         "ridging log"
     );
+    assert_eq!(
+        format!("{:?}", fa.welds().unwrap()),
+        format!("{:?}", fb.welds().unwrap()),
+        "welding log"
+    );
     let names = fa.observable_names().unwrap();
     assert_eq!(names, fb.observable_names().unwrap());
     for name in &names {

@@ -26,3 +26,4 @@ mod ridging;
 mod shape_support;
 mod tessellation;
 mod time_order;
+mod welding;

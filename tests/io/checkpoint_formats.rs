@@ -12,6 +12,7 @@ use floe_dem::pipeline::floe_stress::StressFilter;
 use floe_dem::ridging::RidgingLedger;
 use floe_dem::state::WorldState;
 use floe_dem::stress_control::{ControlLaw, ServoWall, StressControl};
+use floe_dem::welding::WeldingLedger;
 use floe_dem::Vec2;
 use floe_friction::rate_state::SOLVER_TREND;
 use floe_friction::ContactState;
@@ -179,6 +180,7 @@ pub fn rich_state() -> WorldState {
         floe_stress: Vec::new(),
         next_floe_id: 0,
         ridging: Default::default(),
+        welding: Default::default(),
     };
     state.validate().unwrap();
     assert!(state
@@ -237,6 +239,7 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         floe_stress,
         next_floe_id,
         ridging,
+        welding,
     } = expected;
     macro_rules! same {
         ($($field:ident),*) => {$(
@@ -263,7 +266,8 @@ fn assert_same(back: &WorldState, expected: &WorldState, what: &str) {
         stress_filter,
         floe_stress,
         next_floe_id,
-        ridging
+        ridging,
+        welding
     );
 }
 
@@ -528,6 +532,62 @@ fn version_10_is_version_9_with_the_ridging_ledger() {
 fn write_format_10_fixture() {
     let bytes = floe_io::checkpoint::encode(&ridged_state(), &counts(), 3);
     std::fs::write(fixture_dir().join("format_v10.bin"), bytes).unwrap();
+}
+
+/// [`ridged_state`] after welding: every field of the ledger distinct.
+pub fn welded_state() -> WorldState {
+    let mut state = ridged_state();
+    state.welding = WeldingLedger {
+        events: 77,
+        area_added_m2: 1.0e6 / 3.0,
+        kinetic_energy_lost_j: -2.5e-3,
+        contact_energy_released_j: 6.0e7,
+    };
+    state
+}
+
+/// Bytes of the welding ledger in format 11.
+const WELD_LEDGER_BYTES: usize = 8 + 3 * 8;
+
+/// Version 11 is version 10 with the welding ledger after everything else
+/// (the event count, then its three `f64`). It reads back to the state;
+/// the encoder writes its frozen bytes exactly and still writes version 10
+/// for a state that has ridged but not welded; a state that has welded
+/// without ridging writes a zero ridging ledger before it.
+#[test]
+fn version_11_is_version_10_with_the_welding_ledger() {
+    use floe_io::checkpoint::{decode, encode, HEADER_LEN};
+    let (v10, v11) = (fixture("format_v10.bin"), fixture("format_v11.bin"));
+    let welded = welded_state();
+    assert_eq!(v11.len(), v10.len() + WELD_LEDGER_BYTES);
+    assert_eq!(&v11[8..12], &11u32.to_le_bytes());
+    assert_eq!(
+        &v11[HEADER_LEN..v10.len()],
+        &v10[HEADER_LEN..],
+        "the payload of 10 first"
+    );
+    let (back, back_counts) = decode(&v11, || None, Some(3)).unwrap();
+    assert_same(&back, &welded, "version 11");
+    assert_eq!(back_counts, counts());
+    assert!(encode(&welded, &counts(), 3) == v11);
+    assert!(encode(&ridged_state(), &counts(), 3) == v10);
+    let mut unridged = welded.clone();
+    unridged.ridging = RidgingLedger::default();
+    let bytes = encode(&unridged, &counts(), 3);
+    assert_eq!(bytes.len(), v11.len());
+    assert_same(
+        &decode(&bytes, || None, Some(3)).unwrap().0,
+        &unridged,
+        "welded without ridging",
+    );
+}
+
+/// Writes `format_v11.bin` (run once, by hand, when the format was made).
+#[test]
+#[ignore]
+fn write_format_11_fixture() {
+    let bytes = floe_io::checkpoint::encode(&welded_state(), &counts(), 3);
+    std::fs::write(fixture_dir().join("format_v11.bin"), bytes).unwrap();
 }
 
 /// The encoder writes the frozen bytes of the current format exactly.

@@ -12,8 +12,10 @@ use floe_dem::fracture::rule::{FractureRule, StrengthThickness};
 use floe_dem::fracture::split::SplitRule;
 use floe_dem::pipeline::floe_stress::StressFilter;
 use floe_dem::ridging::Ridging;
+use floe_dem::welding::Welding;
 use floe_dem::world::FractureEvent;
 use floe_dem::world::PlannedRidge;
+use floe_dem::world::Weld;
 use std::sync::atomic::AtomicBool;
 
 use floe_dem::contact_model::ContactModel;
@@ -746,4 +748,113 @@ fn rubble_shared_by_both_floes_over_one_to_four_processes_is_bitwise_as_one() {
     eprintln!("{} ridging events, {shared} shared", events.len());
     assert!(shared >= 5, "shared events ({shared})");
     ridging_on_one_to_four_processes_is(&states, &events, both);
+}
+
+/// Bonds strong enough to last the few seconds welding waits.
+fn strong_cohesion() -> Cohesion {
+    Cohesion {
+        tensile_strength_n_per_m: 1e5,
+        shear_strength_n_per_m: 1e5,
+        growth_time_s: 0.0,
+        ..weak_cohesion()
+    }
+}
+
+/// Welding loose enough that bonded squares of the sheared layer weld
+/// within the run (their hulls add up to half their area).
+fn loose_welding() -> Welding {
+    Welding {
+        after_s: 5.0,
+        max_added_area_fraction: 0.5,
+        max_centre_shift_fraction: 0.5,
+        ..Welding::default()
+    }
+}
+
+/// The sheared layer freezing and welding: its states every `EVERY` steps
+/// and its welds, on `processes` processes (0: one world, no communicator).
+fn welding_run(processes: usize) -> (Vec<String>, Vec<Weld>) {
+    let never = AtomicBool::new(false);
+    if processes == 0 {
+        let mut w = sheared_layer(3);
+        w.set_cohesion(Some(strong_cohesion())).unwrap();
+        w.set_welding(Some(loose_welding())).unwrap();
+        let (mut states, mut welds) = (vec![bits(w.state())], Vec::new());
+        while w.steps() < STEPS {
+            let report = floe_dem::run::Stepper::step(&mut w, &never);
+            assert!(report.blow_up.is_none(), "{:?}", report.blow_up);
+            welds.extend(report.welds);
+            if w.steps().is_multiple_of(EVERY) {
+                states.push(bits(w.state()));
+            }
+        }
+        return (states, welds);
+    }
+    let results = ThreadComm::run(processes, |comm| {
+        let (state, model, forcing, periodicity) = sheared_layer(3).into_parts();
+        let settings = Settings {
+            skin_fraction: 0.1,
+            rebalance_threshold: 0.2,
+        };
+        let mut d =
+            DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
+                .unwrap();
+        d.set_cohesion(Some(strong_cohesion())).unwrap();
+        d.set_welding(Some(loose_welding())).unwrap();
+        let (mut states, mut welds) = (Vec::new(), Vec::new());
+        if let Some(s) = d.gather_whole().unwrap() {
+            states.push(bits(&s));
+        }
+        while d.steps() < STEPS {
+            let report = d.step(&never);
+            assert!(report.blow_up.is_none() && report.forcing_failure.is_none());
+            welds.extend(report.welds);
+            if d.steps().is_multiple_of(EVERY) {
+                if let Some(s) = d.gather_whole().unwrap() {
+                    states.push(bits(&s));
+                }
+            }
+        }
+        (states, welds)
+    });
+    let welds = results[0].1.clone();
+    for (_, theirs) in &results {
+        assert_eq!(theirs, &welds, "every process returns every weld");
+    }
+    results.into_iter().next().unwrap()
+}
+
+#[test]
+fn welding_over_one_to_four_processes_is_bitwise_as_one() {
+    let (states, welds) = welding_run(0);
+    let chained = welds
+        .iter()
+        .filter(|w| welds.iter().any(|v| w.ids.contains(&v.floe.id)))
+        .count();
+    eprintln!("{} welds, {chained} of a welded floe", welds.len());
+    assert!(welds.len() >= 5 && chained >= 1, "{} welds", welds.len());
+    for processes in [1, 2, 3, 4] {
+        let (p_states, p_welds) = welding_run(processes);
+        let pairs = |w: &[Weld]| {
+            w.iter()
+                .map(|w| (w.step, w.ids, w.floe.id))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(
+            pairs(&p_welds),
+            pairs(&welds),
+            "{processes} processes: the pairs welded"
+        );
+        for (x, y) in p_welds.iter().zip(&welds) {
+            assert!(x == y, "{processes} processes: {:?}\n{:?}", x, y);
+        }
+        assert_eq!(p_states.len(), states.len());
+        for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {
+            assert!(
+                a == b,
+                "{processes} processes: the state at step {} differs",
+                k as u64 * EVERY
+            );
+        }
+    }
 }

@@ -1555,6 +1555,65 @@ fn ridging_tables_are_checked_key_by_key() {
 }
 
 #[test]
+fn welding_tables_are_checked_key_by_key() {
+    let cohesion = "\n[cohesion]\n";
+    let with = |table: &str| format!("{BASE}{cohesion}\n[welding]\n{table}\n");
+    for key in [
+        "after_s",
+        "max_added_area_fraction",
+        "max_centre_shift_fraction",
+    ] {
+        let text = with(&format!("{key} = -2.5"));
+        check(&text, "-2.5", 0, &format!("welding.{key}"), &[">= 0"]);
+        let text = with(&format!("{key} = inf"));
+        check(&text, "inf", 0, &format!("welding.{key}"), &[]);
+    }
+    check(
+        &with("max_area_m2 = 0.0"),
+        "max_area_m2 = 0.0",
+        14,
+        "welding.max_area_m2",
+        &["> 0"],
+    );
+    check(
+        &with("after = 1.0"),
+        "after",
+        0,
+        "after",
+        &["unknown field"],
+    );
+    // Welding joins bonds: without [cohesion] it is refused at its table.
+    check(
+        &format!("{BASE}\n[welding]\nafter_s = 10.0\n"),
+        "[welding]",
+        0,
+        "welding",
+        &["no [cohesion] table"],
+    );
+    // The table alone: the defaults, reported.
+    let setup = Scenario::from_text(&with(""), Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert_eq!(
+        setup.world.welding(),
+        Some(floe_dem::welding::Welding::default())
+    );
+    assert!(
+        setup.report.iter().any(|l| l.contains(
+            "welding: floes bonded for 172800 s become their convex hull if it adds at most 5 %"
+        )),
+        "{:?}",
+        setup.report
+    );
+    let plain = Scenario::from_text(&format!("{BASE}{cohesion}"), Path::new("ok.toml"))
+        .unwrap()
+        .build()
+        .unwrap();
+    assert!(plain.world.welding().is_none());
+}
+
+#[test]
 fn cohesion_tables_are_checked_key_by_key() {
     let with = |table: &str| format!("{BASE}\n[cohesion]\n{table}\n");
     check(

@@ -37,6 +37,7 @@ pub mod run;
 pub mod state;
 pub mod stress_control;
 pub mod tessellation;
+pub mod welding;
 pub mod world;
 
 pub use error::DemError;

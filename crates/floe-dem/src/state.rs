@@ -73,6 +73,9 @@ pub struct WorldState {
     /// What ridging moved since the start ([`crate::ridging`]; zero
     /// without it).
     pub ridging: crate::ridging::RidgingLedger,
+    /// What welding did since the start ([`crate::welding`]; zero
+    /// without it).
+    pub welding: crate::welding::WeldingLedger,
 }
 
 impl WorldState {
@@ -99,6 +102,7 @@ impl WorldState {
             floe_stress: Vec::new(),
             next_floe_id: 0,
             ridging: Default::default(),
+            welding: Default::default(),
         }
     }
 

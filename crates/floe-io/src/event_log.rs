@@ -1,6 +1,6 @@
 //! An event log of a run file: a group of appendable columns, one row per
-//! event, the first column the step (rows in step order). The fracture and
-//! ridging logs are two (`fracture_log`, `ridging_log`).
+//! event, the first column the step (rows in step order): the fracture,
+//! ridging and welding logs (`fracture_log`, `ridging_log`, `welding_log`).
 
 use hdf5::File;
 

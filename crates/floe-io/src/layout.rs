@@ -55,6 +55,8 @@ pub const STRESS_COMPONENTS: &str = "xx xy yy";
 pub const FRACTURE: &str = "fracture";
 /// The ridging event log (runs whose floes ridged).
 pub const RIDGING: &str = "ridging";
+/// The welding event log (runs whose floes welded).
+pub const WELDING: &str = "welding";
 /// Contact lists, one per snapshot.
 pub const CONTACTS: &str = "contacts";
 /// Assembly-wide time series.

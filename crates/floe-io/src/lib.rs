@@ -27,6 +27,7 @@ pub mod observer;
 pub mod reader;
 pub mod ridging_log;
 pub mod run_status;
+pub mod welding_log;
 pub mod writer;
 pub mod xdmf;
 

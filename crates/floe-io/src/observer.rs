@@ -6,7 +6,7 @@ use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
 use floe_dem::run::RunObserver;
 use floe_dem::state::WorldState;
-use floe_dem::world::{FractureEvent, PlannedRidge, World};
+use floe_dem::world::{FractureEvent, PlannedRidge, Weld, World};
 
 use crate::error::IoError;
 use crate::writer::RunWriter;
@@ -32,5 +32,9 @@ impl<F: ExternalForces> RunObserver<F> for RunWriter {
 
     fn ridges(&mut self, time_s: f64, events: &[PlannedRidge]) -> Result<(), IoError> {
         self.write_ridges(time_s, events)
+    }
+
+    fn welds(&mut self, welds: &[Weld]) -> Result<(), IoError> {
+        self.write_welds(welds)
     }
 }

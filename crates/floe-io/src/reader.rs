@@ -572,6 +572,13 @@ impl RunFile {
             .at(&self.path, || format!("reading /{}", layout::RIDGING))
     }
 
+    /// The welding event log: every pair welded, in order (empty for a
+    /// run without welding).
+    pub fn welds(&self) -> Result<Vec<crate::welding_log::WeldRow>, IoError> {
+        crate::welding_log::read(&self.file)
+            .at(&self.path, || format!("reading /{}", layout::WELDING))
+    }
+
     /// Each floe of snapshot `k`'s parent: the id of the floe it broke
     /// from, `None` for a floe of the start (and for every floe of the
     /// first segment, or of a file written before parents were recorded).

@@ -8,7 +8,7 @@ use floe_dem::floes::Floes;
 use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
 use floe_dem::state::WorldState;
-use floe_dem::world::{FractureEvent, PlannedRidge, World};
+use floe_dem::world::{FractureEvent, PlannedRidge, Weld, World};
 use floe_friction::FrictionLaw;
 use hdf5::Group;
 
@@ -24,6 +24,7 @@ use crate::layout;
 use crate::metadata::{CheckpointInfo, DomainBox, InputRecord, OutputOptions, RunMetadata};
 use crate::reader::{self, RunFile};
 use crate::ridging_log::RidgingLog;
+use crate::welding_log::WeldingLog;
 
 /// The contact datasets.
 struct ContactTables {
@@ -72,6 +73,8 @@ pub struct RunWriter {
     fractures: Option<FractureLog>,
     /// The ridging event log, from the first event on.
     ridges: Option<RidgingLog>,
+    /// The welding event log, from the first weld on.
+    welds: Option<WeldingLog>,
     contacts: ContactTables,
     /// In [`layout::observable_samples`] order, then
     /// [`layout::BONDS_OBSERVABLE`] if the run has cohesion and
@@ -315,6 +318,7 @@ impl RunWriter {
             land_ids: Vec::new(),
             fractures: None,
             ridges: None,
+            welds: None,
             contacts,
             observables,
             next_slot: 0,
@@ -467,6 +471,20 @@ impl RunWriter {
         log.append(time_s, events).at(&self.path, what)
     }
 
+    /// Appends `welds` to the welding log (made at the first).
+    pub fn write_welds(&mut self, welds: &[Weld]) -> Result<(), IoError> {
+        if welds.is_empty() {
+            return Ok(());
+        }
+        self.claim(welds.len() as u64 * 128 + (64 << 10))?;
+        let what = || format!("appending to /{}", layout::WELDING);
+        if self.welds.is_none() {
+            self.welds = Some(WeldingLog::open_or_create(&self.file).at(&self.path, what)?);
+        }
+        let log = self.welds.as_mut().expect("made above");
+        log.append(welds).at(&self.path, what)
+    }
+
     /// Starts the next segment for the world's floes (their set changed:
     /// fracture; or their shapes and masses: ridging), from the next
     /// snapshot on.
@@ -487,6 +505,13 @@ impl RunWriter {
             for &piece in &e.piece_ids {
                 parent_of.insert(piece, e.parent_id as i64);
             }
+        }
+        // A welded floe's parent is the first of its pair (the welding log
+        // names both).
+        let welds = crate::welding_log::read(&self.file)
+            .at(&self.path, || format!("reading /{}", layout::WELDING))?;
+        for w in &welds {
+            parent_of.insert(w.welded_id, w.ids[0] as i64);
         }
         let parents: Vec<i64> = (floes.id.iter())
             .map(|id| parent_of.get(id).copied().unwrap_or(-1))
@@ -821,6 +846,10 @@ impl RunWriter {
         if let Some(log) = ridges.as_mut() {
             log.truncate_after(state.steps).at(path, what)?;
         }
+        let mut welds = WeldingLog::open(&file).at(path, what)?;
+        if let Some(log) = welds.as_mut() {
+            log.truncate_after(state.steps).at(path, what)?;
+        }
         file.flush().at(path, what)?;
         let info = CheckpointInfo {
             step: state.steps,
@@ -842,6 +871,7 @@ impl RunWriter {
                 land_ids,
                 fractures,
                 ridges,
+                welds,
                 contacts,
                 observables,
                 next_slot: 1 - slot,

@@ -13,7 +13,7 @@ use floe_dem::forcing::ExternalForces;
 use floe_dem::observables::Observables;
 use floe_dem::run::{self, format_sim_time, Ending, Progress, RunObserver, Silent, Stepper};
 use floe_dem::state::WorldState;
-use floe_dem::world::{FractureEvent, PlannedRidge, World};
+use floe_dem::world::{FractureEvent, PlannedRidge, Weld, World};
 use floe_friction::{FrictionLaw, LawRegistry};
 use floe_io::{DomainBox, InputRecord, IoError, OutputOptions, RunFile, RunMetadata, RunWriter};
 use floe_scenario::Scenario;
@@ -404,6 +404,13 @@ impl<F: ExternalForces> RunObserver<F> for RootWriter<'_> {
         match &mut self.0 {
             Some(w) if self.1 => RunObserver::<F>::ridges(*w, time_s, events),
             _ => Ok(()),
+        }
+    }
+
+    fn welds(&mut self, welds: &[Weld]) -> Result<(), IoError> {
+        match &mut self.0 {
+            Some(w) => RunObserver::<F>::welds(*w, welds),
+            None => Ok(()),
         }
     }
 }

@@ -126,6 +126,7 @@ fn run_inner<C: Communicator + Sync>(
         world.set_fracturing(scenario.fracturing(dt_s))?;
         world.set_cohesion(scenario.cohesion())?;
         world.set_ridging(scenario.ridging())?;
+        world.set_welding(scenario.welding())?;
         let stats = world.stats();
         hooks.say(&format!(
             "{} processes x {threads} threads; process 0 owns {} floes and holds {} ghosts",

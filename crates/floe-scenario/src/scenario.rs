@@ -22,7 +22,7 @@ use crate::build;
 use crate::checks;
 use crate::describe::{
     describe_cohesion, describe_contact, describe_forcing, describe_fracture, describe_ridging,
-    describe_thickness,
+    describe_thickness, describe_welding,
 };
 pub use crate::domain::Domain;
 use crate::error::ScenarioError;
@@ -314,6 +314,10 @@ impl Scenario {
             world.set_ridging(Some(ridging))?;
             report.push(describe_ridging(&ridging));
         }
+        if let Some(welding) = r.welding {
+            world.set_welding(Some(welding))?;
+            report.push(describe_welding(&welding));
+        }
         if let Some(filter) = world.stress_filter() {
             report.push(format!(
                 "  floe stress: each floe's, from its contacts, averaged over {} s",
@@ -374,6 +378,11 @@ impl Scenario {
     /// Ridging as the run applies it (`[ridging]`; `None` without).
     pub fn ridging(&self) -> Option<floe_dem::ridging::Ridging> {
         self.resolved.ridging
+    }
+
+    /// Welding as the run applies it (`[welding]`; `None` without).
+    pub fn welding(&self) -> Option<floe_dem::welding::Welding> {
+        self.resolved.welding
     }
 
     /// Cohesion as the run applies it (`[cohesion]`; `None` without).

@@ -59,6 +59,18 @@ pub(crate) struct RawScenario {
     pub cohesion: Option<Spanned<RawCohesion>>,
     /// `[ridging]`: floes that ridge under pressure.
     pub ridging: Option<Spanned<RawRidging>>,
+    /// `[welding]`: bonded floes that become one.
+    pub welding: Option<Spanned<RawWelding>>,
+}
+
+/// `[welding]`
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawWelding {
+    pub after_s: Num,
+    pub max_added_area_fraction: Num,
+    pub max_area_m2: Num,
+    pub max_centre_shift_fraction: Num,
 }
 
 /// `[ridging]`

@@ -11,7 +11,7 @@ use std::sync::atomic::AtomicBool;
 use crate::forcing::ExternalForces;
 use crate::observables::Observables;
 use crate::state::WorldState;
-use crate::world::{FractureEvent, PlannedRidge, World};
+use crate::world::{FractureEvent, PlannedRidge, Weld, World};
 
 use floe_friction::FrictionLaw;
 
@@ -43,6 +43,12 @@ pub trait RunObserver<F: ExternalForces> {
     /// the default records nothing).
     fn ridges(&mut self, time_s: f64, events: &[PlannedRidge]) -> Result<(), Self::Error> {
         let _ = (time_s, events);
+        Ok(())
+    }
+    /// Pairs welded after the step just taken (every process calls it
+    /// with the same welds, by pair; the default records nothing).
+    fn welds(&mut self, welds: &[Weld]) -> Result<(), Self::Error> {
+        let _ = welds;
         Ok(())
     }
 }
@@ -160,6 +166,9 @@ pub fn drive<S: Stepper, O: RunObserver<S::Whole>>(
         // In the order they were made: ridging, then fracture.
         if !report.ridges.is_empty() {
             observer.ridges(world.time_s(), &report.ridges)?;
+        }
+        if !report.welds.is_empty() {
+            observer.welds(&report.welds)?;
         }
         if !report.fractures.is_empty() {
             observer.fractures(&report.fractures)?;

@@ -5,7 +5,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::forcing::ExternalForces;
-use crate::world::{FractureEvent, PlannedRidge, World};
+use crate::world::{FractureEvent, PlannedRidge, Weld, World};
 
 use super::health::{check_health, BlowUp};
 
@@ -24,6 +24,9 @@ pub struct StepReport {
     /// Floes ridging after the step cut (every process's, by loser id;
     /// empty without ridging).
     pub ridges: Vec<PlannedRidge>,
+    /// Pairs welded after the step (every process's, by pair; empty
+    /// without welding).
+    pub welds: Vec<Weld>,
 }
 
 /// A simulation the loop can step and write.
@@ -56,11 +59,15 @@ impl<F: ExternalForces> Stepper for World<F> {
             interrupted: interrupt.load(Ordering::SeqCst),
             fractures: Vec::new(),
             ridges: Vec::new(),
+            welds: Vec::new(),
         };
         if let (None, None) = (&report.forcing_failure, &report.blow_up) {
             report.ridges = self
                 .ridge()
                 .unwrap_or_else(|e| panic!("ridging after step {}: {e}", self.steps()));
+            report.welds = self
+                .weld()
+                .unwrap_or_else(|e| panic!("welding after step {}: {e}", self.steps()));
         }
         if let (Some(f), None, None) = (self.fracturing(), &report.forcing_failure, &report.blow_up)
         {

@@ -4,9 +4,12 @@
 //! This file holds the world's state and the stages of a step; its
 //! methods by job: `edits.rs` (floes added, removed and moved, handles
 //! renumbered), `drivers.rs` (motion schedules, load points, stress
-//! controls), `cohesion.rs` (bonds between floes frozen together), `ghosts.rs` (what a distributed run copies between
-//! processes), `life_cycle.rs` (floe stress), `split.rs` (a floe broken
-//! into pieces), `fracture.rs` (the floes a criterion breaks, split).
+//! controls), `cohesion.rs` (bonds between floes frozen together),
+//! `ghosts.rs` (what a distributed run copies between processes),
+//! `life_cycle.rs` (floe stress), `split.rs` (a floe broken into pieces),
+//! `fracture.rs` (the floes a criterion breaks, split), `ridging.rs` and
+//! `ridging_apply.rs` (floes cut under pressure), `welding.rs` and
+//! `welding_apply.rs` (bonded pairs joined into one floe).
 //!
 //! # A step
 //! [`World::step`] is [`World::drift`], [`World::detect_contacts`],
@@ -88,6 +91,8 @@ mod ridging_apply;
 mod split;
 #[cfg(test)]
 mod tests;
+mod welding;
+mod welding_apply;
 
 pub use crate::pipeline::integrator::{stable_time_step, STABILITY_SAFETY};
 pub use edits::DetachedFloe;
@@ -95,6 +100,7 @@ pub use fracture::{FractureEvent, PackSums, PlannedSplit};
 pub use ghosts::Kinematics;
 pub use ridging::{PlannedRidge, RidgedIce, RidgingTally, CRUSHED_OVERLAP_FRACTION};
 pub use ridging_apply::{final_gainers, IceTarget};
+pub use welding::{candidate_ids, choose_welds, Weld, WeldRecords};
 
 /// The simulation state and what steps it.
 pub struct World<F: ExternalForces> {
@@ -113,6 +119,8 @@ pub struct World<F: ExternalForces> {
     cohesion: Option<crate::cohesion::Cohesion>,
     /// Floes ridge after every step (through `Stepper::step`), if on.
     ridging: Option<crate::ridging::Ridging>,
+    /// Bonded floes weld after every step (through `Stepper::step`), if on.
+    welding: Option<crate::welding::Welding>,
 }
 
 impl<F: ExternalForces> World<F> {
@@ -208,6 +216,7 @@ impl<F: ExternalForces> World<F> {
             fracturing: None,
             cohesion: None,
             ridging: None,
+            welding: None,
         })
     }
 

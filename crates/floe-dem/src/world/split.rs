@@ -127,8 +127,7 @@ impl<F: ExternalForces> World<F> {
             let (force, torque) = piece_forces(
                 &floe,
                 &contacts,
-                &bonds,
-                *offset,
+                bonds.iter().map(|b| (b, *offset)),
                 (external_force, external_torque),
             );
             self.insert_detached(DetachedFloe {
@@ -147,14 +146,14 @@ impl<F: ExternalForces> World<F> {
     }
 }
 
-/// A piece's last forces for its next half kick: `external` (force,
-/// torque), its contacts' and its bonds' (the bonds' torques, taken about
-/// the parent's centroid, moved to the piece's, `offset` from it).
-fn piece_forces(
+/// A piece's (or a welded floe's) last forces for its next half kick:
+/// `external` (force, torque), its contacts' and its bonds' (each bond's
+/// torque, taken about its old floe's centroid, moved to the new floe's,
+/// the offset beside it from the old one).
+pub(super) fn piece_forces<'a>(
     floe: &Floe,
     contacts: &[([u64; 2], ContactRecord)],
-    bonds: &[([u64; 2], Bond)],
-    offset: Vec2,
+    bonds: impl Iterator<Item = (&'a ([u64; 2], Bond), Vec2)>,
     (external_force, external_torque): (Vec2, f64),
 ) -> (Vec2, f64) {
     // `0.0 +`: a torque of -0.0 starts at +0.0, as it always has.
@@ -168,7 +167,7 @@ fn piece_forces(
         force += on_this;
         torque += cross(c.point - arm_origin, on_this);
     }
-    for ([a, _], bond) in bonds {
+    for (([a, _], bond), offset) in bonds {
         let (on_this, about_parent) = if *a == floe.id {
             (-bond.force_on_b, bond.torque_on_a)
         } else {
@@ -205,7 +204,7 @@ fn holder(pieces: &[Vec<Vec2>], at: Vec2) -> usize {
 /// and image offset are moved to the piece's frame: the piece is stored at
 /// `piece.position`, which is `piece_offset` from the parent's centroid up
 /// to a period. The next detection recomputes its geometry.
-fn rekey(
+pub(super) fn rekey(
     mut record: ContactRecord,
     parent_was_b: bool,
     other: u64,
@@ -245,7 +244,7 @@ fn rekey(
 /// relative rotation: its energy and loads keep their values), only
 /// expressed in the piece's frame, with the roles swapped when the piece's
 /// id is above `other`.
-fn rekey_bond(
+pub(super) fn rekey_bond(
     mut bond: Bond,
     (parent_was_b, parent_angle): (bool, f64),
     (piece_id, piece_anchor): (u64, Vec2),

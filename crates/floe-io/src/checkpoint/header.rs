@@ -5,8 +5,11 @@ use super::bytes::ReadResult;
 
 /// First bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"FLOECKPT";
-/// Version of the encoding written for a state with a ridging ledger.
-pub const FORMAT_VERSION: u32 = 10;
+/// Version of the encoding written for a state with a welding ledger.
+pub const FORMAT_VERSION: u32 = 11;
+/// Version written for a state that has ridged but not welded: 11 without
+/// its last section.
+pub const WITHOUT_WELDING_VERSION: u32 = 10;
 /// Version written for a state with bonds but no ridging: 10 without its
 /// last section.
 pub const WITHOUT_RIDGING_VERSION: u32 = 9;

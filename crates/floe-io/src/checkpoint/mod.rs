@@ -22,9 +22,10 @@
 //! samples per observable), `floes` (the columns), `contacts` (touching
 //! and broken, with their friction states), `clock_and_energy`,
 //! `schedules` (motion schedules and load points), `stress_controls` and
-//! `life_cycle` (floe stress, the next floe id), `bonds` and `ridging`
-//! (its ledger). [`encode`] writes the current format ([`FORMAT_VERSION`])
-//! for a state that has ridged, version 9 for one with bonds, version 8
+//! `life_cycle` (floe stress, the next floe id), `bonds`, `ridging` and
+//! `welding` (their ledgers). [`encode`] writes the current format
+//! ([`FORMAT_VERSION`]) for a state that has welded, version 10 for one
+//! that has ridged, version 9 for one with bonds, version 8
 //! for one with floe stress or a next floe id but no bonds, and
 //! version 7 for one with neither (the same bytes as before the life cycle
 //! existed); the readers branch on the version
@@ -33,6 +34,7 @@
 //!
 //! | version | differs from the next by |
 //! | --- | --- |
+//! | 10 | no welding ledger |
 //! | 9 | no ridging ledger |
 //! | 8 | no bonds |
 //! | 7 | no life cycle (floe stress, next floe id) |
@@ -57,11 +59,13 @@ mod life_cycle;
 mod ridging;
 mod schedules;
 mod stress_controls;
+mod welding;
 
 pub use counts::OutputCounts;
 pub use header::{
     fnv1a64, verify, FORMAT_VERSION, HEADER_LEN, MAGIC, OLDEST_READABLE_VERSION,
     WITHOUT_BONDS_VERSION, WITHOUT_LIFE_CYCLE_VERSION, WITHOUT_RIDGING_VERSION,
+    WITHOUT_WELDING_VERSION,
 };
 
 use bytes::{ReadResult, Reader, Writer};
@@ -103,6 +107,7 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
         floe_stress,
         next_floe_id,
         ridging,
+        welding,
     } = state;
     floes::write(w, floes);
     contacts::write_touching(w, contacts);
@@ -118,7 +123,8 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
     stress_controls::write(w, stress_controls);
     // A state without the life cycle is written as version 7, byte for
     // byte what floe wrote before the life cycle existed.
-    let ridged = *ridging != Default::default();
+    let welded = *welding != Default::default();
+    let ridged = *ridging != Default::default() || welded;
     if stress_filter.is_none() && *next_floe_id == 0 && bonds.is_empty() && !ridged {
         return header::write(&w.bytes, WITHOUT_LIFE_CYCLE_VERSION);
     }
@@ -136,6 +142,10 @@ pub fn encode(state: &WorldState, counts: &OutputCounts, law_state_slots: usize)
         return header::write(&w.bytes, WITHOUT_RIDGING_VERSION);
     }
     ridging::write(w, ridging);
+    if !welded {
+        return header::write(&w.bytes, WITHOUT_WELDING_VERSION);
+    }
+    welding::write(w, welding);
     header::write(&w.bytes, FORMAT_VERSION)
 }
 
@@ -194,6 +204,7 @@ pub fn decode(
         floe_stress: Vec::new(),
         next_floe_id: 0,
         ridging: Default::default(),
+        welding: Default::default(),
     };
     let mut state = state;
     let life = life_cycle::read(r)?;
@@ -201,6 +212,7 @@ pub fn decode(
         (life.stress_filter, life.floe_stress, life.next_floe_id);
     state.bonds = bonds::read(r)?;
     state.ridging = ridging::read(r)?;
+    state.welding = welding::read(r)?;
     if r.unread() != 0 {
         return Err(format!("{} unread bytes after the state", r.unread()));
     }

@@ -155,6 +155,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             floe_stress,
             next_floe_id: state.next_floe_id,
             ridging: state.ridging,
+            welding: state.welding,
         }))
     }
 

@@ -159,6 +159,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             floe_stress,
             next_floe_id: clock.next_floe_id,
             ridging: clock.ridging,
+            welding: clock.welding,
             floes,
         };
         let f = state.floes.columns();
@@ -335,6 +336,8 @@ pub(super) struct Clock {
     next_floe_id: u64,
     /// What ridging moved (the same on every process).
     ridging: floe_dem::ridging::RidgingLedger,
+    /// What welding did (the same on every process).
+    welding: floe_dem::welding::WeldingLedger,
 }
 
 impl Clock {
@@ -347,6 +350,7 @@ impl Clock {
             stress_time_scale_s: state.stress_filter.map(|f| f.time_scale_s),
             next_floe_id: state.next_floe_id,
             ridging: state.ridging,
+            welding: state.welding,
         }
     }
 }

@@ -38,6 +38,7 @@ use floe_dem::run::{check_health, BlowUp, StepReport, Stepper};
 use floe_dem::state::WorldState;
 use floe_dem::stress_control::StressControl;
 use floe_dem::tessellation::Rect;
+use floe_dem::welding::Welding;
 use floe_dem::world::{Kinematics, World};
 use floe_dem::Vec2;
 
@@ -52,6 +53,7 @@ mod halo;
 mod migration;
 mod placement;
 mod ridging;
+mod welding;
 
 use halo::KINEMATICS_BYTES;
 use migration::{migrant, Clock};
@@ -278,6 +280,9 @@ pub struct DistributedWorld<F: ExternalForces, C: Communicator> {
     cohesion: Option<Cohesion>,
     /// Floes ridge after every step, if on (kept here for the same reason).
     ridging: Option<Ridging>,
+    /// Bonded floes weld after every step, if on (kept here for the same
+    /// reason).
+    welding: Option<Welding>,
 }
 
 impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
@@ -336,6 +341,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
             fracturing: None,
             cohesion: None,
             ridging: None,
+            welding: None,
         };
         let packets = match &whole {
             Some(state) => this.scatter_packets(state),
@@ -496,6 +502,7 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
                 self.migrate()?;
             }
             report.ridges = self.ridge()?;
+            report.welds = self.weld()?;
             if let Some(f) = self.fracturing {
                 report.fractures = self.fracture(&f.rule, f.domain_area_m2)?;
             }

@@ -1,17 +1,18 @@
-//! `[floe_stress]`, `[fracture]`, `[cohesion]` and `[ridging]`: the floe
-//! life cycle's settings.
+//! `[floe_stress]`, `[fracture]`, `[cohesion]`, `[ridging]` and
+//! `[welding]`: the floe life cycle's settings.
 
 use floe_dem::cohesion::Cohesion;
 use floe_dem::fracture::criteria::{FractureCriterion, HiblerEllipse, MohrCoulomb};
 use floe_dem::fracture::rule::StrengthThickness;
 use floe_dem::pipeline::floe_stress::StressFilter;
 use floe_dem::ridging::{Ridging, Rubble};
+use floe_dem::welding::Welding;
 use toml::Spanned;
 
 use crate::error::ScenarioError;
 use crate::resolve::limits::{count, refuse_given, span_of};
 use crate::source_file::SourceFile;
-use crate::spec::{RawCohesion, RawFloeStress, RawFracture, RawRidging};
+use crate::spec::{RawCohesion, RawFloeStress, RawFracture, RawRidging, RawWelding};
 
 /// Smallest floe that breaks unless given, m^2: the anchors' smallest
 /// floe (Subzero.jl `FloeSettings.min_floe_area`).
@@ -131,6 +132,49 @@ pub(crate) fn resolve_ridging(
             "ridging.rubble",
             &[("gainer", Rubble::Gainer), ("both", Rubble::Both)],
             d.rubble,
+        )?,
+    }))
+}
+
+/// `[welding]`, if given: each value checked (the largest area > 0, the
+/// others >= 0), the rest [`Welding::default`]'s; refused at the table
+/// without `[cohesion]`, whose bonds it welds.
+pub(crate) fn resolve_welding(
+    f: &SourceFile,
+    raw: Option<&Spanned<RawWelding>>,
+    cohesion: Option<&Cohesion>,
+) -> Result<Option<Welding>, ScenarioError> {
+    let Some(raw) = raw else {
+        return Ok(None);
+    };
+    if cohesion.is_none() {
+        return Err(f.error(
+            raw.span(),
+            "welding",
+            "welds floes frozen together, and the scenario has no [cohesion] table to freeze them: add one, or drop [welding]",
+        ));
+    }
+    let r = raw.get_ref();
+    let d = Welding::default();
+    let non_negative = |v: &Option<Spanned<f64>>, key: &str, default: f64| match v {
+        Some(x) => f.non_negative(x, &format!("welding.{key}")),
+        None => Ok(default),
+    };
+    Ok(Some(Welding {
+        after_s: non_negative(&r.after_s, "after_s", d.after_s)?,
+        max_added_area_fraction: non_negative(
+            &r.max_added_area_fraction,
+            "max_added_area_fraction",
+            d.max_added_area_fraction,
+        )?,
+        max_area_m2: match &r.max_area_m2 {
+            Some(x) => f.positive(x, "welding.max_area_m2")?,
+            None => d.max_area_m2,
+        },
+        max_centre_shift_fraction: non_negative(
+            &r.max_centre_shift_fraction,
+            "max_centre_shift_fraction",
+            d.max_centre_shift_fraction,
         )?,
     }))
 }

@@ -40,7 +40,9 @@ use domain::resolve_domain;
 use floes::resolve_floes;
 use forcing::resolve_forcing;
 use ice::resolve_ice;
-use life_cycle::{resolve_cohesion, resolve_floe_stress, resolve_fracture, resolve_ridging};
+use life_cycle::{
+    resolve_cohesion, resolve_floe_stress, resolve_fracture, resolve_ridging, resolve_welding,
+};
 pub use life_cycle::{FractureSettings, DEFAULT_CHECK_EVERY_S, DEFAULT_MIN_FLOE_AREA_M2};
 use limits::count;
 use output::resolve_output;
@@ -117,6 +119,8 @@ pub(crate) struct Resolved {
     pub cohesion: Option<floe_dem::cohesion::Cohesion>,
     /// `[ridging]`, if floes ridge.
     pub ridging: Option<floe_dem::ridging::Ridging>,
+    /// `[welding]`, if bonded floes weld.
+    pub welding: Option<floe_dem::welding::Welding>,
 }
 /// Most time steps a run may take unless raised (`floe run --step-limit`):
 /// about a day at 1e4 steps/s, beyond which a step count is a typo.
@@ -231,6 +235,7 @@ pub(crate) fn resolve(
     let floe_stress = resolve_floe_stress(f, raw.floe_stress.as_ref())?;
     let cohesion = resolve_cohesion(f, raw.cohesion.as_ref())?;
     let ridging = resolve_ridging(f, raw.ridging.as_ref())?;
+    let welding = resolve_welding(f, raw.welding.as_ref(), cohesion.as_ref())?;
     if let Some(log) = raw.output.as_ref().and_then(|o| o.ridging_log.as_ref()) {
         if *log.get_ref() && ridging.is_none() {
             return Err(f.error(
@@ -286,6 +291,7 @@ pub(crate) fn resolve(
         fracture_spans,
         cohesion,
         ridging,
+        welding,
     })
 }
 
