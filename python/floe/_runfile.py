@@ -252,6 +252,13 @@ class Run:
         ridging_log = true``): columns as in docs/output.md."""
         return xr.Dataset({k: ("event", v) for k, v in self._reader.ridges().items()})
 
+    def welds(self) -> xr.Dataset:
+        """The welding log on the dimension ``event`` (runs with
+        ``[welding]``): ``step``, ``time``, ``first``, ``second``,
+        ``welded`` (ids), areas, ``mass``, ``thickness``, ``centre_shift``
+        and the energies, as in docs/output.md."""
+        return xr.Dataset({k: ("event", v) for k, v in self._reader.welds().items()})
+
 
 def export_xdmf(run: Union[Run, PathLike], out: PathLike = None, *, force: bool = False) -> str:
     """Describe the run file for ParaView, as ``floe export RUN.h5 --xdmf``:

@@ -257,6 +257,31 @@ impl RunReader {
         Ok(d)
     }
 
+    /// The welding log as columns (empty for a run without one).
+    fn welds<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let rows = self.read(py, RunFile::welds)?;
+        let d = PyDict::new(py);
+        macro_rules! column {
+            ($name:literal, $f:expr) => {
+                d.set_item($name, array(py, rows.iter().map($f).collect()))?;
+            };
+        }
+        column!("step", |r| r.step);
+        column!("time", |r| r.time_s);
+        column!("first", |r| r.ids[0]);
+        column!("second", |r| r.ids[1]);
+        column!("welded", |r| r.welded_id);
+        column!("area_first", |r| r.areas_m2[0]);
+        column!("area_second", |r| r.areas_m2[1]);
+        column!("area", |r| r.area_m2);
+        column!("mass", |r| r.mass_kg);
+        column!("thickness", |r| r.thickness_m);
+        column!("centre_shift", |r| r.centre_shift_m);
+        column!("kinetic_energy_lost", |r| r.kinetic_energy_lost_j);
+        column!("energy_released", |r| r.released_j);
+        Ok(d)
+    }
+
     fn __repr__(&self) -> String {
         format!("RunReader({})", self.path.display())
     }

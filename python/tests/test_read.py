@@ -15,6 +15,7 @@ import floe
 from conftest import ROOT, run_cli
 
 FRACTURE = ROOT / "tests" / "data" / "run_fracture.toml"
+WELDING = ROOT / "tests" / "data" / "run_welding.toml"
 
 
 @pytest.fixture(scope="module")
@@ -100,6 +101,22 @@ def test_observables_parameters_and_logs(fracture_run):
     assert run.scenario["fracture.criterion"] == "mohr_coulomb"
     assert "floe" in run.provenance.attrs["command_line"]
     assert len(run.ridges()["step"]) == 0
+    assert len(run.welds()["step"]) == 0
+
+
+def test_the_welding_log_is_h5py_s(tmp_path, floe_binary):
+    out = tmp_path / "welding.h5"
+    run_cli(floe_binary, "run", str(WELDING), "-o", str(out), "--quiet")
+    welds = floe.open_run(out).welds()
+    with h5py.File(out, "r") as f:
+        for name in f["welding"]:
+            np.testing.assert_array_equal(welds[name].values, f["welding"][name][()])
+    assert len(welds["step"]) >= 10
+    # The welded floe is the pair's hull: never smaller than the pair less
+    # its overlap; ids counted on in order.
+    pair = welds["area_first"] + welds["area_second"]
+    assert bool((welds["area"] > 0.99 * pair).all())
+    assert list(np.diff(welds["welded"].values)) == [1] * (len(welds["step"]) - 1)
 
 
 def test_bad_files_and_indices(tmp_path, fracture_run):
