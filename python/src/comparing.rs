@@ -4,9 +4,9 @@
 
 use std::path::PathBuf;
 
-use floe_friction::experiments::MAX_LOAD_POINT_SPEED_M_PER_S;
 use floe_friction::LawRegistry;
 use floe_scenario::law_variants::{LawChoice, Matching};
+use floe_scenario::value_ranges;
 use floe_study::compare::metrics::MetricOptions;
 use floe_study::compare::report::Summary;
 use floe_study::compare::CompareArgs;
@@ -36,15 +36,13 @@ pub fn compare<'py>(
     on_progress: Option<Py<PyAny>>,
     command_line: Option<Vec<String>>,
 ) -> PyResult<(PathBuf, Bound<'py, PyList>)> {
-    if !(reference_slip_m_per_s > 0.0 && reference_slip_m_per_s <= MAX_LOAD_POINT_SPEED_M_PER_S) {
-        return Err(PyValueError::new_err(format!(
-            "reference_slip_m_per_s={reference_slip_m_per_s}: a speed in m/s, > 0 and at most {MAX_LOAD_POINT_SPEED_M_PER_S}"
-        )));
-    }
-    if let Some(mu) = amontons_mu.filter(|mu| !(0.0..=10.0).contains(mu)) {
-        return Err(PyValueError::new_err(format!(
-            "amontons_mu={mu}: a friction coefficient, 0 to 10"
-        )));
+    let refuse = |name: &str, x: f64, range: String| {
+        PyValueError::new_err(format!("{name}={x}: expected {range}"))
+    };
+    value_ranges::load_point_speed(reference_slip_m_per_s)
+        .map_err(|r| refuse("reference_slip_m_per_s", reference_slip_m_per_s, r))?;
+    if let Some(mu) = amontons_mu {
+        value_ranges::friction_coefficient(mu).map_err(|r| refuse("amontons_mu", mu, r))?;
     }
     if laws.is_empty() {
         return Err(PyValueError::new_err("laws: name at least one law"));

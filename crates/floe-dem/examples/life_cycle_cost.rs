@@ -11,7 +11,11 @@
 //! * `break`: the cone at a compressive strength of `SIGMA_C` Pa (the 4th
 //!   argument, default 10), low enough that floes break, the stress
 //!   averaged over 1 s: the cost of the splits, less the watching, over
-//!   the splits made.
+//!   the splits made;
+//! * `bonded`: every contact bonded at once (cohesion, no bond breaking);
+//! * `weld-watch`: `bonded` with welding checked after every step, every
+//!   bond old enough and every hull computed, then refused by its area
+//!   (at most 1 m^2): the most a welding check costs when nothing welds.
 //!
 //! Instructions are counted by running it under
 //! `valgrind --tool=callgrind` at two step counts and taking the
@@ -45,8 +49,27 @@ fn main() {
             "plain" => None,
             "check" => Some(MohrCoulomb::default().sigma_c_pa),
             "break" => Some(number(4, 10.0)),
-            other => panic!("mode {other}: plain, check or break"),
+            "bonded" | "weld-watch" => None,
+            other => panic!("mode {other}: plain, check, break, bonded or weld-watch"),
         };
+        if mode == "bonded" || mode == "weld-watch" {
+            w.set_cohesion(Some(floe_dem::cohesion::Cohesion {
+                quiet_speed_m_per_s: 1e3,
+                bond_after_s: 0.0,
+                tensile_strength_n_per_m: 1e15,
+                shear_strength_n_per_m: 1e15,
+                growth_time_s: 0.0,
+            }))
+            .expect("cohesion");
+        }
+        if mode == "weld-watch" {
+            w.set_welding(Some(floe_dem::welding::Welding {
+                after_s: 0.0,
+                max_area_m2: 1.0,
+                ..Default::default()
+            }))
+            .expect("welding");
+        }
         if mode == "break" {
             // A short average, so that floes break within a few steps: the
             // cost of a split does not depend on it.
@@ -93,9 +116,10 @@ fn main() {
                 .count();
         }
         println!(
-            "{mode}: {} floes ({floes0} at the start), {} contacts, {splits} splits in {steps} steps of {:.3} s",
+            "{mode}: {} floes ({floes0} at the start), {} contacts, {} bonds, {splits} splits in {steps} steps of {:.3} s",
             w.floes().len(),
             w.contacts().len(),
+            w.bonds().iter().filter(|b| b.formed).count(),
             w.dt_s()
         );
     });

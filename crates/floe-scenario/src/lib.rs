@@ -48,6 +48,7 @@ pub mod spec;
 pub mod start_time;
 pub mod stress_wall;
 mod tessellation;
+pub mod value_ranges;
 
 pub use domain::Domain;
 pub use error::ScenarioError;

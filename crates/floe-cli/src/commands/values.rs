@@ -1,6 +1,8 @@
 //! What each flag's value may be: clap value parsers whose messages state
 //! the accepted range.
 
+use floe_scenario::value_ranges;
+
 /// A finite number > 0.
 pub fn positive(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
@@ -9,18 +11,17 @@ pub fn positive(text: &str) -> Result<f64, String> {
     }
 }
 
+/// `text` as a number that `check` accepts (a range of
+/// `floe_scenario::value_ranges`), or the range it must lie in.
+fn checked(text: &str, check: impl Fn(f64) -> Result<f64, String>) -> Result<f64, String> {
+    let number = text.parse::<f64>().unwrap_or(f64::NAN);
+    check(number).map_err(|range| format!("expected {range}, got `{text}`"))
+}
+
 /// A number in `(min, max]` (`[min, max]` when `closed`), for a flag
 /// whose accepted range the message states.
 fn bounded(text: &str, min: f64, closed: bool, max: f64, what: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(x) if (x > min || (closed && x == min)) && x <= max => Ok(x),
-        _ => Err(format!(
-            "expected {what} {} {} and <= {}, got `{text}`",
-            if closed { ">=" } else { ">" },
-            floe_scenario::numbers::short(min),
-            floe_scenario::numbers::short(max)
-        )),
-    }
+    checked(text, |x| value_ranges::in_range(x, min, closed, max, what))
 }
 
 /// A movie's frame rate.
@@ -43,13 +44,12 @@ pub fn normal_load(text: &str) -> Result<f64, String> {
 
 /// A load-point speed, m/s.
 pub fn load_point_speed(text: &str) -> Result<f64, String> {
-    let max = floe_friction::experiments::MAX_LOAD_POINT_SPEED_M_PER_S;
-    bounded(text, 0.0, false, max, "a speed in m/s")
+    checked(text, value_ranges::load_point_speed)
 }
 
 /// A friction coefficient: 0 to 10 (sea ice's are below 1).
 pub fn friction_coefficient(text: &str) -> Result<f64, String> {
-    bounded(text, 0.0, true, 10.0, "a friction coefficient")
+    checked(text, value_ranges::friction_coefficient)
 }
 
 /// A finite factor > 1.
