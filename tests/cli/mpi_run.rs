@@ -126,8 +126,8 @@ fn floes_break_on_two_and_three_processes_as_on_one_and_resume_across_counts() {
 }
 
 /// `scenario` on two and three processes, and paused on two and resumed on
-/// three, gives one process's run file.
-fn on_two_and_three_processes_as_on_one(scenario: &str) {
+/// `resumed_on`, gives one process's run file.
+fn on_two_and_three_processes_as_on_one(scenario: &str, resumed_on: usize) {
     let case = Case::new(scenario);
     case.run_ok("alone.h5", &["--threads", "1"]);
     for np in [2, 3] {
@@ -141,19 +141,21 @@ fn on_two_and_three_processes_as_on_one(scenario: &str) {
     }
     let out = case.run_with(Launch::Mpi(2), "parts.h5", &["--max-steps", "137"]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
-    let out = case.resume_with(Launch::Mpi(3), "parts.h5", &[]);
+    let out = case.resume_with(Launch::Mpi(resumed_on), "parts.h5", &[]);
     assert_eq!(code(&out), 0, "{}", text(&out.stderr));
     case.assert_same("alone.h5", "parts.h5");
 }
 
 #[test]
 fn floes_ridge_on_two_and_three_processes_as_on_one() {
-    on_two_and_three_processes_as_on_one(RIDGING);
+    on_two_and_three_processes_as_on_one(RIDGING, 3);
 }
 
 #[test]
 fn floes_weld_on_two_and_three_processes_as_on_one() {
-    on_two_and_three_processes_as_on_one(WELDING);
+    // Resumed on two: by step 137 the welded floes are wider than a third
+    // of the channel, which three processes would refuse to split.
+    on_two_and_three_processes_as_on_one(WELDING, 2);
 }
 
 #[test]

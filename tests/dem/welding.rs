@@ -43,6 +43,7 @@ fn welding_after(after_s: f64) -> Welding {
     Welding {
         after_s,
         max_centre_shift_fraction: 0.5,
+        check_every_s: 0.0,
         ..Welding::default()
     }
 }
@@ -331,6 +332,7 @@ fn welding_is_bitwise_the_same_for_any_thread_count_and_across_a_resume() {
         after_s: 40.0,
         max_added_area_fraction: 0.5,
         max_centre_shift_fraction: 0.5,
+        check_every_s: 0.0,
         ..Welding::default()
     };
     let stop = AtomicBool::new(false);

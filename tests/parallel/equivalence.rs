@@ -767,6 +767,7 @@ fn loose_welding() -> Welding {
         after_s: 5.0,
         max_added_area_fraction: 0.5,
         max_centre_shift_fraction: 0.5,
+        check_every_s: 0.0,
         ..Welding::default()
     }
 }

@@ -1562,6 +1562,7 @@ fn welding_tables_are_checked_key_by_key() {
         "after_s",
         "max_added_area_fraction",
         "max_centre_shift_fraction",
+        "check_every_s",
     ] {
         let text = with(&format!("{key} = -2.5"));
         check(&text, "-2.5", 0, &format!("welding.{key}"), &[">= 0"]);

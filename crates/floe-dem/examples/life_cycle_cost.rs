@@ -66,6 +66,7 @@ fn main() {
             w.set_welding(Some(floe_dem::welding::Welding {
                 after_s: 0.0,
                 max_area_m2: 1.0,
+                check_every_s: 0.0,
                 ..Default::default()
             }))
             .expect("welding");

@@ -94,11 +94,12 @@ pub(crate) fn describe_ridging(r: &floe_dem::ridging::Ridging) -> String {
 /// The welding line of the build report.
 pub(crate) fn describe_welding(w: &floe_dem::welding::Welding) -> String {
     format!(
-        "  welding: floes bonded for {} s become their convex hull if it adds at most {} % of their area, is at most {} m^2 and moves their centre of mass at most {} % of its radius",
+        "  welding: floes bonded for {} s become their convex hull if it adds at most {} % of their area, is at most {} m^2 and moves their centre of mass at most {} % of its radius; checked every {} s",
         sig(w.after_s),
         sig(100.0 * w.max_added_area_fraction),
         sig(w.max_area_m2),
         sig(100.0 * w.max_centre_shift_fraction),
+        sig(w.check_every_s),
     )
 }
 

@@ -71,6 +71,7 @@ pub(crate) struct RawWelding {
     pub max_added_area_fraction: Num,
     pub max_area_m2: Num,
     pub max_centre_shift_fraction: Num,
+    pub check_every_s: Num,
 }
 
 /// `[ridging]`

@@ -24,7 +24,11 @@
 //! * the hull adds at most 5 % of the pair's area as new ice (the pair's
 //!   outline, not a floe swollen over open water);
 //! * at most 2e9 m^2, Subzero.jl's largest welded floe;
-//! * the centre of mass moves at most 5 % of the welded floe's radius.
+//! * the centre of mass moves at most 5 % of the welded floe's radius;
+//! * checked every hour: a bond needs days to weld, and each check
+//!   computes the hull of every bond old enough (about 8,000 instructions
+//!   a bond at 1e4 floes, `life_cycle_cost 10000 N weld-watch`), more than
+//!   a step costs when the pack is frozen.
 
 pub mod ledger;
 
@@ -44,6 +48,9 @@ pub struct Welding {
     /// The centre of mass may move at most this fraction of the welded
     /// floe's radius.
     pub max_centre_shift_fraction: f64,
+    /// Welds are looked for every this many seconds (at the steps whose
+    /// count is a multiple of it in steps, at least 1), s (0: every step).
+    pub check_every_s: f64,
 }
 
 impl Default for Welding {
@@ -53,6 +60,7 @@ impl Default for Welding {
             max_added_area_fraction: 0.05,
             max_area_m2: 2e9,
             max_centre_shift_fraction: 0.05,
+            check_every_s: 3600.0,
         }
     }
 }
@@ -65,9 +73,11 @@ impl Welding {
             max_added_area_fraction,
             max_area_m2,
             max_centre_shift_fraction,
+            check_every_s,
         } = *self;
         for (name, value) in [
             ("after_s", after_s),
+            ("check_every_s", check_every_s),
             ("max_added_area_fraction", max_added_area_fraction),
             ("max_centre_shift_fraction", max_centre_shift_fraction),
         ] {
@@ -80,11 +90,32 @@ impl Welding {
         }
         Ok(())
     }
+
+    /// Whether welds are looked for after step `step` of `dt_s`.
+    pub fn due(&self, step: u64, dt_s: f64) -> bool {
+        let every = (self.check_every_s / dt_s).round().max(1.0) as u64;
+        step.is_multiple_of(every)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn welds_are_looked_for_at_multiples_of_the_check_interval() {
+        let w = Welding {
+            check_every_s: 10.0,
+            ..Welding::default()
+        };
+        let due: Vec<u64> = (1..=45).filter(|&s| w.due(s, 0.5)).collect();
+        assert_eq!(due, vec![20, 40]);
+        let every = Welding {
+            check_every_s: 0.0,
+            ..w
+        };
+        assert!((1..=5).all(|s| every.due(s, 0.5)));
+    }
 
     #[test]
     fn bad_parameters_are_refused_by_name() {
@@ -105,6 +136,13 @@ mod tests {
                     ..d
                 },
                 "max_area_m2",
+            ),
+            (
+                Welding {
+                    check_every_s: -1.0,
+                    ..d
+                },
+                "check_every_s",
             ),
             (
                 Welding {

@@ -114,6 +114,9 @@ impl<F: ExternalForces> World<F> {
         let Some(welding) = self.welding else {
             return Ok(Vec::new());
         };
+        if !welding.due(self.state.steps, self.state.dt_s) {
+            return Ok(Vec::new());
+        }
         let plans = self.plan_welding(&welding)?;
         if plans.is_empty() {
             return Ok(plans);

@@ -26,6 +26,10 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         let Some(welding) = self.welding else {
             return Ok(Vec::new());
         };
+        let world = self.local();
+        if !welding.due(world.steps(), world.dt_s()) {
+            return Ok(Vec::new());
+        }
         let plans = self.local().plan_welding(&welding)?;
         let mut all: Vec<Weld> = Vec::new();
         for bytes in self.comm.all_gather(encode(&plans)) {

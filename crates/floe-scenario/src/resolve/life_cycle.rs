@@ -176,6 +176,7 @@ pub(crate) fn resolve_welding(
             "max_centre_shift_fraction",
             d.max_centre_shift_fraction,
         )?,
+        check_every_s: non_negative(&r.check_every_s, "check_every_s", d.check_every_s)?,
     }))
 }
 
