@@ -824,6 +824,13 @@ fn floes_weld_keeping_their_volume_and_a_paused_run_resumes_bitwise() {
         );
         assert_eq!(next.welded_id, r.welded_id + 1, "numbered in order");
     }
+    // `floe info` reports the welds and the last snapshot's floe count.
+    let info = run_ok(&["info", &case.path("whole.h5")]);
+    assert!(
+        info.contains(&format!("{} pairs welded", log.len()))
+            && info.contains(&format!("{} at the last snapshot", count0 - log.len())),
+        "{info}"
+    );
     for r in &log {
         assert!((r.time_s - r.step as f64 * dt).abs() <= 1e-9 * end.time_s);
         // The hull is at most 30 % larger than the pair (the scenario's

@@ -73,7 +73,10 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
         k => Some(run.floes_at(k - 1)?).filter(|last| last.id != floes.id),
     };
     let broke = now.as_ref().map_or(String::new(), |last| {
-        format!("; {} at the last snapshot (floes broke)", last.len())
+        format!(
+            "; {} at the last snapshot (floes broke or welded)",
+            last.len()
+        )
     });
     line(
         "floes",
@@ -178,6 +181,25 @@ fn describe_open(run: &RunFile) -> Result<String, floe_io::IoError> {
                     significant(volume(true), 4),
                     significant(thickest(snapshots - 1)?, 4),
                     significant(thickest(0)?, 4),
+                ),
+            );
+        }
+        let welds = run.welds()?;
+        if !welds.is_empty() {
+            let added: f64 = welds
+                .iter()
+                .map(|w| w.area_m2 - w.areas_m2[0] - w.areas_m2[1])
+                .sum();
+            let released: f64 = welds.iter().map(|w| w.released_j).sum();
+            let largest = welds.iter().map(|w| w.area_m2).fold(0.0, f64::max);
+            line(
+                "welding",
+                format!(
+                    "{} pairs welded: {} m^2 of open water closed, {} J of contact and bond energy released; largest welded floe {} m^2",
+                    welds.len(),
+                    significant(added, 4),
+                    significant(released, 4),
+                    significant(largest, 4),
                 ),
             );
         }
