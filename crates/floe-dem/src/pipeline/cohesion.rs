@@ -52,50 +52,99 @@ fn contact_speed(f: &FloeColumns, c: &ContactRecord) -> f64 {
 
 /// Updates `bonds` for the step: candidates from the quiet contacts,
 /// bonds formed, every bond evaluated, the overloaded broken. Returns the
-/// number broken; adds the step's energies to `power`.
+/// number broken; adds the step's energies to `power`. `fresh` is scratch
+/// for the pairs that turned quiet this step.
 pub(crate) fn update_bonds(
     input: &CohesionInput<'_>,
     bonds: &mut Vec<Bond>,
-    scratch: &mut Vec<Bond>,
+    fresh: &mut Vec<(usize, usize)>,
     power: &mut BondPower,
 ) -> usize {
     let f = input.floes;
     let cohesion = input.cohesion;
     let t = input.time_s;
     // Candidates and formations: a walk over the contacts and the bonds,
-    // both sorted by pair.
-    scratch.clear();
-    let mut old = bonds.iter().peekable();
-    for c in input.contacts {
-        let key = (c.a, c.b);
-        while let Some(b) = old.next_if(|b| (b.a, b.b) < key) {
-            if b.formed {
-                scratch.push(*b);
-            }
-        }
-        let previous = old.next_if(|b| (b.a, b.b) == key).copied();
-        if let Some(b) = previous.filter(|b| b.formed) {
-            scratch.push(b);
-            continue;
-        }
+    // both sorted by pair, compacting the list in place (an entry is
+    // written at or before where it was read). A formed bond stays; a
+    // candidate stays while its contact is quiet, and forms once it has
+    // been quiet long enough; a contact that turned quiet is noted in
+    // `fresh` with where its candidate goes, and merged in afterwards (a
+    // second list of every bond would double the memory bonds take).
+    let formed_from = |candidate: &Bond, c: &ContactRecord| {
         let (ha, hb) = (c.a as usize, c.b as usize);
-        if !(f.is_free(ha) || f.is_free(hb)) || contact_speed(f, c) >= cohesion.quiet_speed_m_per_s
-        {
+        let (ea, eb) = (
+            end(f, input.trig, ha, Vec2::ZERO),
+            end(f, input.trig, hb, c.image_offset),
+        );
+        form_bond(input.model, candidate, c, &ea, &eb, t)
+    };
+    let quiet = |c: &ContactRecord| {
+        let (ha, hb) = (c.a as usize, c.b as usize);
+        (f.is_free(ha) || f.is_free(hb)) && contact_speed(f, c) < cohesion.quiet_speed_m_per_s
+    };
+    fresh.clear();
+    let (n, mut read, mut write) = (bonds.len(), 0, 0);
+    let key = |b: &Bond| (b.a, b.b);
+    for (k, c) in input.contacts.iter().enumerate() {
+        let pair = (c.a, c.b);
+        while read < n && key(&bonds[read]) < pair {
+            if bonds[read].formed {
+                bonds[write] = bonds[read];
+                write += 1;
+            }
+            read += 1;
+        }
+        let previous = (read < n && key(&bonds[read]) == pair).then(|| {
+            read += 1;
+            bonds[read - 1]
+        });
+        if let Some(b) = previous.filter(|b| b.formed) {
+            bonds[write] = b;
+            write += 1;
             continue;
         }
-        let candidate = previous.unwrap_or(Bond::candidate(c.a, c.b, t));
-        if t - candidate.quiet_since_s >= cohesion.bond_after_s {
-            let (ea, eb) = (
-                end(f, input.trig, ha, Vec2::ZERO),
-                end(f, input.trig, hb, c.image_offset),
-            );
-            scratch.push(form_bond(input.model, &candidate, c, &ea, &eb, t));
-        } else {
-            scratch.push(candidate);
+        if !quiet(c) {
+            continue;
+        }
+        match previous {
+            Some(candidate) => {
+                bonds[write] = if t - candidate.quiet_since_s >= cohesion.bond_after_s {
+                    formed_from(&candidate, c)
+                } else {
+                    candidate
+                };
+                write += 1;
+            }
+            None => fresh.push((write, k)),
         }
     }
-    scratch.extend(old.filter(|b| b.formed));
-    std::mem::swap(bonds, scratch);
+    while read < n {
+        if bonds[read].formed {
+            bonds[write] = bonds[read];
+            write += 1;
+        }
+        read += 1;
+    }
+    bonds.truncate(write);
+    // The new candidates into their places, from the back.
+    let kept = bonds.len();
+    let placeholder = Bond::candidate(0, 0, 0.0);
+    bonds.resize(kept + fresh.len(), placeholder);
+    let mut from = kept;
+    for (j, &(at, k)) in fresh.iter().enumerate().rev() {
+        let shift = j + 1;
+        while from > at {
+            from -= 1;
+            bonds[from + shift] = bonds[from];
+        }
+        let c = &input.contacts[k];
+        let candidate = Bond::candidate(c.a, c.b, t);
+        bonds[at + j] = if t - candidate.quiet_since_s >= cohesion.bond_after_s {
+            formed_from(&candidate, c)
+        } else {
+            candidate
+        };
+    }
 
     // Every bond's forces, then the breaks.
     bonds.par_iter_mut().filter(|b| b.formed).for_each(|bond| {

@@ -80,8 +80,9 @@ pub struct Pipeline {
     /// stepped here for its contacts but not counted in the energy sums.
     /// Empty: every floe is this process's.
     pub(crate) ghost: Vec<bool>,
-    /// The bond list being rebuilt by the cohesion stage.
-    pub(crate) bond_scratch: Vec<crate::bonds::Bond>,
+    /// The cohesion stage's scratch: the pairs that turned quiet this
+    /// step (where their candidates go, and their contacts).
+    pub(crate) bond_fresh: Vec<(usize, usize)>,
     /// Per floe, its bonds' stress moments (floe stress with cohesion).
     pub(crate) bond_moments: Vec<[f64; 3]>,
     /// Bonds broken since the world was made or resumed.
@@ -101,7 +102,7 @@ impl Pipeline {
             rates: Vec::new(),
             moved_far: true,
             ghost: Vec::new(),
-            bond_scratch: Vec::new(),
+            bond_fresh: Vec::new(),
             bond_moments: Vec::new(),
             bonds_broken: 0,
             next: Stage::Drift,

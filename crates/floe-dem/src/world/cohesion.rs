@@ -59,7 +59,7 @@ impl<F: ExternalForces> World<F> {
         let broken = update_bonds(
             &input,
             &mut s.bonds,
-            &mut p.bond_scratch,
+            &mut p.bond_fresh,
             &mut p.accounting.bonds,
         );
         p.bonds_broken += broken as u64;
