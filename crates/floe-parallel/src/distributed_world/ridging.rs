@@ -2,8 +2,9 @@
 //! of the floes it owns, every process learns every cut (by loser id) and
 //! makes those of the floes it holds, owner or ghost; the processes' tallies
 //! add exactly into every process's ledger; process 0's record of the
-//! floes' shapes and masses learns the changed floes, and a migration
-//! restores the ghosts.
+//! floes' shapes and masses learns the changed floes; the ghosts take their
+//! owners' forces again, and only a floe gone whole (which renumbers the
+//! handles) calls for a migration.
 
 use super::*;
 use floe_dem::floes::Floe;
@@ -87,8 +88,13 @@ impl<F: ExternalForces, C: Communicator> DistributedWorld<F, C> {
         }
         // Memory kept aside for a pair with a floe gone goes with it.
         self.forget_parked(&gone);
-        // The ghosts learn the new shapes and lose the floes gone.
-        self.migrate()?;
+        if gone.is_empty() {
+            // The ghosts take their owners' forces: a cut moves part of a
+            // floe's external force, which only its owner holds.
+            self.exchange_ghosts();
+        } else {
+            self.migrate()?;
+        }
         Ok(all)
     }
 }
