@@ -399,7 +399,7 @@ impl Scenario {
         Some(Fracturing {
             rule: FractureRule {
                 criterion: s.criterion,
-                check_every_steps: ((s.check_every_s / dt_s).round() as u64).max(1),
+                check_every_steps: floe_dem::run::cadence::whole_steps(s.check_every_s, dt_s),
                 min_floe_area_m2: s.min_floe_area_m2,
                 split: SplitRule {
                     pieces: s.pieces,

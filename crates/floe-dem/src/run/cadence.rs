@@ -62,8 +62,10 @@ enum Output {
     Checkpoint,
 }
 
-/// Seconds as whole steps of `dt_s`, at least one.
-fn steps(s: f64, dt_s: f64) -> u64 {
+/// Seconds as whole steps of `dt_s`, at least one: how every interval
+/// given in seconds (output cadences, fracture and welding checks) becomes
+/// a count of steps.
+pub fn whole_steps(s: f64, dt_s: f64) -> u64 {
     ((s / dt_s).round() as u64).max(1)
 }
 
@@ -81,9 +83,9 @@ impl Cadence {
     /// least one step; no windows.
     pub fn from_seconds(snapshot_s: f64, observables_s: f64, checkpoint_s: f64, dt_s: f64) -> Self {
         Self {
-            snapshot: steps(snapshot_s, dt_s),
-            observables: steps(observables_s, dt_s),
-            checkpoint: steps(checkpoint_s, dt_s),
+            snapshot: whole_steps(snapshot_s, dt_s),
+            observables: whole_steps(observables_s, dt_s),
+            checkpoint: whole_steps(checkpoint_s, dt_s),
             windows: Vec::new(),
         }
     }
@@ -100,8 +102,8 @@ impl Cadence {
         self.windows.push(CadenceWindow {
             from_step: (from_s / dt_s).round() as u64,
             to_step: (to_s / dt_s).round() as u64,
-            snapshot: snapshot_s.map(|s| steps(s, dt_s)),
-            observables: observables_s.map(|s| steps(s, dt_s)),
+            snapshot: snapshot_s.map(|s| whole_steps(s, dt_s)),
+            observables: observables_s.map(|s| whole_steps(s, dt_s)),
         });
         self
     }

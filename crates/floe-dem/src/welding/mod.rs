@@ -93,8 +93,7 @@ impl Welding {
 
     /// Whether welds are looked for after step `step` of `dt_s`.
     pub fn due(&self, step: u64, dt_s: f64) -> bool {
-        let every = (self.check_every_s / dt_s).round().max(1.0) as u64;
-        step.is_multiple_of(every)
+        step.is_multiple_of(crate::run::cadence::whole_steps(self.check_every_s, dt_s))
     }
 }
 

@@ -117,11 +117,10 @@ impl<F: ExternalForces> World<F> {
         if !welding.due(self.state.steps, self.state.dt_s) {
             return Ok(Vec::new());
         }
-        let plans = self.plan_welding(&welding)?;
+        let mut plans = self.plan_welding(&welding)?;
         if plans.is_empty() {
             return Ok(plans);
         }
-        let mut plans = plans;
         let fractions = self.new_overlap_fractions(&plans);
         for (p, x) in plans.iter_mut().zip(fractions) {
             p.new_overlap_fraction = x;
