@@ -30,6 +30,16 @@ fn pairs<'py, T: numpy::Element + Copy>(
         .into_any())
 }
 
+/// An event log's `rows` as a dict of columns, one array per name, each
+/// value taken from a row by its closure (every log the reader returns).
+macro_rules! event_columns {
+    ($py:expr, $rows:expr, { $($name:literal => $f:expr),* $(,)? }) => {{
+        let d = PyDict::new($py);
+        $(d.set_item($name, array($py, $rows.iter().map($f).collect()))?;)*
+        d
+    }};
+}
+
 fn array<'py, T: numpy::Element>(py: Python<'py>, v: Vec<T>) -> Bound<'py, PyAny> {
     PyArray1::from_vec(py, v).into_any()
 }
@@ -193,93 +203,56 @@ impl RunReader {
     /// The fracture log as columns (empty for a run without fracture).
     fn fractures<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let events = self.read(py, RunFile::fractures)?;
-        let d = PyDict::new(py);
-        d.set_item("step", array(py, events.iter().map(|e| e.step).collect()))?;
-        d.set_item("time", array(py, events.iter().map(|e| e.time_s).collect()))?;
-        d.set_item(
-            "parent",
-            array(py, events.iter().map(|e| e.parent_id).collect()),
-        )?;
-        d.set_item(
-            "pieces",
-            array(
-                py,
-                events.iter().map(|e| e.piece_ids.len() as u64).collect(),
-            ),
-        )?;
-        d.set_item(
-            "first_piece",
-            array(
-                py,
-                events
-                    .iter()
-                    .map(|e| e.piece_ids.first().copied().unwrap_or(0))
-                    .collect(),
-            ),
-        )?;
-        d.set_item(
-            "sigma_1",
-            array(py, events.iter().map(|e| e.principal_pa.0).collect()),
-        )?;
-        d.set_item(
-            "sigma_2",
-            array(py, events.iter().map(|e| e.principal_pa.1).collect()),
-        )?;
-        d.set_item(
-            "area",
-            array(py, events.iter().map(|e| e.area_m2).collect()),
-        )?;
-        Ok(d)
+        Ok(event_columns!(py, events, {
+            "step" => |e| e.step,
+            "time" => |e| e.time_s,
+            "parent" => |e| e.parent_id,
+            "pieces" => |e| e.piece_ids.len() as u64,
+            "first_piece" => |e| e.piece_ids.first().copied().unwrap_or(0),
+            "sigma_1" => |e| e.principal_pa.0,
+            "sigma_2" => |e| e.principal_pa.1,
+            "area" => |e| e.area_m2,
+        }))
     }
 
     /// The ridging log as columns (empty for a run without one).
     fn ridges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let rows = self.read(py, RunFile::ridges)?;
-        let d = PyDict::new(py);
-        macro_rules! column {
-            ($name:literal, $f:expr) => {
-                d.set_item($name, array(py, rows.iter().map($f).collect()))?;
-            };
-        }
-        column!("step", |r| r.step);
-        column!("time", |r| r.time_s);
-        column!("loser", |r| r.loser_id);
-        column!("gainer", |r| r.gainer_id);
-        column!("ice_to", |r| r.ice_to_id);
-        column!("to_coast", |r| r.to_coast);
-        column!("whole", |r| r.whole);
-        column!("area_before", |r| r.area_before_m2);
-        column!("area_removed", |r| r.area_removed_m2);
-        column!("volume", |r| r.volume_m3);
-        column!("mass", |r| r.mass_kg);
-        column!("force_before", |r| r.force_before_n);
-        column!("force_after", |r| r.force_after_n);
-        Ok(d)
+        Ok(event_columns!(py, rows, {
+            "step" => |r| r.step,
+            "time" => |r| r.time_s,
+            "loser" => |r| r.loser_id,
+            "gainer" => |r| r.gainer_id,
+            "ice_to" => |r| r.ice_to_id,
+            "to_coast" => |r| r.to_coast,
+            "whole" => |r| r.whole,
+            "area_before" => |r| r.area_before_m2,
+            "area_removed" => |r| r.area_removed_m2,
+            "volume" => |r| r.volume_m3,
+            "mass" => |r| r.mass_kg,
+            "force_before" => |r| r.force_before_n,
+            "force_after" => |r| r.force_after_n,
+        }))
     }
 
     /// The welding log as columns (empty for a run without one).
     fn welds<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let rows = self.read(py, RunFile::welds)?;
-        let d = PyDict::new(py);
-        macro_rules! column {
-            ($name:literal, $f:expr) => {
-                d.set_item($name, array(py, rows.iter().map($f).collect()))?;
-            };
-        }
-        column!("step", |r| r.step);
-        column!("time", |r| r.time_s);
-        column!("first", |r| r.ids[0]);
-        column!("second", |r| r.ids[1]);
-        column!("welded", |r| r.welded_id);
-        column!("area_first", |r| r.areas_m2[0]);
-        column!("area_second", |r| r.areas_m2[1]);
-        column!("area", |r| r.area_m2);
-        column!("mass", |r| r.mass_kg);
-        column!("thickness", |r| r.thickness_m);
-        column!("centre_shift", |r| r.centre_shift_m);
-        column!("kinetic_energy_lost", |r| r.kinetic_energy_lost_j);
-        column!("energy_released", |r| r.released_j);
-        Ok(d)
+        Ok(event_columns!(py, rows, {
+            "step" => |r| r.step,
+            "time" => |r| r.time_s,
+            "first" => |r| r.ids[0],
+            "second" => |r| r.ids[1],
+            "welded" => |r| r.welded_id,
+            "area_first" => |r| r.areas_m2[0],
+            "area_second" => |r| r.areas_m2[1],
+            "area" => |r| r.area_m2,
+            "mass" => |r| r.mass_kg,
+            "thickness" => |r| r.thickness_m,
+            "centre_shift" => |r| r.centre_shift_m,
+            "kinetic_energy_lost" => |r| r.kinetic_energy_lost_j,
+            "energy_released" => |r| r.released_j,
+        }))
     }
 
     fn __repr__(&self) -> String {
