@@ -15,7 +15,6 @@ use floe_dem::ridging::Ridging;
 use floe_dem::welding::Welding;
 use floe_dem::world::FractureEvent;
 use floe_dem::world::PlannedRidge;
-use floe_dem::world::Weld;
 use std::sync::atomic::AtomicBool;
 
 use floe_dem::contact_model::ContactModel;
@@ -638,24 +637,39 @@ fn weak_ridging() -> Ridging {
     }
 }
 
-/// The sheared layer ridging: its states every `EVERY` steps and its
-/// ridging events, on `processes` processes (0: one world, no
-/// communicator).
-fn ridging_run(processes: usize, ridging: Ridging) -> (Vec<String>, Vec<PlannedRidge>) {
+/// The life cycle's tables a sheared-layer run turns on.
+#[derive(Debug, Clone, Copy, Default)]
+struct LifeTables {
+    ridging: Option<Ridging>,
+    cohesion: Option<Cohesion>,
+    welding: Option<Welding>,
+}
+
+/// The sheared layer with `tables`: its states every `EVERY` steps and the
+/// events `pick` takes from each step's report, on `processes` processes
+/// (0: one world, no communicator).
+fn layer_run<E: Clone + PartialEq + std::fmt::Debug + Send>(
+    processes: usize,
+    tables: LifeTables,
+    pick: fn(floe_dem::run::StepReport) -> Vec<E>,
+) -> (Vec<String>, Vec<E>) {
+    let never = AtomicBool::new(false);
     if processes == 0 {
         let mut w = sheared_layer(3);
-        w.set_ridging(Some(ridging)).unwrap();
+        w.set_ridging(tables.ridging).unwrap();
+        w.set_cohesion(tables.cohesion).unwrap();
+        w.set_welding(tables.welding).unwrap();
         let (mut states, mut events) = (vec![bits(w.state())], Vec::new());
         while w.steps() < STEPS {
-            w.step();
-            events.extend(w.ridge().unwrap());
+            let report = Stepper::step(&mut w, &never);
+            assert!(report.blow_up.is_none(), "{:?}", report.blow_up);
+            events.extend(pick(report));
             if w.steps().is_multiple_of(EVERY) {
                 states.push(bits(w.state()));
             }
         }
         return (states, events);
     }
-    let never = AtomicBool::new(false);
     let results = ThreadComm::run(processes, |comm| {
         let (state, model, forcing, periodicity) = sheared_layer(3).into_parts();
         let settings = Settings {
@@ -665,7 +679,9 @@ fn ridging_run(processes: usize, ridging: Ridging) -> (Vec<String>, Vec<PlannedR
         let mut d =
             DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
                 .unwrap();
-        d.set_ridging(Some(ridging)).unwrap();
+        d.set_ridging(tables.ridging).unwrap();
+        d.set_cohesion(tables.cohesion).unwrap();
+        d.set_welding(tables.welding).unwrap();
         let (mut states, mut events) = (Vec::new(), Vec::new());
         if let Some(s) = d.gather_whole().unwrap() {
             states.push(bits(&s));
@@ -673,7 +689,7 @@ fn ridging_run(processes: usize, ridging: Ridging) -> (Vec<String>, Vec<PlannedR
         while d.steps() < STEPS {
             let report = d.step(&never);
             assert!(report.blow_up.is_none() && report.forcing_failure.is_none());
-            events.extend(report.ridges);
+            events.extend(pick(report));
             if d.steps().is_multiple_of(EVERY) {
                 if let Some(s) = d.gather_whole().unwrap() {
                     states.push(bits(&s));
@@ -689,15 +705,16 @@ fn ridging_run(processes: usize, ridging: Ridging) -> (Vec<String>, Vec<PlannedR
     results.into_iter().next().unwrap()
 }
 
-/// The ridging layer on 1-4 processes gives one process's states and
+/// The layer with `tables` on 1-4 processes gives one process's states and
 /// events, bitwise.
-fn ridging_on_one_to_four_processes_is(
+fn on_one_to_four_processes_is<E: Clone + PartialEq + std::fmt::Debug + Send>(
     states: &[String],
-    events: &[PlannedRidge],
-    ridging: Ridging,
+    events: &[E],
+    tables: LifeTables,
+    pick: fn(floe_dem::run::StepReport) -> Vec<E>,
 ) {
     for processes in [1, 2, 3, 4] {
-        let (p_states, p_events) = ridging_run(processes, ridging);
+        let (p_states, p_events) = layer_run(processes, tables, pick);
         assert_eq!(p_events, events, "{processes} processes: the events");
         assert_eq!(p_states.len(), states.len());
         for (k, (a, b)) in p_states.iter().zip(states).enumerate() {
@@ -708,6 +725,30 @@ fn ridging_on_one_to_four_processes_is(
             );
         }
     }
+}
+
+/// The sheared layer ridging: its states and ridging events
+/// ([`layer_run`]).
+fn ridging_run(processes: usize, ridging: Ridging) -> (Vec<String>, Vec<PlannedRidge>) {
+    layer_run(processes, ridging_tables(ridging), |r| r.ridges)
+}
+
+/// The tables of a ridging run.
+fn ridging_tables(ridging: Ridging) -> LifeTables {
+    LifeTables {
+        ridging: Some(ridging),
+        ..LifeTables::default()
+    }
+}
+
+/// The ridging layer on 1-4 processes gives one process's states and
+/// events, bitwise.
+fn ridging_on_one_to_four_processes_is(
+    states: &[String],
+    events: &[PlannedRidge],
+    ridging: Ridging,
+) {
+    on_one_to_four_processes_is(states, events, ridging_tables(ridging), |r| r.ridges);
 }
 
 #[test]
@@ -772,90 +813,23 @@ fn loose_welding() -> Welding {
     }
 }
 
-/// The sheared layer freezing and welding: its states every `EVERY` steps
-/// and its welds, on `processes` processes (0: one world, no communicator).
-fn welding_run(processes: usize) -> (Vec<String>, Vec<Weld>) {
-    let never = AtomicBool::new(false);
-    if processes == 0 {
-        let mut w = sheared_layer(3);
-        w.set_cohesion(Some(strong_cohesion())).unwrap();
-        w.set_welding(Some(loose_welding())).unwrap();
-        let (mut states, mut welds) = (vec![bits(w.state())], Vec::new());
-        while w.steps() < STEPS {
-            let report = floe_dem::run::Stepper::step(&mut w, &never);
-            assert!(report.blow_up.is_none(), "{:?}", report.blow_up);
-            welds.extend(report.welds);
-            if w.steps().is_multiple_of(EVERY) {
-                states.push(bits(w.state()));
-            }
-        }
-        return (states, welds);
+/// The tables of the welding run: strong bonds, loose welding.
+fn welding_tables() -> LifeTables {
+    LifeTables {
+        cohesion: Some(strong_cohesion()),
+        welding: Some(loose_welding()),
+        ..LifeTables::default()
     }
-    let results = ThreadComm::run(processes, |comm| {
-        let (state, model, forcing, periodicity) = sheared_layer(3).into_parts();
-        let settings = Settings {
-            skin_fraction: 0.1,
-            rebalance_threshold: 0.2,
-        };
-        let mut d =
-            DistributedWorld::from_whole(state, model, forcing, periodicity, comm, settings)
-                .unwrap();
-        d.set_cohesion(Some(strong_cohesion())).unwrap();
-        d.set_welding(Some(loose_welding())).unwrap();
-        let (mut states, mut welds) = (Vec::new(), Vec::new());
-        if let Some(s) = d.gather_whole().unwrap() {
-            states.push(bits(&s));
-        }
-        while d.steps() < STEPS {
-            let report = d.step(&never);
-            assert!(report.blow_up.is_none() && report.forcing_failure.is_none());
-            welds.extend(report.welds);
-            if d.steps().is_multiple_of(EVERY) {
-                if let Some(s) = d.gather_whole().unwrap() {
-                    states.push(bits(&s));
-                }
-            }
-        }
-        (states, welds)
-    });
-    let welds = results[0].1.clone();
-    for (_, theirs) in &results {
-        assert_eq!(theirs, &welds, "every process returns every weld");
-    }
-    results.into_iter().next().unwrap()
 }
 
 #[test]
 fn welding_over_one_to_four_processes_is_bitwise_as_one() {
-    let (states, welds) = welding_run(0);
+    let (states, welds) = layer_run(0, welding_tables(), |r| r.welds);
     let chained = welds
         .iter()
         .filter(|w| welds.iter().any(|v| w.ids.contains(&v.floe.id)))
         .count();
     eprintln!("{} welds, {chained} of a welded floe", welds.len());
     assert!(welds.len() >= 5 && chained >= 1, "{} welds", welds.len());
-    for processes in [1, 2, 3, 4] {
-        let (p_states, p_welds) = welding_run(processes);
-        let pairs = |w: &[Weld]| {
-            w.iter()
-                .map(|w| (w.step, w.ids, w.floe.id))
-                .collect::<Vec<_>>()
-        };
-        assert_eq!(
-            pairs(&p_welds),
-            pairs(&welds),
-            "{processes} processes: the pairs welded"
-        );
-        for (x, y) in p_welds.iter().zip(&welds) {
-            assert!(x == y, "{processes} processes: {:?}\n{:?}", x, y);
-        }
-        assert_eq!(p_states.len(), states.len());
-        for (k, (a, b)) in p_states.iter().zip(&states).enumerate() {
-            assert!(
-                a == b,
-                "{processes} processes: the state at step {} differs",
-                k as u64 * EVERY
-            );
-        }
-    }
+    on_one_to_four_processes_is(&states, &welds, welding_tables(), |r| r.welds);
 }
